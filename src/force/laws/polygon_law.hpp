@@ -1,0 +1,41 @@
+// Model P: the tapping paper's overlap-area normal force and Cundall–Strack friction (SPEC 2.2)
+#pragma once
+#include <algorithm>
+#include <cmath>
+
+namespace gs::law {
+
+/// material constants of Model P
+struct PolyLawParams {
+  double E = 1000.0;   ///< 2D modulus, N/m
+  double gamma = 0.5;  ///< normal damping coefficient, dimensionless
+  double mu = 0.6;     ///< Coulomb friction coefficient
+};
+
+/// normal force magnitude (P.34), corrected dashpot sign (SPEC 9.2):
+/// F⊥ = max(E·h_eff + γ·√(E m⊥)·ḣ_eff, 0); ḣ_eff > 0 while the overlap grows. N.
+inline double poly_normal_force(const PolyLawParams& p, double h_eff, double hdot_eff,
+                                double m_perp) {
+  return std::max(p.E * h_eff + p.gamma * std::sqrt(p.E * m_perp) * hdot_eff, 0.0);
+}
+
+/// the tangential (Cundall–Strack) state carried by a contact between steps
+struct TangentialSpring {
+  double spring = 0.0;  ///< F*∥ of the previous step, N
+  double v_prev = 0.0;  ///< v∥ of the previous step, m/s
+};
+
+/// tangential force (P.35–P.36); updates the spring in place, returns F∥ (N), with
+/// v_par the relative tangential velocity (P.32) at this step and F_n = F⊥ at this step.
+///   F*∥(t) = clamp(F*∥(t−Δt) + (2/7)·E·v∥(t−Δt)·Δt, ±μF⊥(t))
+///   F∥(t)  = clamp(F*∥(t) + √((2/7)·E·m∥)·v∥(t), ±μF⊥(t))
+inline double cundall_strack(const PolyLawParams& p, TangentialSpring& s, double v_par,
+                             double F_n, double m_par, double dt) {
+  const double cap = p.mu * F_n;
+  const double k_t = (2.0 / 7.0) * p.E;
+  s.spring = std::clamp(s.spring + k_t * s.v_prev * dt, -cap, cap);
+  s.v_prev = v_par;
+  return std::clamp(s.spring + std::sqrt(k_t * m_par) * v_par, -cap, cap);
+}
+
+}  // namespace gs::law

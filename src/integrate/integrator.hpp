@@ -1,0 +1,53 @@
+// time integrators on flat channels of degrees of freedom. The integrator never sees
+// contacts: the step is predict() → (caller computes accelerations at the predicted
+// positions and velocities) → correct(). Each channel is one coordinate array (x, y or θ).
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace gs {
+
+enum class IntegratorKind : std::uint8_t {
+  Gear6,              ///< sixth-order Gear predictor–corrector (SPEC 2.3)
+  VelocityVerlet,     ///< kick–drift–kick; forces at half-step velocities
+  PositionVerlet,     ///< Störmer–Verlet (T.2.3) with a consistent velocity estimate
+  SemiImplicitEuler,  ///< symplectic Euler: v += a dt, then x += v dt
+};
+
+std::string_view to_string(IntegratorKind k);
+/// parse "gear6" | "velocity_verlet" | "position_verlet" | "semi_implicit_euler"; false if unknown
+bool parse_integrator(std::string_view s, IntegratorKind& out);
+/// the theoretical global order of accuracy for positions on smooth forces
+int integrator_order(IntegratorKind k);
+
+/// one coordinate array: positions q, velocities v (read-write), accelerations a (read-only,
+/// filled by the caller at the predicted state before correct())
+struct Channel {
+  std::span<double> q;
+  std::span<double> v;
+  std::span<const double> a;
+};
+
+/// an integrator owns whatever history it needs (Gear derivatives, previous positions)
+class Integrator {
+ public:
+  virtual ~Integrator() = default;
+  virtual IntegratorKind kind() const = 0;
+  /// start from the current q, v and the accelerations a at that state
+  virtual void init(std::span<const Channel> ch, double dt) = 0;
+  /// advance q and v to the predicted state at t + dt, where forces are evaluated
+  virtual void predict(std::span<const Channel> ch, double dt) = 0;
+  /// given a at the predicted state, produce the final q, v at t + dt
+  virtual void correct(std::span<const Channel> ch, double dt) = 0;
+  /// the integrator's internal history as flat doubles (for checkpoints), and back
+  virtual std::vector<double> save() const = 0;
+  virtual void load(const std::vector<double>& data) = 0;
+};
+
+std::unique_ptr<Integrator> make_integrator(IntegratorKind k);
+
+}  // namespace gs

@@ -1,0 +1,156 @@
+// SceneSpec: the plain-data description of a scene, validated once by the parser.
+// Every field says its unit. Parsing lives in parse.hpp; nothing here knows TOML.
+#pragma once
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "integrate/integrator.hpp"
+
+namespace gs {
+
+enum class ShapeKind : std::uint8_t { Disk, Polygon };
+enum class ModelKind : std::uint8_t {
+  P,  ///< polygon DEM: overlap-area normal force + Cundall–Strack (SPEC 2)
+  S,  ///< soft disks: linear spring–dashpot (SPEC 3)
+};
+enum class BoxKind : std::uint8_t {
+  Walls,     ///< closed box of wall rectangles (optionally without lid)
+  Periodic,  ///< periodic rectangle, minimum image
+  Ring1D,    ///< periodic line (1D RFM)
+};
+enum class PlacementKind : std::uint8_t {
+  LooseColumn,  ///< random non-overlapping positions/orientations in a column, seeded
+  Hexagonal,
+  Square,
+  Uniform,      ///< each particle gets an equal share of the box (thesis fig. 2.4c)
+  Random,       ///< uniform random non-overlapping positions in the whole box
+};
+enum class DriveKind : std::uint8_t {
+  None,
+  Gravity,      ///< constant gravity g (vector)
+  NegativeG,    ///< pulses of negative gravity (P.37)
+  RotatingG,    ///< rotating gravity (P.38)
+  RandomForce,  ///< white-noise kicks (T.2.16, T.2.23)
+};
+enum class BroadPhaseKind : std::uint8_t { Auto, Box2DTree, CellGrid };
+
+/// a material: Model P uses E, γ, μ; Model S uses ε_n, ε_t, k_s, μ
+struct MaterialSpec {
+  std::string name;
+  double E = 1000.0;      ///< Model P 2D modulus, N/m
+  double gamma = 0.5;     ///< Model P damping, dimensionless
+  double mu = 0.6;        ///< friction coefficient (Model S: 0 = off)
+  double ks = 5e5;        ///< Model S normal stiffness, N/m
+  double eps_n = 0.6;     ///< Model S normal restitution
+  double eps_t = 1.0;     ///< Model S tangential restitution (1 = no tangential dashpot)
+  int line = 0;           ///< line in the scene file, for messages
+};
+
+/// one species of grains
+struct SpeciesSpec {
+  std::string name;
+  ShapeKind shape = ShapeKind::Polygon;
+  int sides = 10;             ///< regular n-gon sides (polygons)
+  double radius = 0.009;      ///< circumradius (polygons) or radius (disks), m
+  int count = 0;
+  double density = 1.0;       ///< areal density ρ, kg/m² (used when mass is not given)
+  std::optional<double> mass; ///< mass per grain, kg (overrides density)
+  std::string material;       ///< name of a MaterialSpec (default: the first material)
+  int line = 0;
+};
+
+struct BoxSpec {
+  BoxKind kind = BoxKind::Walls;
+  double width = 0.48;        ///< inner width W, m (ring: length L)
+  double height = 1.0;        ///< inner height (lid height when lid = true), m
+  bool lid = false;           ///< closed top (rotating g)
+  double wall_thickness = 0.05;  ///< m
+  std::optional<double> reduced_length;  ///< 1D ring L′ = L − N·d, m (overrides width)
+  std::string material;       ///< wall material name (default: first material)
+};
+
+struct PreparationSpec {
+  PlacementKind placement = PlacementKind::LooseColumn;
+  std::uint64_t seed = 1;
+  double column_height = 0.0;   ///< loose column height, m (0 = automatic, ~2× packed)
+  double velocity_amplitude = 0.0;  ///< initial velocity components U(−a/2, a/2), m/s
+  double settle_time = 0.0;     ///< let it settle under gravity for this long first, s
+  /// explicit particles (tests, collision scenes): overrides placement when non-empty
+  struct Particle {
+    std::string species;
+    double x = 0, y = 0, theta = 0, vx = 0, vy = 0, omega = 0;
+  };
+  std::vector<Particle> particles;
+};
+
+struct ModelSpec {
+  ModelKind kind = ModelKind::P;
+  bool hdot_finite_difference = false;  ///< Model P: ḣ_eff by finite difference (else analytic)
+  bool clip_attractive = false;         ///< Model S: clip attractive normal force
+  bool rotation = true;                 ///< integrate rotation (auto-off for frictionless disks)
+};
+
+struct IntegratorSpec {
+  IntegratorKind kind = IntegratorKind::Gear6;
+  double dt = 5e-5;  ///< time step, s
+  BroadPhaseKind broad_phase = BroadPhaseKind::Auto;
+};
+
+struct DriveSpec {
+  DriveKind kind = DriveKind::Gravity;
+  double g = 9.81;       ///< gravity magnitude, m/s²
+  double gx = 0.0, gy = -1.0;  ///< gravity direction (constant gravity), normalised on use
+  // negative g (P.37)
+  double g_p = 6.0;      ///< pulse strength in units of g
+  double t1 = 0.1;       ///< pulse duration, s
+  double period = 3.0;   ///< period T, s
+  // rotating g (P.38)
+  double f = 1.0;        ///< rotation frequency f = ω/2π, Hz
+  double relax = 3.0;    ///< rest time after the rotation, s (T = 1/f + relax)
+  // random force (T.2.16)
+  double D = 1e-8;       ///< noise strength, N² s
+  int com_removal_every = 100;  ///< 2D: subtract centre-of-mass velocity every K steps
+  // early rest: end a relaxation early when max speed and KE stay low for hold time
+  bool early_rest = false;
+  double rest_speed = 1e-3;    ///< m/s
+  double rest_energy = 1e-6;   ///< J
+  double rest_hold = 0.1;      ///< s
+  // taps
+  int taps = 0;          ///< number of taps (0 = run for duration)
+};
+
+struct HealthSpec {
+  double max_overlap = 0.2;    ///< stop when h_eff or δ exceeds this fraction of grain size
+  int check_every = 100;       ///< steps between checks
+  bool allow_unstable = false; ///< skip the up-front Δt check
+};
+
+struct OutputSpec {
+  int series_every = 100;      ///< steps between series.csv rows
+  bool final_state = true;
+  double test_rect[4] = {0.04, 0.04, 0.44, 0.44};  ///< x0, y0, x1, y1 of the φ window, m
+  int discard_taps = 10;
+};
+
+struct SceneSpec {
+  std::string path;            ///< file it came from
+  std::string name;
+  std::string description;
+  ModelSpec model;
+  std::vector<MaterialSpec> materials;
+  std::vector<SpeciesSpec> species;
+  BoxSpec box;
+  PreparationSpec prep;
+  IntegratorSpec integrator;
+  DriveSpec drive;
+  HealthSpec health;
+  OutputSpec output;
+  double duration = 1.0;       ///< simulated time, s (ignored when drive.taps > 0)
+  /// every key as written, resolved with defaults, for run.json (key path → TOML value text)
+  std::map<std::string, std::string> resolved;
+};
+
+}  // namespace gs
