@@ -1,14 +1,15 @@
 # the modules in data-path order (DESIGN.md): each uses only those above it
 gs_module(core DEPS Eigen3::Eigen)
 gs_module(geometry DEPS gs_core)
-gs_module(scene DEPS gs_geometry tomlplusplus::tomlplusplus)
+gs_module(integrate DEPS gs_core)
+gs_module(scene DEPS gs_geometry gs_integrate tomlplusplus::tomlplusplus)
 gs_module(world DEPS gs_scene gs_geometry)
 gs_module(broadphase DEPS gs_world box2d::box2d)
-gs_module(force DIRS force force/laws DEPS gs_core)
-gs_module(contact DEPS gs_broadphase gs_force)
-gs_module(integrate DEPS gs_core)
+gs_module(contact DEPS gs_broadphase)
+# force laws (force/laws/) are header-only pure functions; force/ is the loop over contacts
+gs_module(force DEPS gs_contact)
 gs_module(drive DEPS gs_world)
-gs_module(sim DEPS gs_contact gs_integrate gs_drive)
+gs_module(sim DEPS gs_force gs_integrate gs_drive gs_output)
 gs_module(measure DEPS gs_sim)
 gs_module(analysis DEPS gs_core)
 if(FFTW3_FOUND)
@@ -16,8 +17,11 @@ if(FFTW3_FOUND)
   target_compile_definitions(gs_analysis PUBLIC GS_HAVE_FFTW=1)
 endif()
 
+# auxiliary models of the thesis (bisection, single-particle walks, cascades): cheap exact checks
+gs_module(models DEPS gs_analysis)
+
 # render: the GL-free frame builder always; the OSMesa backend only where OSMesa is found
-gs_module(render DEPS gs_measure)
+gs_module(render DEPS gs_geometry)
 if(OSMESA_FOUND)
   file(GLOB gl_srcs CONFIGURE_DEPENDS ${CMAKE_SOURCE_DIR}/src/render/gl/*.cpp)
   if(gl_srcs)
@@ -33,7 +37,7 @@ if(OSMESA_FOUND)
 endif()
 
 # output: CSV/JSON, PNG, checkpoints; the movie encoder only where FFmpeg is found
-gs_module(output DEPS gs_render PkgConfig::PNG)
+gs_module(output DEPS gs_core PkgConfig::PNG)
 if(FFMPEG_FOUND)
   file(GLOB movie_srcs CONFIGURE_DEPENDS ${CMAKE_SOURCE_DIR}/src/output/movie/*.cpp)
   if(movie_srcs)
@@ -43,7 +47,7 @@ if(FFMPEG_FOUND)
   endif()
 endif()
 
-gs_module(app DEPS gs_output gs_analysis CLI11::CLI11 Threads::Threads)
+gs_module(app DEPS gs_measure gs_render gs_output gs_analysis gs_models CLI11::CLI11 Threads::Threads)
 if(TARGET gs_render_gl)
   target_link_libraries(gs_app PUBLIC gs_render_gl)
 endif()

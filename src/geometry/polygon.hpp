@@ -34,12 +34,26 @@ Poly rectangle(double x0, double y0, double x1, double y1);
 /// a polygon given in body coordinates placed at position c with orientation θ
 Poly place(const Poly& body, Vec2 c, double theta);
 
-/// the part of p on the side dot(x, n) <= d of a line (half-plane clip, Sutherland–Hodgman)
+/// the part of p on the side dot(x, n) <= d of a line (half-plane clip, Sutherland–Hodgman).
+/// Points on the line count as inside. Needs p.n < kMaxPolyVerts (the result may gain a vertex).
 Poly clip_half_plane(const Poly& p, Vec2 n, double d);
-/// intersection of two convex polygons (Sutherland–Hodgman; b is the clip polygon)
+/// intersection of two convex polygons (Sutherland–Hodgman; b is the clip polygon).
+/// Needs a.n + b.n <= kMaxPolyVerts. Touching polygons give a degenerate (zero-area) result.
 Poly intersect(const Poly& a, const Poly& b);
 /// area of the intersection of a convex polygon with the rectangle [x0,x1]×[y0,y1]
 double area_in_rect(const Poly& p, double x0, double y0, double x1, double y1);
+
+/// an axis-aligned bounding box, m
+struct Aabb {
+  Vec2 lo;  ///< lower-left corner, m
+  Vec2 hi;  ///< upper-right corner, m
+};
+/// the tightest axis-aligned box around p's vertices (p must have at least one vertex)
+Aabb bounds(const Poly& p);
+/// whether point x lies in the closed convex polygon p
+bool contains(const Poly& p, Vec2 x);
+/// polar second moment of area about the point o: ∫|x − o|² dA, m⁴ (J = ρ × this)
+double polar_moment(const Poly& p, Vec2 o);
 
 /// result of the overlap of two convex polygons (SPEC 2.1)
 struct Overlap {
@@ -53,7 +67,7 @@ struct Overlap {
 /// apart; with none (one inside the other) crossings = 0.
 Overlap overlap(const Poly& a, const Poly& b);
 
-/// mass of a regular n-gon of areal density ρ and circumradius r: ρ (n/2) r² sin(2π/n) (SPEC 1)
+/// area of a regular n-gon of circumradius r: (n/2) r² sin(2π/n), m² (SPEC 1; mass = ρ × area)
 double ngon_area(int n, double r);
 /// moment of inertia of a regular n-gon about its centre: (m r²/6)(1 + 2cos²(π/n)) (SPEC 1)
 double ngon_inertia(int n, double r, double mass);

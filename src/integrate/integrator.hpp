@@ -1,6 +1,17 @@
 // time integrators on flat channels of degrees of freedom. The integrator never sees
 // contacts: the step is predict() → (caller computes accelerations at the predicted
 // positions and velocities) → correct(). Each channel is one coordinate array (x, y or θ).
+//
+// contract shared by all four schemes (src/integrate/schemes.hpp has the details):
+// - init() fixes the layout (number of channels and their lengths); call it again whenever
+//   bodies are added or removed. predict()/correct() with another layout throw
+//   std::invalid_argument.
+// - between correct() and the next predict() the caller may edit q (periodic wrapping) and
+//   v (velocity kicks, centre-of-mass drift removal); every scheme picks such edits up as if
+//   the state had been produced by the step.
+// - dt may change between steps; each scheme rescales its history to the new dt.
+// - save()/load() are valid between steps; together with the caller's q and v they restore
+//   the run bitwise. load() throws gs::InputError on data that is not this scheme's.
 #pragma once
 #include <cstdint>
 #include <memory>

@@ -1,0 +1,41 @@
+// the simple CSV files the RFM analyses write for tools/charts_rfm.py: optional
+// "# key=value" metadata lines (fit parameters, k_D, …), one header line of column
+// names, then numeric rows. A reader for the same format serves tests and tools.
+#pragma once
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace gs::rfm {
+
+/// metadata written as "# key=value" above the header
+using CsvMeta = std::vector<std::pair<std::string, double>>;
+
+/// writes one CSV file; throws gs::InputError naming the path when it cannot be written
+class CsvWriter {
+ public:
+  CsvWriter(const std::filesystem::path& path, const std::vector<std::string>& columns,
+            const CsvMeta& meta = {});
+  /// one row; its length must match the header
+  void row(const std::vector<double>& values);
+
+ private:
+  std::filesystem::path path_;
+  std::ofstream out_;
+  std::size_t columns_ = 0;
+};
+
+/// a CSV file read back: metadata and named columns
+struct CsvTable {
+  std::map<std::string, double> meta;                 ///< "# key=value" lines
+  std::vector<std::string> names;                     ///< header, in order
+  std::map<std::string, std::vector<double>> column;  ///< values by column name
+};
+
+/// reads a file written by CsvWriter; throws gs::InputError naming file and line on error
+CsvTable read_csv(const std::filesystem::path& path);
+
+}  // namespace gs::rfm

@@ -1,0 +1,190 @@
+// the tapping study's analysis: statistics, KDEs, overlapping histograms, quadron fits
+#include "analysis/tap_analysis.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <sstream>
+
+#include "core/error.hpp"
+
+namespace gs {
+
+namespace {
+
+// the values after the first `discard` taps
+std::vector<double> tail(const std::vector<double>& x, int discard) {
+  if (static_cast<int>(x.size()) <= discard) return {};
+  return {x.begin() + discard, x.end()};
+}
+
+std::string format_control(double c) {
+  std::ostringstream s;
+  s << c;
+  return s.str();
+}
+
+// per-run statistics (SPEC 2.6): φ̄, σ_φ with CIs, τ_int, normality, the halves
+TapRunSummary summarize(const TapRunInput& run, const std::vector<double>& phi,
+                        const TapAnalysisOptions& opts) {
+  TapRunSummary s;
+  s.label = tap_run_label(run);
+  s.protocol = run.protocol;
+  s.control = run.control;
+  s.n_total = static_cast<int>(run.series.phi.size());
+  s.n_used = static_cast<int>(phi.size());
+  s.phi_mean = mean(phi);
+  s.sigma = stddev(phi);
+  s.tau = autocorr_time(phi);
+  const double tau = s.tau.tau_int;
+  s.phi_err = s.sigma * std::sqrt(2.0 * tau / s.n_used);
+  s.phi_mean_ci = mean_ci(phi, opts.level);
+  s.phi_mean_ci_tau = mean_ci(phi, opts.level, tau);
+  s.sigma_ci = stddev_ci(phi, opts.level);
+  s.sigma_ci_tau = stddev_ci(phi, opts.level, tau);
+  s.normality = normality_chi2(phi, opts.alpha);
+  // the halves of the test rectangle: σ ratio to the whole ≈ √2 for a large enough region
+  const auto left = tail(run.series.phi_left, opts.discard);
+  const auto right = tail(run.series.phi_right, opts.discard);
+  if (left.size() == phi.size() && right.size() == phi.size() && phi.size() >= 2) {
+    s.has_halves = true;
+    s.mean_left = mean(left);
+    s.mean_right = mean(right);
+    s.sigma_left = stddev(left);
+    s.sigma_right = stddev(right);
+  }
+  return s;
+}
+
+int find_label(const std::vector<TapRunSummary>& runs, const std::string& label) {
+  for (std::size_t i = 0; i < runs.size(); ++i)
+    if (runs[i].label == label) return static_cast<int>(i);
+  return -1;
+}
+
+// quadron fit (P.26) over the runs whose index passes `use`, with β̂ against the reference
+QuadronFit fit_runs(const TapAnalysisResult& r, const TapAnalysisOptions& opts,
+                    const std::vector<int>& use) {
+  std::vector<double> b, be, p, pe;
+  for (int i : use) {
+    if (!r.beta[i].valid) continue;
+    b.push_back(r.beta[i].dbeta);
+    be.push_back(r.beta[i].dbeta_err);
+    p.push_back(r.runs[i].phi_mean);
+    pe.push_back(r.runs[i].phi_err);
+  }
+  return fit_quadron(b, p, pe, be, opts.quadron);
+}
+
+}  // namespace
+
+std::string tap_run_label(const TapRunInput& run) {
+  if (!run.label.empty()) return run.label;
+  return (run.protocol.empty() ? std::string("run") : run.protocol) + "_" +
+         format_control(run.control);
+}
+
+TapAnalysisResult run_tap_analysis(const std::vector<TapRunInput>& runs,
+                                   const TapAnalysisOptions& opts) {
+  if (runs.empty()) throw InputError("", "runs", "the tapping analysis needs at least one run");
+  TapAnalysisResult r;
+
+  // per-run statistics after dropping the transient
+  std::vector<std::vector<double>> phis;
+  std::set<std::string> labels;
+  for (const auto& run : runs) {
+    const std::string label = tap_run_label(run);
+    if (!labels.insert(label).second)
+      throw InputError(run.series.source, "label", "duplicate run label '" + label + "'");
+    phis.push_back(tail(run.series.phi, opts.discard));
+    if (phis.back().size() < 20)
+      throw InputError(run.series.source, "phi",
+                       "run '" + label + "' has " + std::to_string(phis.back().size()) +
+                           " taps after discarding " + std::to_string(opts.discard) +
+                           " (needs at least 20)");
+    r.runs.push_back(summarize(run, phis.back(), opts));
+  }
+
+  // KDEs (B1–B7): Silverman h, the three kernels on the same grid
+  for (const auto& phi : phis) {
+    r.kde_normal.push_back(kde_auto(phi, opts.kde_points, Kernel::Normal));
+    const auto& c = r.kde_normal.back();
+    r.kde_epanechnikov.push_back(kde(phi, c.x, c.bandwidth, Kernel::Epanechnikov));
+    r.kde_box.push_back(kde(phi, c.x, c.bandwidth, Kernel::Box));
+  }
+
+  // the references: by label, else the first run; the second one defaults to the next run
+  // of the same protocol
+  r.ref = opts.reference.empty() ? 0 : find_label(r.runs, opts.reference);
+  if (r.ref < 0) throw InputError("", "reference", "no run labelled '" + opts.reference + "'");
+  if (!opts.reference2.empty()) {
+    r.ref2 = find_label(r.runs, opts.reference2);
+    if (r.ref2 < 0) throw InputError("", "reference2", "no run labelled '" + opts.reference2 + "'");
+  } else {
+    for (std::size_t k = 1; k < runs.size() && r.ref2 < 0; ++k) {
+      const int i = static_cast<int>((r.ref + k) % runs.size());
+      if (runs[i].protocol == runs[r.ref].protocol) r.ref2 = i;
+    }
+  }
+  if (r.ref2 < 0) r.notes.push_back("no second reference run: beta against two references skipped");
+
+  // overlapping histograms (P.39) with V_g = V_T φ̄_ref held constant
+  if (!(opts.test_area > 0.0)) throw InputError("", "test_area", "must be > 0 (m²)");
+  r.v_g = opts.test_area * r.runs[r.ref].phi_mean;
+  r.beta = betas_from_phi(phis[r.ref], phis, r.v_g, opts.overlap);
+  // the reference against itself is β̂ = 0, ln Z ratio 0 by definition (no error)
+  r.beta[r.ref].dbeta = r.beta[r.ref].dbeta_err = 0.0;
+  r.beta[r.ref].dlnz = r.beta[r.ref].dlnz_err = r.beta[r.ref].cov = 0.0;
+  for (std::size_t i = 0; i < r.beta.size(); ++i)
+    if (!r.beta[i].valid)
+      r.notes.push_back("run '" + r.runs[i].label + "': no overlap with the reference (" +
+                        r.beta[i].fit.note + ")");
+  if (r.ref2 >= 0) {
+    r.beta2 = betas_from_phi(phis[r.ref2], phis, r.v_g, opts.overlap);
+    r.beta2[r.ref2].dbeta = r.beta2[r.ref2].dbeta_err = 0.0;
+    r.beta2[r.ref2].dlnz = r.beta2[r.ref2].dlnz_err = r.beta2[r.ref2].cov = 0.0;
+    // (P.39): β̂ from two references differ by a constant; weighted mean and χ² of that
+    double sw = 0.0, swd = 0.0;
+    std::vector<std::pair<double, double>> d;
+    for (std::size_t i = 0; i < r.beta.size(); ++i) {
+      if (!r.beta[i].valid || !r.beta2[i].valid) continue;
+      const double e2 = r.beta[i].dbeta_err * r.beta[i].dbeta_err +
+                        r.beta2[i].dbeta_err * r.beta2[i].dbeta_err;
+      if (!(e2 > 0.0)) continue;
+      d.emplace_back(r.beta[i].dbeta - r.beta2[i].dbeta, e2);
+      sw += 1.0 / e2;
+      swd += d.back().first / e2;
+    }
+    if (sw > 0.0) {
+      r.ref_offset = swd / sw;
+      r.ref_offset_err = 1.0 / std::sqrt(sw);
+      for (const auto& [v, e2] : d) r.ref_offset_chi2 += (v - r.ref_offset) * (v - r.ref_offset) / e2;
+      r.ref_offset_dof = static_cast<int>(d.size()) - 1;
+    }
+  }
+
+  // ideal quadron fit (P.26) over all runs and per protocol
+  std::vector<int> all(runs.size());
+  for (std::size_t i = 0; i < runs.size(); ++i) all[i] = static_cast<int>(i);
+  r.quadron["all"] = fit_runs(r, opts, all);
+  std::set<std::string> protocols;
+  for (const auto& run : runs) protocols.insert(run.protocol);
+  if (protocols.size() > 1) {
+    for (const auto& pr : protocols) {
+      std::vector<int> use;
+      for (std::size_t i = 0; i < runs.size(); ++i)
+        if (runs[i].protocol == pr) use.push_back(static_cast<int>(i));
+      r.quadron[pr] = fit_runs(r, opts, use);
+    }
+  }
+  for (const auto& [name, f] : r.quadron)
+    if (!f.converged) r.notes.push_back("quadron fit '" + name + "': " + f.note);
+  return r;
+}
+
+void analyze_tapping(const std::vector<TapRunInput>& runs, const TapAnalysisOptions& opts,
+                     const std::string& out_dir) {
+  write_tap_analysis(run_tap_analysis(runs, opts), runs, opts, out_dir);
+}
+
+}  // namespace gs

@@ -1,0 +1,327 @@
+// the tapping analysis' files: reading taps.csv, writing the CSV and JSON results
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "analysis/tap_analysis.hpp"
+#include "core/error.hpp"
+
+namespace gs {
+
+namespace {
+
+std::string trim(const std::string& s) {
+  const auto b = s.find_first_not_of(" \t\r\"");
+  if (b == std::string::npos) return "";
+  const auto e = s.find_last_not_of(" \t\r\"");
+  return s.substr(b, e - b + 1);
+}
+
+std::vector<std::string> split(const std::string& line) {
+  std::vector<std::string> out;
+  std::stringstream ss(line);
+  std::string cell;
+  while (std::getline(ss, cell, ',')) out.push_back(trim(cell));
+  if (!line.empty() && line.back() == ',') out.emplace_back();
+  return out;
+}
+
+// a number for CSV: shortest round-trip form; NaN and infinities as text
+std::string num(double v) {
+  if (std::isnan(v)) return "nan";
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+// a number for JSON: null where JSON has no number
+std::string jnum(double v) { return std::isfinite(v) ? num(v) : "null"; }
+
+std::string jstr(const std::string& s) {
+  std::string o = "\"";
+  for (char c : s) {
+    if (c == '"' || c == '\\') {
+      o += '\\';
+      o += c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\u%04x", c);
+      o += buf;
+    } else {
+      o += c;
+    }
+  }
+  return o + "\"";
+}
+
+std::string jarr(const std::vector<double>& v) {
+  std::string o = "[";
+  for (std::size_t i = 0; i < v.size(); ++i) o += (i ? "," : "") + jnum(v[i]);
+  return o + "]";
+}
+
+std::ofstream open_out(const std::filesystem::path& p) {
+  std::ofstream f(p);
+  if (!f) throw InputError(p.string(), "", "cannot open the file for writing");
+  return f;
+}
+
+// one quadron fit as a JSON object, with the curve φ̄(β), σ_φ(β), Δln Z(β) over the data range
+std::string quadron_json(const QuadronFit& f, const TapAnalysisResult& r,
+                         const TapAnalysisOptions& opts) {
+  std::ostringstream o;
+  o << "{\"converged\": " << (f.converged ? "true" : "false") << ", \"note\": " << jstr(f.note)
+    << ", \"points\": " << f.points << ", \"iterations\": " << f.iterations
+    << ", \"a\": " << jnum(f.a) << ", \"a_err\": " << jnum(f.a_err)
+    << ", \"beta0\": " << jnum(f.beta0) << ", \"beta0_err\": " << jnum(f.beta0_err)
+    << ", \"cov_a_beta0\": " << jnum(f.cov_a_beta0) << ", \"chi2\": " << jnum(f.chi2)
+    << ", \"dof\": " << f.dof << ", \"errors_scaled\": " << (f.errors_scaled ? "true" : "false");
+  if (f.converged && f.a > 0.0) {
+    // the curve over the measured β̂ range, widened by a quarter on each side
+    double lo = 0.0, hi = 0.0;
+    for (const auto& b : r.beta)
+      if (b.valid) lo = std::min(lo, b.dbeta), hi = std::max(hi, b.dbeta);
+    const double pad = 0.25 * std::max(hi - lo, 1e-12);
+    std::vector<double> bh, ph, sg, lz;
+    const double lz0 = quadron_lnz(f.beta0, f.a, r.v_g, opts.quadron);
+    for (int i = 0; i <= 200; ++i) {
+      const double b = lo - pad + (hi - lo + 2.0 * pad) * i / 200.0;
+      bh.push_back(b);
+      ph.push_back(quadron_phi(b + f.beta0, f.a, opts.quadron));
+      sg.push_back(quadron_sigma_phi(b + f.beta0, f.a, r.v_g, opts.quadron));
+      lz.push_back(quadron_lnz(b + f.beta0, f.a, r.v_g, opts.quadron) - lz0);
+    }
+    o << ", \"curve\": {\"beta_hat\": " << jarr(bh) << ", \"phi\": " << jarr(ph)
+      << ", \"sigma_phi\": " << jarr(sg) << ", \"dlnz\": " << jarr(lz) << "}";
+  }
+  o << "}";
+  return o.str();
+}
+
+}  // namespace
+
+TapSeries parse_taps_csv(std::istream& in, const std::string& source) {
+  TapSeries s;
+  s.source = source;
+  std::string line;
+  int lineno = 0;
+  std::vector<std::string> header;
+  // the header: the first line that is neither blank nor a comment
+  while (std::getline(in, line)) {
+    ++lineno;
+    if (trim(line).empty() || trim(line)[0] == '#') continue;
+    header = split(line);
+    break;
+  }
+  if (header.empty()) throw InputError(source, "", "no header row (is the file empty?)");
+  auto column = [&](const std::string& name, bool required) {
+    for (std::size_t i = 0; i < header.size(); ++i)
+      if (header[i] == name) return static_cast<int>(i);
+    if (required)
+      throw InputError(source + ":" + std::to_string(lineno), name,
+                       "missing column '" + name + "' in the header");
+    return -1;
+  };
+  const int c_tap = column("tap", true);
+  const int c_phi = column("phi", true);
+  const int c_t = column("t", false);
+  const int c_left = column("phi_left", false);
+  const int c_right = column("phi_right", false);
+
+  // one row per tap; every used column must hold a number
+  while (std::getline(in, line)) {
+    ++lineno;
+    if (trim(line).empty() || trim(line)[0] == '#') continue;
+    const auto cells = split(line);
+    auto value = [&](int c) {
+      const std::string where = source + ":" + std::to_string(lineno);
+      if (c >= static_cast<int>(cells.size()))
+        throw InputError(where, header[c], "row has no value for column '" + header[c] + "'");
+      const std::string& cell = cells[c];
+      char* end = nullptr;
+      const double v = std::strtod(cell.c_str(), &end);
+      if (cell.empty() || end != cell.c_str() + cell.size())
+        throw InputError(where, header[c], "not a number: '" + cell + "'");
+      return v;
+    };
+    s.tap.push_back(value(c_tap));
+    s.phi.push_back(value(c_phi));
+    if (c_t >= 0) s.t.push_back(value(c_t));
+    if (c_left >= 0) s.phi_left.push_back(value(c_left));
+    if (c_right >= 0) s.phi_right.push_back(value(c_right));
+  }
+  return s;
+}
+
+TapSeries read_taps_csv(const std::string& path) {
+  std::ifstream f(path);
+  if (!f) throw InputError(path, "", "cannot open taps file for reading");
+  return parse_taps_csv(f, path);
+}
+
+TapRunInput load_tap_run(const std::string& path, const std::string& protocol, double control,
+                         const std::string& label) {
+  TapRunInput r;
+  r.label = label;
+  r.protocol = protocol;
+  r.control = control;
+  r.series = read_taps_csv(path);
+  return r;
+}
+
+void write_tap_analysis(const TapAnalysisResult& r, const std::vector<TapRunInput>& runs,
+                        const TapAnalysisOptions& opts, const std::string& out_dir) {
+  namespace fs = std::filesystem;
+  const fs::path dir(out_dir);
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) throw InputError(out_dir, "", "cannot create the output folder: " + ec.message());
+  const auto& ref = r.runs[r.ref];
+
+  // summary.csv: one row per run
+  {
+    auto f = open_out(dir / "summary.csv");
+    f << "label,protocol,control,n_total,n_used,phi_mean,phi_err,phi_mean_lo,phi_mean_hi,"
+         "phi_mean_lo_tau,phi_mean_hi_tau,sigma,sigma_lo,sigma_hi,sigma_lo_tau,sigma_hi_tau,"
+         "tau_int,tau_err,tau_window,chi2,chi2_bins,chi2_dof,chi2_p,normal,mean_left,"
+         "mean_right,sigma_left,sigma_right,ratio_left,ratio_right\n";
+    for (const auto& s : r.runs) {
+      const double nan = std::nan("");
+      f << s.label << ',' << s.protocol << ',' << num(s.control) << ',' << s.n_total << ','
+        << s.n_used << ',' << num(s.phi_mean) << ',' << num(s.phi_err) << ','
+        << num(s.phi_mean_ci.lo) << ',' << num(s.phi_mean_ci.hi) << ','
+        << num(s.phi_mean_ci_tau.lo) << ',' << num(s.phi_mean_ci_tau.hi) << ',' << num(s.sigma)
+        << ',' << num(s.sigma_ci.lo) << ',' << num(s.sigma_ci.hi) << ','
+        << num(s.sigma_ci_tau.lo) << ',' << num(s.sigma_ci_tau.hi) << ',' << num(s.tau.tau_int)
+        << ',' << num(s.tau.tau_err) << ',' << s.tau.window << ',' << num(s.normality.statistic)
+        << ',' << s.normality.bins << ',' << s.normality.dof << ',' << num(s.normality.p_value)
+        << ',' << (s.normality.normal ? 1 : 0) << ','
+        << num(s.has_halves ? s.mean_left : nan) << ',' << num(s.has_halves ? s.mean_right : nan)
+        << ',' << num(s.has_halves ? s.sigma_left : nan) << ','
+        << num(s.has_halves ? s.sigma_right : nan) << ','
+        << num(s.has_halves ? s.sigma_left / s.sigma : nan) << ','
+        << num(s.has_halves ? s.sigma_right / s.sigma : nan) << '\n';
+    }
+  }
+
+  // series.csv: the time series (Fig. 4), with the transient marked
+  {
+    auto f = open_out(dir / "series.csv");
+    f << "label,protocol,control,tap,phi,used\n";
+    for (std::size_t i = 0; i < runs.size(); ++i) {
+      const auto& s = runs[i].series;
+      for (std::size_t k = 0; k < s.phi.size(); ++k)
+        f << r.runs[i].label << ',' << r.runs[i].protocol << ',' << num(r.runs[i].control) << ','
+          << num(k < s.tap.size() ? s.tap[k] : static_cast<double>(k)) << ',' << num(s.phi[k])
+          << ',' << (static_cast<int>(k) >= opts.discard ? 1 : 0) << '\n';
+    }
+  }
+
+  // kde.csv: the three kernels on each run's grid (Figs 7a, 8a, 13)
+  {
+    auto f = open_out(dir / "kde.csv");
+    f << "label,protocol,control,bandwidth,phi,p_normal,p_epanechnikov,p_box\n";
+    for (std::size_t i = 0; i < r.runs.size(); ++i) {
+      const auto& c = r.kde_normal[i];
+      for (std::size_t k = 0; k < c.x.size(); ++k)
+        f << r.runs[i].label << ',' << r.runs[i].protocol << ',' << num(r.runs[i].control) << ','
+          << num(c.bandwidth) << ',' << num(c.x[k]) << ',' << num(c.density[k]) << ','
+          << num(r.kde_epanechnikov[i][k]) << ',' << num(r.kde_box[i][k]) << '\n';
+    }
+  }
+
+  // q_lines.csv and beta.csv, for each reference (Figs 7b–c, 8b–c, 9, 10)
+  auto* all = r.quadron.count("all") ? &r.quadron.at("all") : nullptr;
+  const bool fit_ok = all && all->converged;
+  {
+    auto fq = open_out(dir / "q_lines.csv");
+    auto fb = open_out(dir / "beta.csv");
+    fq << "reference,label,protocol,control,inv_phi,q,q_err,q_line\n";
+    fb << "reference,label,protocol,control,phi_mean,phi_err,sigma,sigma_lo_tau,sigma_hi_tau,"
+          "dbeta,dbeta_err,dlnz,dlnz_err,cov,r2,quad,quad_err,chi2,dof,points,valid,beta,"
+          "phi_quadron,sigma_quadron,dlnz_quadron\n";
+    auto write = [&](int refi, const std::vector<BetaEstimate>& betas) {
+      const std::string& rl = r.runs[refi].label;
+      const bool primary = refi == r.ref;
+      for (std::size_t i = 0; i < betas.size(); ++i) {
+        const auto& b = betas[i];
+        const auto& s = r.runs[i];
+        for (const auto& p : b.fit.points)
+          fq << rl << ',' << s.label << ',' << s.protocol << ',' << num(s.control) << ','
+             << num(p.x) << ',' << num(p.q) << ',' << num(p.q_err) << ','
+             << num(b.valid ? b.fit.intercept + b.fit.slope * p.x : std::nan("")) << '\n';
+        // the quadron values (fit over all runs) only against the primary reference
+        double beta = std::nan(""), phq = beta, sgq = beta, lzq = beta;
+        if (primary && fit_ok && b.valid) {
+          beta = b.dbeta + all->beta0;
+          phq = quadron_phi(beta, all->a, opts.quadron);
+          sgq = quadron_sigma_phi(beta, all->a, r.v_g, opts.quadron);
+          lzq = quadron_lnz(beta, all->a, r.v_g, opts.quadron) -
+                quadron_lnz(all->beta0, all->a, r.v_g, opts.quadron);
+        }
+        fb << rl << ',' << s.label << ',' << s.protocol << ',' << num(s.control) << ','
+           << num(s.phi_mean) << ',' << num(s.phi_err) << ',' << num(s.sigma) << ','
+           << num(s.sigma_ci_tau.lo) << ',' << num(s.sigma_ci_tau.hi) << ',' << num(b.dbeta)
+           << ',' << num(b.dbeta_err) << ',' << num(b.dlnz) << ',' << num(b.dlnz_err) << ','
+           << num(b.cov) << ',' << num(b.fit.r2) << ',' << num(b.fit.quad) << ','
+           << num(b.fit.quad_err) << ',' << num(b.fit.chi2) << ',' << b.fit.dof << ','
+           << b.fit.points.size() << ',' << (b.valid ? 1 : 0) << ',' << num(beta) << ','
+           << num(phq) << ',' << num(sgq) << ',' << num(lzq) << '\n';
+      }
+    };
+    write(r.ref, r.beta);
+    if (r.ref2 >= 0) write(r.ref2, r.beta2);
+  }
+
+  // quadron.json: the fits with their curves
+  {
+    auto f = open_out(dir / "quadron.json");
+    f << "{\n  \"phi_rlp\": " << jnum(opts.quadron.phi_rlp)
+      << ",\n  \"phi_rcp\": " << jnum(opts.quadron.phi_rcp) << ",\n  \"v_g\": " << jnum(r.v_g)
+      << ",\n  \"reference\": " << jstr(ref.label) << ",\n  \"fits\": {";
+    bool first = true;
+    for (const auto& [name, fit] : r.quadron) {
+      f << (first ? "\n    " : ",\n    ") << jstr(name) << ": " << quadron_json(fit, r, opts);
+      first = false;
+    }
+    f << "\n  }\n}\n";
+  }
+
+  // analysis.json: options, references, per-run digest, the two-reference check, notes
+  {
+    auto f = open_out(dir / "analysis.json");
+    f << "{\n  \"discard\": " << opts.discard << ",\n  \"level\": " << jnum(opts.level)
+      << ",\n  \"alpha\": " << jnum(opts.alpha) << ",\n  \"test_area\": " << jnum(opts.test_area)
+      << ",\n  \"v_g\": " << jnum(r.v_g) << ",\n  \"density_method\": "
+      << jstr(opts.overlap.method == DensityMethod::Histogram ? "histogram" : "kde")
+      << ",\n  \"kernel\": " << jstr(kernel_name(opts.overlap.kernel))
+      << ",\n  \"min_fraction\": " << jnum(opts.overlap.min_fraction)
+      << ",\n  \"reference\": " << jstr(ref.label) << ",\n  \"reference2\": "
+      << (r.ref2 >= 0 ? jstr(r.runs[r.ref2].label) : "null")
+      << ",\n  \"reference_offset\": {\"dbeta\": " << jnum(r.ref_offset)
+      << ", \"err\": " << jnum(r.ref_offset_err) << ", \"chi2\": " << jnum(r.ref_offset_chi2)
+      << ", \"dof\": " << r.ref_offset_dof << "},\n  \"runs\": [";
+    for (std::size_t i = 0; i < r.runs.size(); ++i) {
+      const auto& s = r.runs[i];
+      f << (i ? ",\n    " : "\n    ") << "{\"label\": " << jstr(s.label)
+        << ", \"protocol\": " << jstr(s.protocol) << ", \"control\": " << jnum(s.control)
+        << ", \"n_used\": " << s.n_used << ", \"phi_mean\": " << jnum(s.phi_mean)
+        << ", \"sigma\": " << jnum(s.sigma) << ", \"tau_int\": " << jnum(s.tau.tau_int)
+        << ", \"normal\": " << (s.normality.normal ? "true" : "false")
+        << ", \"chi2_p\": " << jnum(s.normality.p_value) << ", \"sigma_ratio_halves\": "
+        << jnum(s.has_halves ? 0.5 * (s.sigma_left + s.sigma_right) / s.sigma : std::nan(""))
+        << ", \"dbeta\": " << jnum(r.beta[i].valid ? r.beta[i].dbeta : std::nan(""))
+        << ", \"dbeta_err\": " << jnum(r.beta[i].valid ? r.beta[i].dbeta_err : std::nan(""))
+        << "}";
+    }
+    f << "\n  ],\n  \"files\": [\"summary.csv\", \"series.csv\", \"kde.csv\", \"q_lines.csv\", "
+         "\"beta.csv\", \"quadron.json\"],\n  \"notes\": [";
+    for (std::size_t i = 0; i < r.notes.size(); ++i) f << (i ? ", " : "") << jstr(r.notes[i]);
+    f << "]\n}\n";
+  }
+}
+
+}  // namespace gs

@@ -1,0 +1,24 @@
+// `gransim run`: build the scene, step it with progress, write the run directory
+#pragma once
+#include <string>
+#include <vector>
+
+namespace gs {
+
+struct RunOptions {
+  std::string scene;               ///< scene file
+  std::string out;                 ///< run directory (default runs/<name>-<time>)
+  std::vector<std::string> sets;   ///< --set key=value overrides
+  bool force = false;              ///< allow reusing a non-empty run directory
+  bool quiet = false;              ///< no progress display
+  bool allow_unstable = false;     ///< skip the up-front Δt check
+};
+
+/// returns the process exit code (ExitCode)
+int run_command(const RunOptions& opt);
+
+/// set by SIGINT/SIGTERM; long loops poll it and stop cleanly
+bool stop_requested();
+void install_stop_handlers();
+
+}  // namespace gs

@@ -1,0 +1,49 @@
+// broad phase: candidate pairs whose bounding circles overlap, as sorted keys (i, j, image).
+// Two implementations that must agree: Box2D 2.4.1's dynamic AABB tree (walled boxes; the only
+// code that sees Box2D) and a uniform cell grid (any box, needed for periodic ones).
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "world/world.hpp"
+
+namespace gs {
+
+/// a candidate pair key: particle i, partner j (j >= N means wall j − N), periodic image of j
+/// relative to i (4 = no shift; (sx+1)·3 + (sy+1) for a shift of j by (sx·Lx, sy·Ly)).
+/// Sorting keys orders contacts by (i, j, image), so forces never depend on report order.
+using PairKey = std::uint64_t;
+inline constexpr int kNoImage = 4;
+constexpr PairKey make_key(std::uint32_t i, std::uint32_t j, std::uint32_t image) {
+  return (static_cast<PairKey>(i) << 40) | (static_cast<PairKey>(j) << 16) | image;
+}
+constexpr std::uint32_t key_i(PairKey k) { return static_cast<std::uint32_t>(k >> 40); }
+constexpr std::uint32_t key_j(PairKey k) { return static_cast<std::uint32_t>((k >> 16) & 0xffffffu); }
+constexpr std::uint32_t key_image(PairKey k) { return static_cast<std::uint32_t>(k & 0xffffu); }
+/// the shift (in box lengths) that an image code applies to j
+constexpr int image_sx(std::uint32_t image) { return static_cast<int>(image) / 3 - 1; }
+constexpr int image_sy(std::uint32_t image) { return static_cast<int>(image) % 3 - 1; }
+
+class BroadPhase {
+ public:
+  virtual ~BroadPhase() = default;
+  /// the candidate pairs of the current state, sorted ascending, no duplicates; each pair's
+  /// bounding circles (or circle and wall box) overlap
+  virtual void update(const World& w, std::vector<PairKey>& out) = 0;
+  virtual const char* name() const = 0;
+};
+
+/// the broad phase a scene asks for (Auto: Box2D tree for walled boxes, cell grid otherwise)
+std::unique_ptr<BroadPhase> make_broadphase(BroadPhaseKind kind, const World& w);
+std::unique_ptr<BroadPhase> make_cell_grid();
+std::unique_ptr<BroadPhase> make_box2d_tree();
+
+/// does a circle (c, r) overlap an axis-aligned box [lo, hi]?
+inline bool circle_box_overlap(Vec2 c, double r, Vec2 lo, Vec2 hi) {
+  const double dx = c.x < lo.x ? lo.x - c.x : (c.x > hi.x ? c.x - hi.x : 0.0);
+  const double dy = c.y < lo.y ? lo.y - c.y : (c.y > hi.y ? c.y - hi.y : 0.0);
+  return dx * dx + dy * dy < r * r;
+}
+
+}  // namespace gs

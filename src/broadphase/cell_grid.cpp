@@ -1,0 +1,129 @@
+// uniform cell grid: cells at least one largest grain diameter wide, rebuilt every step by a
+// counting sort (O(N)); periodic boxes wrap cells and use the minimum image
+#include <algorithm>
+#include <cmath>
+
+#include "broadphase/broadphase.hpp"
+
+namespace gs {
+namespace {
+
+class CellGrid final : public BroadPhase {
+ public:
+  const char* name() const override { return "cell_grid"; }
+
+  void update(const World& w, std::vector<PairKey>& out) override {
+    out.clear();
+    const std::size_t n = w.size();
+    if (n == 0) return;
+    const bool periodic = w.box == BoxKind::Periodic || w.box == BoxKind::Ring1D;
+    const bool ring = w.box == BoxKind::Ring1D;
+
+    // grid extent: the periodic cell, or the bounding box of the grains in a walled box
+    double x0 = 0, y0 = 0, wx = w.Lx, wy = ring ? 0.0 : w.Ly;
+    if (!periodic) {
+      double xmin = w.s.x[0], xmax = xmin, ymin = w.s.y[0], ymax = ymin;
+      for (std::size_t i = 1; i < n; ++i) {
+        xmin = std::min(xmin, w.s.x[i]); xmax = std::max(xmax, w.s.x[i]);
+        ymin = std::min(ymin, w.s.y[i]); ymax = std::max(ymax, w.s.y[i]);
+      }
+      x0 = xmin; y0 = ymin; wx = xmax - xmin; wy = ymax - ymin;
+    }
+    double cell = 2.0 * w.max_radius;
+    if (!periodic)  // a grain far away (an open top) must not make the grid huge
+      cell = std::max(cell, std::sqrt(wx * wy / (4.0 * static_cast<double>(n))));
+    nx_ = std::max(1, static_cast<int>(std::floor(wx / cell)));
+    ny_ = ring ? 1 : std::max(1, static_cast<int>(std::floor(wy / cell)));
+    if (!periodic) {  // walled: cells of exactly `cell`, one spare row and column
+      nx_ = static_cast<int>(wx / cell) + 1;
+      ny_ = static_cast<int>(wy / cell) + 1;
+    }
+    const double cx = periodic ? wx / nx_ : cell;
+    const double cy = periodic ? (ring ? 1.0 : wy / ny_) : cell;
+
+    // counting sort of particles into cells
+    cell_of_.resize(n);
+    start_.assign(static_cast<std::size_t>(nx_) * ny_ + 1, 0);
+    for (std::size_t i = 0; i < n; ++i) {
+      double px = w.s.x[i] - x0, py = ring ? 0.0 : w.s.y[i] - y0;
+      if (periodic) {
+        px -= wx * std::floor(px / wx);
+        if (!ring) py -= wy * std::floor(py / wy);
+      }
+      const int ix = std::clamp(static_cast<int>(px / cx), 0, nx_ - 1);
+      const int iy = std::clamp(static_cast<int>(py / cy), 0, ny_ - 1);
+      cell_of_[i] = iy * nx_ + ix;
+      ++start_[cell_of_[i] + 1];
+    }
+    for (std::size_t c = 1; c < start_.size(); ++c) start_[c] += start_[c - 1];
+    order_.resize(n);
+    fill_ = start_;
+    for (std::size_t i = 0; i < n; ++i) order_[fill_[cell_of_[i]]++] = static_cast<int>(i);
+
+    // neighbour cells (deduplicated when the grid is narrower than three cells)
+    const std::uint32_t N = static_cast<std::uint32_t>(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const int ix = cell_of_[i] % nx_, iy = cell_of_[i] / nx_;
+      int cells[9], nc = 0;
+      for (int dy = -1; dy <= 1; ++dy) {
+        for (int dx = -1; dx <= 1; ++dx) {
+          int jx = ix + dx, jy = iy + dy;
+          if (periodic) {
+            jx = (jx + nx_) % nx_;
+            jy = (jy + ny_) % ny_;
+          } else if (jx < 0 || jy < 0 || jx >= nx_ || jy >= ny_) {
+            continue;
+          }
+          const int c = jy * nx_ + jx;
+          if (std::find(cells, cells + nc, c) == cells + nc) cells[nc++] = c;
+        }
+      }
+      const std::size_t first = out.size();
+      const Vec2 pi{w.s.x[i], w.s.y[i]};
+      for (int k = 0; k < nc; ++k) {
+        for (int q = start_[cells[k]]; q < start_[cells[k] + 1]; ++q) {
+          const std::size_t j = static_cast<std::size_t>(order_[q]);
+          if (j <= i) continue;
+          Vec2 d{w.s.x[j] - pi.x, w.s.y[j] - pi.y};
+          int sx = 0, sy = 0;
+          if (periodic) {
+            sx = -static_cast<int>(std::nearbyint(d.x / w.Lx));
+            d.x += sx * w.Lx;
+            if (!ring) {
+              sy = -static_cast<int>(std::nearbyint(d.y / w.Ly));
+              d.y += sy * w.Ly;
+            }
+          }
+          const double rr = w.radius[i] + w.radius[j];
+          if (d.x * d.x + d.y * d.y < rr * rr)
+            out.push_back(make_key(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j),
+                                   static_cast<std::uint32_t>((sx + 1) * 3 + (sy + 1))));
+        }
+      }
+      // walls: circle against the wall's box
+      for (std::size_t k = 0; k < w.walls.size(); ++k)
+        if (circle_box_overlap(pi, w.radius[i], w.walls[k].lo, w.walls[k].hi))
+          out.push_back(make_key(static_cast<std::uint32_t>(i), N + static_cast<std::uint32_t>(k),
+                                 kNoImage));
+      std::sort(out.begin() + first, out.end());
+    }
+  }
+
+ private:
+  int nx_ = 1, ny_ = 1;
+  std::vector<int> cell_of_, start_, fill_, order_;
+};
+
+}  // namespace
+
+std::unique_ptr<BroadPhase> make_cell_grid() { return std::make_unique<CellGrid>(); }
+
+std::unique_ptr<BroadPhase> make_broadphase(BroadPhaseKind kind, const World& w) {
+  if (kind == BroadPhaseKind::Auto)
+    kind = w.box == BoxKind::Walls ? BroadPhaseKind::Box2DTree : BroadPhaseKind::CellGrid;
+  if (kind == BroadPhaseKind::Box2DTree && w.box != BoxKind::Walls)
+    kind = BroadPhaseKind::CellGrid;  // Box2D has no periodic wrapping
+  return kind == BroadPhaseKind::Box2DTree ? make_box2d_tree() : make_cell_grid();
+}
+
+}  // namespace gs

@@ -1,0 +1,68 @@
+#include "contact/narrow.hpp"
+
+#include <cmath>
+
+namespace gs {
+namespace {
+
+// the SPEC 2.1 contact frame from an exact polygon overlap; `toward` points from i to j
+ContactGeom from_overlap(const Overlap& ov, Vec2 toward) {
+  ContactGeom g;
+  if (ov.area <= 0.0) return g;
+  g.touching = true;
+  g.overlap = ov.area;
+  if (ov.crossings >= 2 && norm2(ov.c2 - ov.c1) > 0.0) {
+    // contact line c1→c2: the point is its midpoint, the normal is perpendicular to it
+    g.s = 0.5 * (ov.c1 + ov.c2);
+    g.chord = norm(ov.c2 - ov.c1);
+    g.n = perp(ov.c2 - ov.c1) / g.chord;
+    if (dot(g.n, toward) < 0.0) g.n = -g.n;
+  } else {
+    // one polygon inside the other: unphysical, use the centre direction (SPEC 2.1)
+    g.degenerate = true;
+    g.s = ov.centroid;
+    const double d = norm(toward);
+    g.n = d > 0.0 ? toward / d : Vec2{1.0, 0.0};
+    g.chord = std::sqrt(ov.area);
+  }
+  return g;
+}
+
+}  // namespace
+
+ContactGeom polygon_polygon(const BodyView& a, const BodyView& b) {
+  return from_overlap(overlap(*a.poly, *b.poly), b.c - a.c);
+}
+
+ContactGeom polygon_wall(const BodyView& a, const Wall& w) {
+  const Overlap ov = overlap(*a.poly, w.poly);
+  // the wall lies on the far side of its inner face: point the normal into the wall
+  return from_overlap(ov, w.normal);
+}
+
+ContactGeom disk_disk(const BodyView& a, const BodyView& b) {
+  ContactGeom g;
+  const Vec2 d = b.c - a.c;
+  const double dist2 = norm2(d), rr = a.r + b.r;
+  if (dist2 >= rr * rr || dist2 == 0.0) return g;
+  const double dist = std::sqrt(dist2);
+  g.touching = true;
+  g.n = d / dist;
+  g.overlap = rr - dist;
+  g.s = a.c + g.n * (a.r - 0.5 * g.overlap);
+  return g;
+}
+
+ContactGeom disk_wall(const BodyView& a, const Wall& w) {
+  ContactGeom g;
+  // penetration of the disk through the wall's inner face (a half-plane)
+  const double delta = dot(a.c, w.normal) + a.r - w.offset;
+  if (delta <= 0.0) return g;
+  g.touching = true;
+  g.n = w.normal;
+  g.overlap = delta;
+  g.s = a.c + w.normal * (a.r - 0.5 * delta);
+  return g;
+}
+
+}  // namespace gs

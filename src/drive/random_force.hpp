@@ -1,0 +1,19 @@
+// the random force (T.2.15–T.2.16, T.2.22–T.2.23): each step every particle gets a momentum kick
+// η·Δt, each component of η drawn from N(0, 2D/Δt). Values come from counter-based streams keyed
+// by (seed, particle) and counted by the step, so they never depend on thread count or order.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "world/world.hpp"
+
+namespace gs {
+
+/// add the noise accelerations η/M of step `step` to (ax, ay); ring: x only, symmetrised (T.2.18)
+void add_random_force(const World& w, std::uint64_t seed, std::int64_t step, double D, double dt,
+                      std::vector<double>& ax, std::vector<double>& ay);
+
+/// subtract the centre-of-mass velocity (2D drift control, every K steps)
+void remove_com_velocity(World& w);
+
+}  // namespace gs

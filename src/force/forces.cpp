@@ -1,0 +1,202 @@
+#include "force/forces.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "contact/narrow.hpp"
+
+namespace gs {
+namespace {
+
+// pair parameters: the mean of the two materials' values (identical materials: exact)
+law::PolyLawParams poly_params(const MaterialSpec& a, const MaterialSpec& b) {
+  return {0.5 * (a.E + b.E), 0.5 * (a.gamma + b.gamma), 0.5 * (a.mu + b.mu)};
+}
+
+// position of j's periodic image as seen from i
+Vec2 image_pos(const World& w, std::uint32_t j, std::uint32_t image) {
+  return {w.s.x[j] + image_sx(image) * w.Lx, w.s.y[j] + image_sy(image) * w.Ly};
+}
+
+}  // namespace
+
+ContactModel::ContactModel(const World& w) : nsp_(w.species.size()) {
+  const std::size_t stride = nsp_ + 1;
+  poly_.resize(nsp_ * stride);
+  disk_.resize(nsp_ * stride);
+  hdot_fd_ = w.scene.model.hdot_finite_difference;
+  min_contact_time_ = 1e300;
+  for (std::size_t a = 0; a < nsp_; ++a) {
+    for (std::size_t b = 0; b <= nsp_; ++b) {
+      const bool wall = b == nsp_;
+      const Species& si = w.species[a];
+      const MaterialSpec& ma = w.materials[si.material];
+      const MaterialSpec& mb = w.materials[wall ? w.wall_material : w.species[b].material];
+      const double mi = si.mass, mj = wall ? 0.0 : w.species[b].mass;
+      const double m12 = wall ? mi : mi * mj / (mi + mj);
+      poly_[a * stride + b] = poly_params(ma, mb);
+      // Model S: dashpots from the target restitutions (T.2.6, T.2.12)
+      law::DiskLawParams d;
+      d.ks = 0.5 * (ma.ks + mb.ks);
+      const double en = 0.5 * (ma.eps_n + mb.eps_n), et = 0.5 * (ma.eps_t + mb.eps_t);
+      d.gn = en < 1.0 ? law::gamma_normal(en, m12, d.ks) : 0.0;
+      d.gt = et < 1.0 ? law::gamma_tangential(et, m12, d.ks) : 0.0;
+      d.mu = 0.5 * (ma.mu + mb.mu);
+      d.clip = w.scene.model.clip_attractive;
+      disk_[a * stride + b] = d;
+      // stiffest contact: Model S exact; Model P linearised for flat faces, k ≈ E·side/l
+      double tc;
+      if (si.shape == ShapeKind::Disk) {
+        tc = law::contact_time(d.ks, m12, d.gn);
+      } else {
+        const double rj = wall ? si.radius : w.species[b].radius;
+        const double l = wall ? si.radius : si.radius * rj / (si.radius + rj);
+        const double side = 2.0 * std::min(si.radius, rj) * std::sin(M_PI / si.sides);
+        tc = M_PI * std::sqrt(m12 * l / (poly_[a * stride + b].E * side));
+      }
+      min_contact_time_ = std::min(min_contact_time_, tc);
+    }
+  }
+}
+
+ForceStats ContactModel::evaluate(const World& w, const std::vector<PairKey>& cand,
+                                  ContactSet& cs, ForceBuffer& f, double dt) {
+  new_keys_.clear();
+  new_state_.clear();
+  new_records_.clear();
+  ForceStats st = w.polygons() ? evaluate_polygons(w, cand, cs, f, dt)
+                               : evaluate_disks(w, cand, cs, f);
+  cs.keys.swap(new_keys_);
+  cs.state.swap(new_state_);
+  cs.records.swap(new_records_);
+  cs.degenerate += st.degenerate;
+  st.contacts = cs.keys.size();
+  return st;
+}
+
+// Model P (SPEC 2.2): overlap-area normal force with Cundall–Strack friction
+ForceStats ContactModel::evaluate_polygons(const World& w, const std::vector<PairKey>& cand,
+                                           ContactSet& cs, ForceBuffer& f, double dt) {
+  ForceStats st;
+  const std::size_t n = w.size();
+  const std::uint32_t N = static_cast<std::uint32_t>(n);
+  const std::size_t stride = nsp_ + 1;
+  // world-frame polygons once per step
+  shapes_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) shapes_[i] = w.shape(i);
+
+  std::size_t old = 0;  // merge-join cursor into last step's sorted contacts
+  for (PairKey key : cand) {
+    const std::uint32_t i = key_i(key), j = key_j(key);
+    const bool wall = j >= N;
+    const Vec2 xi{w.s.x[i], w.s.y[i]};
+    const BodyView bi{xi, w.radius[i], &shapes_[i]};
+    ContactGeom g;
+    Vec2 xj;
+    if (wall) {
+      g = polygon_wall(bi, w.walls[j - N]);
+    } else {
+      xj = image_pos(w, j, key_image(key));
+      Poly pj = shapes_[j];
+      if (key_image(key) != kNoImage) {
+        for (int k = 0; k < pj.n; ++k) pj.v[k] += xj - Vec2{w.s.x[j], w.s.y[j]};
+      }
+      g = polygon_polygon(bi, BodyView{xj, w.radius[j], &pj});
+    }
+    if (!g.touching) continue;
+
+    // the contact's history, if it touched last step
+    while (old < cs.keys.size() && cs.keys[old] < key) ++old;
+    ContactState state;
+    if (old < cs.keys.size() && cs.keys[old] == key) state = cs.state[old];
+
+    // geometry of the pair (P.29–P.33): l, m⊥, m∥
+    const std::size_t si = w.sp[i];
+    const law::PolyLawParams& p = poly_[si * stride + (wall ? nsp_ : w.sp[j])];
+    const double ri = w.radius[i];
+    double l, m_perp, inv_m_par = w.inv_mass[i] + ri * ri * w.inv_inertia[i];
+    if (wall) {
+      l = ri;
+      m_perp = w.mass[i];
+    } else {
+      const double rj = w.radius[j];
+      l = ri * rj / (ri + rj);
+      m_perp = w.mass[i] * w.mass[j] / (w.mass[i] + w.mass[j]);
+      inv_m_par += w.inv_mass[j] + rj * rj * w.inv_inertia[j];
+    }
+    const double m_par = 1.0 / inv_m_par;
+
+    // relative velocity of i against j at the contact point
+    const Vec2 ri_s = g.s - xi;
+    Vec2 vrel = Vec2{w.s.vx[i], w.s.vy[i]} + cross(w.s.w[i], ri_s);
+    if (!wall) vrel -= Vec2{w.s.vx[j], w.s.vy[j]} + cross(w.s.w[j], g.s - xj);
+    const Vec2 t = perp(g.n);
+    const double vn = dot(vrel, g.n), vt = dot(vrel, t);
+
+    // normal force (P.34) with ḣ_eff analytic (chord × approach speed / l) or by difference
+    const double h = g.overlap / l;
+    const double hdot = hdot_fd_ ? (state.h_prev > 0.0 ? (h - state.h_prev) / dt : 0.0)
+                                 : g.chord * vn / l;
+    state.h_prev = h;
+    const double fn = law::poly_normal_force(p, h, hdot, m_perp);
+    // tangential force (P.35–P.36); the force on i opposes its sliding: −F∥·t
+    const double ft = law::cundall_strack(p, state.spring, vt, fn, m_par, dt);
+
+    // accumulate: j gets +fn·n + ft·t, i the opposite; torques about each centre
+    const Vec2 F = g.n * fn + t * ft;
+    f.fx[i] -= F.x;
+    f.fy[i] -= F.y;
+    f.tq[i] -= cross(ri_s, F);
+    if (!wall) {
+      f.fx[j] += F.x;
+      f.fy[j] += F.y;
+      f.tq[j] += cross(g.s - xj, F);
+    }
+    new_keys_.push_back(key);
+    new_state_.push_back(state);
+    new_records_.push_back({key, g.s, g.n, fn, ft, g.overlap});
+    if (g.degenerate) ++st.degenerate;
+    st.max_overlap = std::max(st.max_overlap, h);
+    st.max_overlap_rel = std::max(st.max_overlap_rel, h / (wall ? ri : std::min(ri, w.radius[j])));
+  }
+  return st;
+}
+
+// Model S (SPEC 3): linear spring, normal and tangential dashpots, optional friction
+ForceStats ContactModel::evaluate_disks(const World& w, const std::vector<PairKey>& cand,
+                                        ContactSet&, ForceBuffer& f) {
+  ForceStats st;
+  const std::uint32_t N = static_cast<std::uint32_t>(w.size());
+  const std::size_t stride = nsp_ + 1;
+  for (PairKey key : cand) {
+    const std::uint32_t i = key_i(key), j = key_j(key);
+    const bool wall = j >= N;
+    const Vec2 xi{w.s.x[i], w.s.y[i]};
+    const BodyView bi{xi, w.radius[i], nullptr};
+    const ContactGeom g = wall ? disk_wall(bi, w.walls[j - N])
+                               : disk_disk(bi, BodyView{image_pos(w, j, key_image(key)),
+                                                        w.radius[j], nullptr});
+    if (!g.touching) continue;
+    Vec2 vrel{w.s.vx[i], w.s.vy[i]};
+    if (!wall) vrel -= Vec2{w.s.vx[j], w.s.vy[j]};
+    const Vec2 t = perp(g.n);
+    const law::DiskLawParams& p = disk_[w.sp[i] * stride + (wall ? nsp_ : w.sp[j])];
+    const law::DiskForce df = law::linear_spring_dashpot(p, g.overlap, dot(vrel, g.n), dot(vrel, t));
+    const Vec2 F = g.n * df.fn + t * df.ft;
+    f.fx[i] -= F.x;
+    f.fy[i] -= F.y;
+    if (!wall) {
+      f.fx[j] += F.x;
+      f.fy[j] += F.y;
+    }
+    new_keys_.push_back(key);
+    new_state_.push_back({});
+    new_records_.push_back({key, g.s, g.n, df.fn, df.ft, g.overlap});
+    st.max_overlap = std::max(st.max_overlap, g.overlap);
+    st.max_overlap_rel = std::max(st.max_overlap_rel,
+                                  g.overlap / (wall ? w.radius[i] : std::min(w.radius[i], w.radius[j])));
+  }
+  return st;
+}
+
+}  // namespace gs

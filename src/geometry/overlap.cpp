@@ -1,0 +1,173 @@
+// overlap of two convex polygons (SPEC 2.1): Sutherland–Hodgman clipping of a by the edge
+// lines of b, tracking which vertices of the result lie on both boundaries (the crossings)
+#include <cstdint>
+
+#include "geometry/clip.hpp"
+#include "geometry/polygon.hpp"
+
+namespace gs {
+
+namespace {
+
+// vertex flags of the working ring
+constexpr std::uint8_t kCross = 1;  // the vertex lies on the boundary of a and of b
+constexpr std::uint8_t kEdgeA = 2;  // the edge from this vertex to the next lies on a's boundary
+
+// clipping a by k lines adds at most k vertices
+constexpr int kRingCap = 2 * kMaxPolyVerts + 4;
+
+/// a polygon under clipping, with per-vertex flags
+struct TaggedRing : detail::Ring<kRingCap> {
+  std::uint8_t f[kRingCap];  ///< kCross | kEdgeA per vertex
+
+  // append, merging an exact repeat of the previous vertex: crossing marks add up and the
+  // outgoing-edge mark is the newer one (the zero-length edge between them disappears)
+  void push(Vec2 p, std::uint8_t flags) {
+    if (n > 0 && x[n - 1] == p.x && y[n - 1] == p.y) {
+      f[n - 1] = static_cast<std::uint8_t>((f[n - 1] & kCross) | flags);
+      return;
+    }
+    x[n] = p.x;
+    y[n] = p.y;
+    f[n] = flags;
+    ++n;
+  }
+  // close the ring: a last vertex repeating the first folds into it
+  void close() {
+    if (n > 1 && x[n - 1] == x[0] && y[n - 1] == y[0]) {
+      f[0] = static_cast<std::uint8_t>(f[0] | (f[n - 1] & kCross));
+      --n;
+    }
+  }
+};
+
+// clip `in` to the inside of b's edge from o along e (left of the edge, line included).
+// A new vertex on an edge of a's boundary is a crossing; the edge that follows an exit runs
+// along b's edge line and so is not on a's boundary.
+void clip_tagged(const TaggedRing& in, TaggedRing& out, Vec2 o, Vec2 e) {
+  out.n = 0;
+  const int n = in.n;
+  if (n == 0) return;
+  auto side = [&](Vec2 x) { return cross(x - o, e); };  // > 0 outside
+  Vec2 p = in[n - 1];
+  std::uint8_t fp = in.f[n - 1];
+  double sp = side(p);
+  for (int i = 0; i < n; ++i) {
+    const Vec2 q = in[i];
+    const std::uint8_t fq = in.f[i];
+    const double sq = side(q);
+    const std::uint8_t on_a = fp & kEdgeA;
+    const std::uint8_t cross_mark = on_a ? kCross : 0;
+    if (sq <= 0.0) {
+      // entering: the crossing point (q itself when q lies on the line), then q
+      if (sp > 0.0) {
+        const Vec2 x = sq == 0.0 ? q : p + (q - p) * (sp / (sp - sq));
+        out.push(x, static_cast<std::uint8_t>(cross_mark | on_a));
+      }
+      out.push(q, fq);
+    } else if (sp <= 0.0) {
+      // leaving: the crossing point (p itself when p lies on the line)
+      const Vec2 x = sp == 0.0 ? p : p + (q - p) * (sp / (sp - sq));
+      out.push(x, cross_mark);
+    }
+    p = q;
+    fp = fq;
+    sp = sq;
+  }
+  out.close();
+}
+
+// mean of the vertices (a cheap interior point of a convex polygon)
+Vec2 vertex_mean(const Poly& p) {
+  Vec2 m{};
+  for (int i = 0; i < p.n; ++i) m += p.v[i];
+  return p.n > 0 ? m / static_cast<double>(p.n) : m;
+}
+
+// the edge of b whose outward normal points most towards a: clipping by it first cuts a down
+// to the small cap that penetrates b (or to nothing when they are apart), so that the
+// remaining clips run on a few vertices only
+int facing_edge(const Poly& a, const Poly& b) {
+  const Vec2 d = vertex_mean(a) - vertex_mean(b);
+  int best = 0;
+  double best_score = -1e300;
+  for (int k = 0; k < b.n; ++k) {
+    const Vec2 e = b.v[(k + 1) % b.n] - b.v[k];
+    const double score = e.y * d.x - e.x * d.y;  // outward normal (e.y, −e.x) · d
+    if (score > best_score) {
+      best_score = score;
+      best = k;
+    }
+  }
+  return best;
+}
+
+// clip a by every edge line of b, facing edge first; returns the ring holding the result
+const TaggedRing& clip_all(const Poly& a, const Poly& b, TaggedRing& r1, TaggedRing& r2) {
+  r1.assign(a);
+  for (int i = 0; i < a.n; ++i) r1.f[i] = kEdgeA;
+  if (a.n < 3 || b.n < 3) {
+    r1.n = 0;
+    return r1;
+  }
+  TaggedRing* cur = &r1;
+  TaggedRing* nxt = &r2;
+  const int k0 = facing_edge(a, b);
+  for (int j = 0; j < b.n && cur->n > 0; ++j) {
+    const int k = (k0 + j) % b.n;
+    const Vec2 o = b.v[k];
+    clip_tagged(*cur, *nxt, o, b.v[k + 1 == b.n ? 0 : k + 1] - o);
+    TaggedRing* t = cur;
+    cur = nxt;
+    nxt = t;
+  }
+  return *cur;
+}
+
+}  // namespace
+
+Poly intersect(const Poly& a, const Poly& b) {
+  TaggedRing r1, r2;
+  const TaggedRing& r = clip_all(a, b, r1, r2);
+  return r.to_poly();
+}
+
+Overlap overlap(const Poly& a, const Poly& b) {
+  TaggedRing r1, r2;
+  const TaggedRing& r = clip_all(a, b, r1, r2);
+  Overlap o;
+  if (r.n == 0) return o;
+  // area and centroid of the intersection polygon (degenerate rings: area 0, vertex mean)
+  const double a2 = detail::twice_area(r);
+  o.area = a2 > 0.0 ? 0.5 * a2 : 0.0;
+  o.centroid = detail::ring_centroid(r);
+  // distinct crossing points (indices into the ring)
+  int xs[kRingCap];
+  int nx = 0;
+  for (int i = 0; i < r.n; ++i) {
+    if (!(r.f[i] & kCross)) continue;
+    bool seen = false;
+    for (int k = 0; k < nx && !seen; ++k) seen = r.x[xs[k]] == r.x[i] && r.y[xs[k]] == r.y[i];
+    if (!seen) xs[nx++] = i;
+  }
+  o.crossings = nx;
+  if (nx == 1) o.c1 = o.c2 = r[xs[0]];
+  if (nx < 2) return o;
+  // the pair farthest apart (the only pair in a normal contact)
+  int bi = 0, bj = 1;
+  double best = norm2(r[xs[1]] - r[xs[0]]);
+  for (int i = 0; i < nx; ++i)
+    for (int j = i + 1; j < nx; ++j) {
+      const double d2 = norm2(r[xs[j]] - r[xs[i]]);
+      if (d2 > best) {
+        best = d2;
+        bi = i;
+        bj = j;
+      }
+    }
+  o.c1 = r[xs[bi]];
+  o.c2 = r[xs[bj]];
+  return o;
+}
+
+}  // namespace gs

@@ -1,0 +1,50 @@
+// semi-implicit (symplectic) Euler: kick with the force at the current state, then drift
+#include <stdexcept>
+
+#include "core/error.hpp"
+#include "integrate/schemes.hpp"
+
+namespace gs {
+
+// no history beyond the layout
+void SemiImplicitEuler::init(std::span<const Channel> ch, double dt) {
+  if (!(dt > 0.0)) throw std::invalid_argument("SemiImplicitEuler::init: dt must be positive");
+  layout_.set(ch);
+  dt_ = dt;
+}
+
+// forces are evaluated at the current q, v: nothing moves
+void SemiImplicitEuler::predict(std::span<const Channel> ch, double dt) {
+  layout_.check(ch, "SemiImplicitEuler::predict");
+  if (!(dt > 0.0)) throw std::invalid_argument("SemiImplicitEuler::predict: dt must be positive");
+  dt_ = dt;
+}
+
+// v_{n+1} = v_n + a_n·Δt, then q_{n+1} = q_n + v_{n+1}·Δt
+void SemiImplicitEuler::correct(std::span<const Channel> ch, double dt) {
+  layout_.check(ch, "SemiImplicitEuler::correct");
+  if (dt != dt_)
+    throw std::invalid_argument("SemiImplicitEuler::correct: dt differs from predict()");
+  for (const auto& k : ch) {
+    for (std::size_t i = 0; i < k.q.size(); ++i) {
+      k.v[i] += k.a[i] * dt;
+      k.q[i] += k.v[i] * dt;
+    }
+  }
+}
+
+// history: the header only (layout and Δt)
+std::vector<double> SemiImplicitEuler::save() const {
+  std::vector<double> out;
+  layout_.write_header(out, kind(), dt_);
+  return out;
+}
+
+void SemiImplicitEuler::load(const std::vector<double>& data) {
+  const std::size_t off = layout_.read_header(data, kind(), dt_);
+  if (data.size() != off)
+    throw InputError("checkpoint", "integrator.semi_implicit_euler",
+                     "integrator history has wrong length");
+}
+
+}  // namespace gs

@@ -1,0 +1,191 @@
+// velocity Verlet and position (Störmer) Verlet (T.2.3)
+#include <stdexcept>
+#include <string>
+
+#include "core/error.hpp"
+#include "integrate/schemes.hpp"
+
+namespace gs {
+
+namespace {
+// append per-channel arrays to a checkpoint, and read them back
+void put(std::vector<double>& out, const std::vector<std::vector<double>>& arr) {
+  for (const auto& a : arr) out.insert(out.end(), a.begin(), a.end());
+}
+void take(const std::vector<double>& in, std::size_t& off, const ChannelLayout& lay,
+          std::vector<std::vector<double>>& arr) {
+  arr.assign(lay.channels(), {});
+  for (std::size_t c = 0; c < lay.channels(); ++c) {
+    const std::size_t n = lay.size(c);
+    arr[c].assign(in.begin() + static_cast<std::ptrdiff_t>(off),
+                  in.begin() + static_cast<std::ptrdiff_t>(off + n));
+    off += n;
+  }
+}
+void check_dt(double dt, const char* who) {
+  if (!(dt > 0.0)) throw std::invalid_argument(std::string(who) + ": dt must be positive");
+}
+}  // namespace
+
+// ---- velocity Verlet ----
+
+// start: remember a_0
+void VelocityVerlet::init(std::span<const Channel> ch, double dt) {
+  check_dt(dt, "VelocityVerlet::init");
+  layout_.set(ch);
+  dt_ = dt;
+  a_.assign(ch.size(), {});
+  vh_.assign(ch.size(), {});
+  for (std::size_t c = 0; c < ch.size(); ++c) {
+    a_[c].assign(ch[c].a.begin(), ch[c].a.end());
+    vh_[c].assign(ch[c].q.size(), 0.0);
+  }
+}
+
+void VelocityVerlet::predict(std::span<const Channel> ch, double dt) {
+  layout_.check(ch, "VelocityVerlet::predict");
+  check_dt(dt, "VelocityVerlet::predict");
+  dt_ = dt;
+  const bool half = fv_ == VerletForceVelocity::HalfStep;
+  for (std::size_t c = 0; c < ch.size(); ++c) {
+    const auto& k = ch[c];
+    const auto& a = a_[c];
+    auto& vh = vh_[c];
+    for (std::size_t i = 0; i < k.q.size(); ++i) {
+      // kick half a step with a_n, drift a full step
+      vh[i] = k.v[i] + a[i] * dt / 2.0;
+      k.q[i] += vh[i] * dt;
+      // the velocity the forces see: v_n + a_n·Δt (error O(Δt²)) or v_{n+½} (error O(Δt))
+      k.v[i] = half ? vh[i] : k.v[i] + a[i] * dt;
+    }
+  }
+}
+
+void VelocityVerlet::correct(std::span<const Channel> ch, double dt) {
+  layout_.check(ch, "VelocityVerlet::correct");
+  if (dt != dt_) throw std::invalid_argument("VelocityVerlet::correct: dt differs from predict()");
+  for (std::size_t c = 0; c < ch.size(); ++c) {
+    const auto& k = ch[c];
+    auto& a = a_[c];
+    const auto& vh = vh_[c];
+    // second half kick with a_{n+1}, which becomes the stored acceleration
+    for (std::size_t i = 0; i < k.q.size(); ++i) {
+      k.v[i] = vh[i] + k.a[i] * dt / 2.0;
+      a[i] = k.a[i];
+    }
+  }
+}
+
+// history: header, then a_n per channel
+std::vector<double> VelocityVerlet::save() const {
+  std::vector<double> out;
+  layout_.write_header(out, kind(), dt_);
+  put(out, a_);
+  return out;
+}
+
+void VelocityVerlet::load(const std::vector<double>& data) {
+  std::size_t off = layout_.read_header(data, kind(), dt_);
+  if (data.size() != off + layout_.total())
+    throw InputError("checkpoint", "integrator.velocity_verlet",
+                     "integrator history has wrong length");
+  take(data, off, layout_, a_);
+  vh_.assign(layout_.channels(), {});
+  for (std::size_t c = 0; c < layout_.channels(); ++c) vh_[c].assign(layout_.size(c), 0.0);
+}
+
+// ---- position Verlet ----
+
+// start: q_{−1} = q_0 − v_0·Δt + a_0·Δt²/2, so that v_0 = (q_0 − q_{−1})/Δt + a_0·Δt/2
+void PositionVerlet::init(std::span<const Channel> ch, double dt) {
+  check_dt(dt, "PositionVerlet::init");
+  layout_.set(ch);
+  dt_ = dt;
+  qp_.assign(ch.size(), {});
+  qn_.assign(ch.size(), {});
+  vn_.assign(ch.size(), {});
+  a_.assign(ch.size(), {});
+  for (std::size_t c = 0; c < ch.size(); ++c) {
+    const auto& k = ch[c];
+    qn_[c].assign(k.q.begin(), k.q.end());
+    vn_[c].assign(k.v.begin(), k.v.end());
+    a_[c].assign(k.a.begin(), k.a.end());
+    qp_[c].resize(k.q.size());
+    for (std::size_t i = 0; i < k.q.size(); ++i)
+      qp_[c][i] = k.q[i] - k.v[i] * dt + k.a[i] * dt * dt / 2.0;
+  }
+}
+
+void PositionVerlet::predict(std::span<const Channel> ch, double dt) {
+  layout_.check(ch, "PositionVerlet::predict");
+  check_dt(dt, "PositionVerlet::predict");
+  for (std::size_t c = 0; c < ch.size(); ++c) {
+    const auto& k = ch[c];
+    auto& qp = qp_[c];
+    auto& qn = qn_[c];
+    auto& vn = vn_[c];
+    const auto& a = a_[c];
+    for (std::size_t i = 0; i < k.q.size(); ++i) {
+      // caller edits: a shift of q moves the history with it; a change of v moves q_{n−1}
+      if (k.q[i] != qn[i]) {
+        qp[i] += k.q[i] - qn[i];
+        qn[i] = k.q[i];
+      }
+      if (k.v[i] != vn[i]) {
+        qp[i] -= (k.v[i] - vn[i]) * dt_;
+        vn[i] = k.v[i];
+      }
+      // a new Δt: rebuild q_{n−1} from v_n as at the start
+      if (dt != dt_) qp[i] = qn[i] - vn[i] * dt + a[i] * dt * dt / 2.0;
+      // the Verlet step (T.2.3) and the predicted velocity for the force evaluation
+      const double q1 = 2.0 * qn[i] - qp[i] + a[i] * dt * dt;
+      k.v[i] = (q1 - qn[i]) / dt + a[i] * dt / 2.0;
+      k.q[i] = q1;
+      qp[i] = qn[i];
+      qn[i] = q1;
+    }
+  }
+  dt_ = dt;
+}
+
+void PositionVerlet::correct(std::span<const Channel> ch, double dt) {
+  layout_.check(ch, "PositionVerlet::correct");
+  if (dt != dt_) throw std::invalid_argument("PositionVerlet::correct: dt differs from predict()");
+  for (std::size_t c = 0; c < ch.size(); ++c) {
+    const auto& k = ch[c];
+    const auto& qp = qp_[c];
+    const auto& qn = qn_[c];
+    auto& vn = vn_[c];
+    auto& a = a_[c];
+    // v_{n+1} = (q_{n+2} − q_n)/(2Δt) with q_{n+2} from (T.2.3), written out
+    for (std::size_t i = 0; i < k.q.size(); ++i) {
+      a[i] = k.a[i];
+      vn[i] = (qn[i] - qp[i]) / dt + a[i] * dt / 2.0;
+      k.v[i] = vn[i];
+    }
+  }
+}
+
+// history: header, then q_{n−1}, q_n, v_n, a_n per channel
+std::vector<double> PositionVerlet::save() const {
+  std::vector<double> out;
+  layout_.write_header(out, kind(), dt_);
+  put(out, qp_);
+  put(out, qn_);
+  put(out, vn_);
+  put(out, a_);
+  return out;
+}
+
+void PositionVerlet::load(const std::vector<double>& data) {
+  std::size_t off = layout_.read_header(data, kind(), dt_);
+  if (data.size() != off + 4 * layout_.total())
+    throw InputError("checkpoint", "integrator.position_verlet",
+                     "integrator history has wrong length");
+  take(data, off, layout_, qp_);
+  take(data, off, layout_, qn_);
+  take(data, off, layout_, vn_);
+  take(data, off, layout_, a_);
+}
+
+}  // namespace gs

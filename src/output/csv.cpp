@@ -1,0 +1,52 @@
+#include "output/csv.hpp"
+
+#include <cerrno>
+#include <cstring>
+#include <stdexcept>
+
+#include "core/error.hpp"
+
+namespace gs {
+
+CsvWriter::CsvWriter(const std::string& path, const std::vector<std::string>& columns)
+    : path_(path), ncol_(columns.size()) {
+  f_ = std::fopen(path.c_str(), "w");
+  if (!f_) throw InputError(path, "", std::string("cannot write: ") + std::strerror(errno));
+  std::string h;
+  for (std::size_t k = 0; k < columns.size(); ++k) h += (k ? "," : "") + columns[k];
+  h += '\n';
+  if (std::fputs(h.c_str(), f_) < 0 || std::fflush(f_) != 0)
+    throw InputError(path, "", std::string("write failed: ") + std::strerror(errno));
+}
+
+CsvWriter& CsvWriter::operator=(CsvWriter&& o) noexcept {
+  if (this != &o) {
+    if (f_) std::fclose(f_);
+    f_ = o.f_;
+    path_ = std::move(o.path_);
+    ncol_ = o.ncol_;
+    o.f_ = nullptr;
+  }
+  return *this;
+}
+
+CsvWriter::~CsvWriter() {
+  if (f_) std::fclose(f_);
+}
+
+void CsvWriter::row(const std::vector<double>& values) {
+  char buf[32];
+  std::string line;
+  line.reserve(values.size() * 16);
+  for (std::size_t k = 0; k < values.size(); ++k) {
+    // 17 significant digits: the value round-trips exactly
+    std::snprintf(buf, sizeof buf, "%.17g", values[k]);
+    if (k) line += ',';
+    line += buf;
+  }
+  line += '\n';
+  if (std::fputs(line.c_str(), f_) < 0 || std::fflush(f_) != 0)
+    throw std::runtime_error(path_ + ": write failed: " + std::strerror(errno));
+}
+
+}  // namespace gs

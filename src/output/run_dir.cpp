@@ -1,0 +1,62 @@
+#include "output/run_dir.hpp"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+
+#include "core/error.hpp"
+
+namespace fs = std::filesystem;
+
+namespace gs {
+
+void prepare_run_dir(const std::string& dir, bool force) {
+  std::error_code ec;
+  if (fs::exists(dir, ec)) {
+    if (!fs::is_directory(dir, ec))
+      throw InputError(dir, "--out", "exists and is not a directory; choose another --out");
+    if (!fs::is_empty(dir, ec)) {
+      if (!force)
+        throw InputError(dir, "--out",
+                         "is not empty; refusing to overwrite a previous run (use --force, or "
+                         "choose another --out)");
+      for (const auto& e : fs::directory_iterator(dir)) fs::remove_all(e.path(), ec);
+    }
+  } else {
+    fs::create_directories(dir, ec);
+    if (ec) throw InputError(dir, "--out", "cannot create directory: " + ec.message());
+  }
+  // probe that we can write here before any work is done
+  const std::string probe = dir + "/.gransim-write-test";
+  const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  if (fd < 0) throw InputError(dir, "--out", std::string("cannot write: ") + std::strerror(errno));
+  ::close(fd);
+  ::unlink(probe.c_str());
+}
+
+void write_file_atomic(const std::string& path, const std::string& contents) {
+  const std::string tmp = path + ".tmp";
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  if (fd < 0) throw InputError(path, "", std::string("cannot write: ") + std::strerror(errno));
+  std::size_t done = 0;
+  while (done < contents.size()) {
+    const ssize_t k = ::write(fd, contents.data() + done, contents.size() - done);
+    if (k < 0) {
+      const int e = errno;
+      ::close(fd);
+      ::unlink(tmp.c_str());
+      throw InputError(path, "", std::string("write failed: ") + std::strerror(e));
+    }
+    done += static_cast<std::size_t>(k);
+  }
+  if (::fsync(fd) != 0 || ::close(fd) != 0 || std::rename(tmp.c_str(), path.c_str()) != 0) {
+    const int e = errno;
+    ::unlink(tmp.c_str());
+    throw InputError(path, "", std::string("write failed: ") + std::strerror(e));
+  }
+}
+
+}  // namespace gs

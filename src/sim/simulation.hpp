@@ -1,0 +1,60 @@
+// the simulation: owns the World and the stages of a step, and reads like the pipeline
+#pragma once
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include "broadphase/broadphase.hpp"
+#include "contact/contact_set.hpp"
+#include "force/forces.hpp"
+#include "integrate/integrator.hpp"
+#include "world/world.hpp"
+
+namespace gs {
+
+class Simulation {
+ public:
+  /// take a World with its particles placed; computes the initial forces
+  explicit Simulation(World w);
+  Simulation(World w, BroadPhaseKind bp);
+
+  /// advance one time step: drive → predict → broad phase → contacts → forces → correct →
+  /// health check
+  void step();
+  /// advance n steps
+  void run(std::int64_t n) {
+    for (std::int64_t k = 0; k < n; ++k) step();
+  }
+
+  World& world() { return w_; }
+  const World& world() const { return w_; }
+  const ContactSet& contacts() const { return contacts_; }
+  const ForceStats& last_forces() const { return stats_; }
+  const ContactModel& model() const { return model_; }
+  const BroadPhase& broadphase() const { return *broad_; }
+  Integrator& integrator() { return *integ_; }
+  double dt() const { return dt_; }
+  /// gravity applied during the last step, m/s²
+  Vec2 gravity() const { return gravity_; }
+  /// does anything drive the system (gravity, pulses, noise)?
+  bool driven() const;
+
+ private:
+  /// accelerations at the current state; `index` counts force evaluations (noise stream)
+  void compute_accelerations(std::int64_t index);
+  void health_check() const;
+  std::vector<Channel> channels();
+
+  World w_;
+  double dt_;
+  std::unique_ptr<BroadPhase> broad_;
+  ContactModel model_;
+  std::unique_ptr<Integrator> integ_;
+  ContactSet contacts_;
+  ForceBuffer forces_;
+  ForceStats stats_;
+  std::vector<PairKey> candidates_;
+  Vec2 gravity_;
+};
+
+}  // namespace gs

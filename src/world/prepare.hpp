@@ -1,0 +1,11 @@
+// initial placement of the grains (SPEC 2.4, 5.1; thesis fig. 2.4): deterministic from the seed
+#pragma once
+#include "world/world.hpp"
+
+namespace gs {
+
+/// add every species' grains to the world at the scene's placement, with initial velocities.
+/// Throws InputError when the grains do not fit.
+void place_particles(World& w);
+
+}  // namespace gs
