@@ -30,8 +30,9 @@ class CellGrid final : public BroadPhase {
       x0 = xmin; y0 = ymin; wx = xmax - xmin; wy = ymax - ymin;
     }
     double cell = 2.0 * w.max_radius;
-    if (!periodic)  // a grain far away (an open top) must not make the grid huge
-      cell = std::max(cell, std::sqrt(wx * wy / (4.0 * static_cast<double>(n))));
+    // never many more cells than grains (a far grain, a huge dilute box)
+    cell = std::max(cell, ring ? wx / (4.0 * static_cast<double>(n))
+                               : std::sqrt(wx * wy / (4.0 * static_cast<double>(n))));
     nx_ = std::max(1, static_cast<int>(std::floor(wx / cell)));
     ny_ = ring ? 1 : std::max(1, static_cast<int>(std::floor(wy / cell)));
     if (!periodic) {  // walled: cells of exactly `cell`, one spare row and column

@@ -43,19 +43,29 @@ struct TaggedRing : detail::Ring<kRingCap> {
 
 // clip `in` to the inside of b's edge from o along e (left of the edge, line included).
 // A new vertex on an edge of a's boundary is a crossing; the edge that follows an exit runs
-// along b's edge line and so is not on a's boundary.
-void clip_tagged(const TaggedRing& in, TaggedRing& out, Vec2 o, Vec2 e) {
-  out.n = 0;
+// along b's edge line and so is not on a's boundary. Returns false, leaving `out` untouched,
+// when the line cuts nothing off (the common case once a has been cut down to a small cap).
+bool clip_tagged(const TaggedRing& in, TaggedRing& out, Vec2 o, Vec2 e) {
   const int n = in.n;
-  if (n == 0) return;
-  auto side = [&](Vec2 x) { return cross(x - o, e); };  // > 0 outside
+  // side of every vertex (> 0 outside); nothing to do when all are inside
+  double s[kRingCap];
+  double smax = -1.0, smin = 1.0;
+  for (int i = 0; i < n; ++i) {
+    s[i] = (in.x[i] - o.x) * e.y - (in.y[i] - o.y) * e.x;
+    smax = s[i] > smax ? s[i] : smax;
+    smin = s[i] < smin ? s[i] : smin;
+  }
+  out.n = 0;
+  if (smax <= 0.0) return false;
+  if (smin > 0.0) return true;  // all outside: empty
+  // Sutherland–Hodgman pass over the edges p → q
   Vec2 p = in[n - 1];
   std::uint8_t fp = in.f[n - 1];
-  double sp = side(p);
+  double sp = s[n - 1];
   for (int i = 0; i < n; ++i) {
     const Vec2 q = in[i];
     const std::uint8_t fq = in.f[i];
-    const double sq = side(q);
+    const double sq = s[i];
     const std::uint8_t on_a = fp & kEdgeA;
     const std::uint8_t cross_mark = on_a ? kCross : 0;
     if (sq <= 0.0) {
@@ -75,6 +85,7 @@ void clip_tagged(const TaggedRing& in, TaggedRing& out, Vec2 o, Vec2 e) {
     sp = sq;
   }
   out.close();
+  return true;
 }
 
 // mean of the vertices (a cheap interior point of a convex polygon)
@@ -92,7 +103,7 @@ int facing_edge(const Poly& a, const Poly& b) {
   int best = 0;
   double best_score = -1e300;
   for (int k = 0; k < b.n; ++k) {
-    const Vec2 e = b.v[(k + 1) % b.n] - b.v[k];
+    const Vec2 e = b.v[k + 1 == b.n ? 0 : k + 1] - b.v[k];
     const double score = e.y * d.x - e.x * d.y;  // outward normal (e.y, −e.x) · d
     if (score > best_score) {
       best_score = score;
@@ -112,14 +123,16 @@ const TaggedRing& clip_all(const Poly& a, const Poly& b, TaggedRing& r1, TaggedR
   }
   TaggedRing* cur = &r1;
   TaggedRing* nxt = &r2;
-  const int k0 = facing_edge(a, b);
+  int k = facing_edge(a, b);
   for (int j = 0; j < b.n && cur->n > 0; ++j) {
-    const int k = (k0 + j) % b.n;
+    const int k1 = k + 1 == b.n ? 0 : k + 1;
     const Vec2 o = b.v[k];
-    clip_tagged(*cur, *nxt, o, b.v[k + 1 == b.n ? 0 : k + 1] - o);
-    TaggedRing* t = cur;
-    cur = nxt;
-    nxt = t;
+    if (clip_tagged(*cur, *nxt, o, b.v[k1] - o)) {
+      TaggedRing* t = cur;
+      cur = nxt;
+      nxt = t;
+    }
+    k = k1;
   }
   return *cur;
 }

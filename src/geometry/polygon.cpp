@@ -72,6 +72,7 @@ Poly clip_half_plane(const Poly& p, Vec2 n, double d) {
   return out.to_poly();
 }
 
+// componentwise min and max over the vertices
 Aabb bounds(const Poly& p) {
   Aabb b{p.v[0], p.v[0]};
   for (int i = 1; i < p.n; ++i) {

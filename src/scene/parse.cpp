@@ -21,6 +21,11 @@ using scene_detail::TableReader;
 namespace {
 
 constexpr std::int64_t kIntMax = INT_MAX;
+
+// the keys of a [[species]] table (read twice: properties first, counts after the particles)
+const std::vector<std::string_view> kSpeciesKeys = {"name",  "shape",   "sides", "radius",
+                                                    "count", "density", "mass",  "material"};
+
 constexpr std::int64_t kInt64Max = std::numeric_limits<std::int64_t>::max();
 
 // an absent section reads as an empty table, so its keys take their defaults
@@ -110,8 +115,7 @@ std::vector<SpeciesRead> read_species(const Ctx& ctx, const TableReader& top, Sc
     top.fail("species", "missing: at least one [[species]] table is required");
   std::vector<SpeciesRead> out;
   for (std::size_t i = 0; i < tables.size(); ++i) {
-    TableReader r(ctx, *tables[i], "species[" + std::to_string(i) + "]",
-                  {"name", "shape", "sides", "radius", "count", "density", "mass", "material"});
+    TableReader r(ctx, *tables[i], "species[" + std::to_string(i) + "]", kSpeciesKeys);
     SpeciesSpec sp;
     auto name = r.string_optional("name", true);
     if (!name) r.fail("name", "missing: required (a unique string)");
@@ -227,9 +231,7 @@ void read_preparation(const Ctx& ctx, const TableReader& top, SceneSpec& s,
   // counts: required for placement, implied by the list for explicit particles
   std::int64_t total = 0;
   for (std::size_t k = 0; k < s.species.size(); ++k) {
-    TableReader sr(ctx, *species[k].table, "species[" + std::to_string(k) + "]",
-                   {"name", "shape", "sides", "radius", "count", "density", "mass",
-                    "material"});
+    TableReader sr(ctx, *species[k].table, "species[" + std::to_string(k) + "]", kSpeciesKeys);
     if (tables.empty()) {
       if (!species[k].count)
         sr.fail("count", "missing: required (number of grains, an integer >= 0)");
@@ -244,9 +246,7 @@ void read_preparation(const Ctx& ctx, const TableReader& top, SceneSpec& s,
     total += s.species[k].count;
   }
   if (total == 0) {
-    TableReader sr(ctx, *species[0].table, "species[0]",
-                   {"name", "shape", "sides", "radius", "count", "density", "mass",
-                    "material"});
+    TableReader sr(ctx, *species[0].table, "species[0]", kSpeciesKeys);
     sr.fail("count", "the scene has no grains: every species count is 0");
   }
 }

@@ -380,7 +380,9 @@ void apply_override(const Ctx& ctx, toml::table& root, const std::string& text) 
                                          " is out of range)");
       cur = (*arr)[*seg.index].as_table();
       if (!cur) throw InputError(where, key, "'" + path + "[...]' is not a table");
-      path += "[" + std::to_string(*seg.index) + "]";
+      path += '[';
+      path += std::to_string(*seg.index);
+      path += ']';
       continue;
     }
     if (!n) n = cur->insert_or_assign(seg.name, toml::table{}).first->second.as_table();

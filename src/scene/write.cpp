@@ -136,8 +136,9 @@ std::vector<Block> emit(const SceneSpec& s) {
   o.integer("series_every", s.output.series_every);
   o.flag("final_state", s.output.final_state);
   const double* r = s.output.test_rect;
-  o.kv.emplace_back("test_rect", "[" + format_double(r[0]) + ", " + format_double(r[1]) + ", " +
-                                     format_double(r[2]) + ", " + format_double(r[3]) + "]");
+  std::string rect = "[";
+  for (int i = 0; i < 4; ++i) rect += format_double(r[i]) + (i < 3 ? ", " : "]");
+  o.kv.emplace_back("test_rect", rect);
   o.integer("discard_taps", s.output.discard_taps);
   return out;
 }

@@ -47,8 +47,9 @@ TEST(PolyNormal, DashpotAddsWhileApproachingSubtractsWhileSeparating) {
   const double dash = kPaper.gamma * std::sqrt(kPaper.E * kMperp) * hd;
   EXPECT_GT(fin, f0);
   EXPECT_LT(fout, f0);
-  EXPECT_DOUBLE_EQ(fin - f0, dash);
-  EXPECT_DOUBLE_EQ(f0 - fout, dash);
+  // the differences carry the rounding of f ≈ 0.1 N (ulp 1.4e-17): 1e-16 N is a few ulps
+  EXPECT_NEAR(fin - f0, dash, 1e-16);
+  EXPECT_NEAR(f0 - fout, dash, 1e-16);
 }
 
 // clipped at zero: never attractive, whatever the separation speed

@@ -7,8 +7,10 @@
 namespace gs::law {
 
 /// normal dashpot coefficient for a target restitution ε (T.2.6), kg/s:
-/// γ_n² = (ln ε/π)²·4 m₁₂ k_s / (1 + (ln ε/π)²)
+/// γ_n² = (ln ε/π)²·4 m₁₂ k_s / (1 + (ln ε/π)²); ε = 0 gives the limit, critical damping
+/// 2√(m₁₂ k_s) (the formula itself would be ∞/∞ = NaN there)
 inline double gamma_normal(double eps, double m12, double ks) {
+  if (eps <= 0.0) return 2.0 * std::sqrt(m12 * ks);
   const double a = std::log(eps) / std::numbers::pi;
   return std::sqrt(a * a * 4.0 * m12 * ks / (1.0 + a * a));
 }

@@ -1,0 +1,96 @@
+// geometry kernels of the polygon DEM hot loop: decagon–decagon overlap (in contact and the
+// separated pairs a broad phase hands over), and decagon ∩ rectangle area for φ (SPEC 2.1, 2.5)
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "core/rng.hpp"
+#include "geometry/polygon.hpp"
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+constexpr double kRBig = 9e-3;       // the paper's big decagon, m
+constexpr double kRSmall = 6.36e-3;  // the paper's small decagon, m
+constexpr int kPairs = 1024;
+
+struct Pair {
+  gs::Poly a, b;
+};
+
+// big–small decagon pairs at random orientations and directions, centre distance drawn in
+// [lo, hi] × (sum of circumradii)
+std::vector<Pair> make_pairs(double lo, double hi, std::uint64_t seed) {
+  gs::RngStream rng(seed, 0);
+  std::vector<Pair> pairs(kPairs);
+  for (Pair& p : pairs) {
+    const double ang = rng.uniform(0.0, 2.0 * kPi);
+    const double dist = (kRBig + kRSmall) * rng.uniform(lo, hi);
+    const gs::Vec2 ca{0.24, 0.3}, cb = ca + gs::Vec2{std::cos(ang), std::sin(ang)} * dist;
+    p.a = gs::regular_polygon(10, kRBig, ca, rng.uniform(0.0, 2.0 * kPi));
+    p.b = gs::regular_polygon(10, kRSmall, cb, rng.uniform(0.0, 2.0 * kPi));
+  }
+  return pairs;
+}
+
+// in contact: at 0.93–0.95 of the circumradius sum every pair overlaps (the apothem sum is
+// cos 18° = 0.951 of it), a few per cent of the radius deep, as in a settled pile
+void BM_DecagonOverlap(benchmark::State& state) {
+  const std::vector<Pair> pairs = make_pairs(0.93, 0.95, 1);
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const Pair& p = pairs[i++ & (kPairs - 1)];
+    benchmark::DoNotOptimize(gs::overlap(p.a, p.b));
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_DecagonOverlap);
+
+// just apart (centre distance 1.001–1.05 of the circumradius sum), as the near misses a
+// broad phase with fattened boxes hands over: the reject path
+void BM_DecagonSeparated(benchmark::State& state) {
+  const std::vector<Pair> pairs = make_pairs(1.001, 1.05, 2);
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const Pair& p = pairs[i++ & (kPairs - 1)];
+    benchmark::DoNotOptimize(gs::overlap(p.a, p.b));
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_DecagonSeparated);
+
+// decagons scattered over a region twice the test rectangle: inside, outside and straddling
+void BM_AreaInRect(benchmark::State& state) {
+  gs::RngStream rng(3, 0);
+  std::vector<gs::Poly> polys(kPairs);
+  for (gs::Poly& p : polys)
+    p = gs::regular_polygon(10, kRBig, {rng.uniform(0.0, 0.48), rng.uniform(0.0, 0.48)},
+                            rng.uniform(0.0, 2.0 * kPi));
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const gs::Poly& p = polys[i++ & (kPairs - 1)];
+    benchmark::DoNotOptimize(gs::area_in_rect(p, 0.04, 0.04, 0.44, 0.44));
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_AreaInRect);
+
+// every decagon straddles a rectangle side (the clipping path)
+void BM_AreaInRectStraddling(benchmark::State& state) {
+  gs::RngStream rng(4, 0);
+  std::vector<gs::Poly> polys(kPairs);
+  for (gs::Poly& p : polys)
+    p = gs::regular_polygon(10, kRBig, {0.04 + rng.uniform(-kRBig, kRBig), rng.uniform(0.1, 0.4)},
+                            rng.uniform(0.0, 2.0 * kPi));
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const gs::Poly& p = polys[i++ & (kPairs - 1)];
+    benchmark::DoNotOptimize(gs::area_in_rect(p, 0.04, 0.04, 0.44, 0.44));
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_AreaInRectStraddling);
+
+}  // namespace

@@ -1,0 +1,5 @@
+// overlays: the interpolated vertex colour
+in vec4 v_color;
+out vec4 frag;
+
+void main() { frag = v_color; }

@@ -1,0 +1,9 @@
+// walls: plain triangles in canvas pixels
+in vec2 a_pos;    // px
+in vec4 a_color;  // wall colour
+out vec4 v_color;
+
+void main() {
+  v_color = a_color;
+  gl_Position = canvas_to_clip(a_pos);
+}
