@@ -51,6 +51,8 @@ TailFit fit_tail(const Histogram& h, const TailFitOptions& opt) {
                                                  " bins have counts in the window");
   TailFit f;
   f.points = static_cast<int>(av.size());
+  f.v_lo = *std::min_element(av.begin(), av.end());
+  f.v_hi = *std::max_element(av.begin(), av.end());
   f.best.chi2_r = std::numeric_limits<double>::infinity();
   // one weighted line of ln P against |v|^α per grid α
   const int steps = static_cast<int>(std::floor((opt.alpha_hi - opt.alpha_lo) / opt.alpha_step + 0.5));
@@ -167,7 +169,9 @@ void write_velocity_csv(const std::filesystem::path& path, const Histogram& h,
                              {"tail_B", tail->best.b},
                              {"tail_chi2_r", tail->best.chi2_r},
                              {"alpha_lo", tail->any_accepted ? tail->alpha_lo : kNaN},
-                             {"alpha_hi", tail->any_accepted ? tail->alpha_hi : kNaN}});
+                             {"alpha_hi", tail->any_accepted ? tail->alpha_hi : kNaN},
+                             {"tail_v_lo", tail->v_lo},
+                             {"tail_v_hi", tail->v_hi}});
   }
   if (cross) {
     meta.insert(meta.end(), {{"cross_D", cross->d},
@@ -178,8 +182,9 @@ void write_velocity_csv(const std::filesystem::path& path, const Histogram& h,
   }
   CsvWriter w(path, {"v", "count", "P", "P_err", "P_tail", "P_cross"}, meta);
   for (const HistBin& b : h.bins()) {
-    const double pt = tail ? stretched_exponential(b.x, tail->best.a, tail->best.b, tail->best.alpha)
-                           : kNaN;
+    const bool in_window = tail && std::abs(b.x) >= tail->v_lo && std::abs(b.x) <= tail->v_hi;
+    const double pt = in_window ? stretched_exponential(b.x, tail->best.a, tail->best.b, tail->best.alpha)
+                                : kNaN;
     const double pc = cross ? crossover_density(b.x, cross->d, cross->v_r, cross->v_c, cross->alpha)
                             : kNaN;
     w.row({b.x, b.count, b.p, b.p_err, pt, pc});

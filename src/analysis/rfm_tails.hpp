@@ -51,6 +51,8 @@ struct TailFit {
   double alpha_hi = 0.0;          ///< largest accepted α
   bool contiguous = true;         ///< the accepted α form one interval of the grid
   int points = 0;                 ///< bins in the window
+  double v_lo = 0.0;              ///< smallest |v| of the window's bins, m/s
+  double v_hi = 0.0;              ///< largest |v| of the window's bins, m/s
 };
 
 /// the appendix-A scan; throws gs::InputError with fewer than three bins in the window
@@ -88,8 +90,8 @@ struct LnLnPoint {
 std::vector<LnLnPoint> lnln_tail(const Histogram& h, double amplitude, double v_scale = 1.0,
                                  double min_count = 1.0);
 
-/// columns v, count, P, P_err, P_tail, P_cross (fits as NaN when absent); metadata with the
-/// fit parameters
+/// columns v, count, P, P_err, P_tail (inside the tail window only), P_cross (NaN when absent);
+/// metadata with the fit parameters
 void write_velocity_csv(const std::filesystem::path& path, const Histogram& h,
                         const TailFit* tail = nullptr, const CrossoverFit* cross = nullptr);
 /// columns alpha, chi2_r, A, B of the scan; metadata alpha_best, alpha_lo, alpha_hi

@@ -132,6 +132,12 @@ TapAnalysisResult run_tap_analysis(const std::vector<TapRunInput>& runs,
   if (!(opts.test_area > 0.0)) throw InputError("", "test_area", "must be > 0 (m²)");
   r.v_g = opts.test_area * r.runs[r.ref].phi_mean;
   r.beta = betas_from_phi(phis[r.ref], phis, r.v_g, opts.overlap);
+  // consecutive taps are correlated: the counts' variance grows by ≈ τ_ref + τ_run
+  auto correlate = [&](std::vector<BetaEstimate>& b, int refi) {
+    for (std::size_t i = 0; i < b.size(); ++i)
+      b[i] = with_variance_factor(b[i], r.runs[refi].tau.tau_int + r.runs[i].tau.tau_int);
+  };
+  correlate(r.beta, r.ref);
   // the reference against itself is β̂ = 0, ln Z ratio 0 by definition (no error)
   r.beta[r.ref].dbeta = r.beta[r.ref].dbeta_err = 0.0;
   r.beta[r.ref].dlnz = r.beta[r.ref].dlnz_err = r.beta[r.ref].cov = 0.0;
@@ -141,6 +147,7 @@ TapAnalysisResult run_tap_analysis(const std::vector<TapRunInput>& runs,
                         r.beta[i].fit.note + ")");
   if (r.ref2 >= 0) {
     r.beta2 = betas_from_phi(phis[r.ref2], phis, r.v_g, opts.overlap);
+    correlate(r.beta2, r.ref2);
     r.beta2[r.ref2].dbeta = r.beta2[r.ref2].dbeta_err = 0.0;
     r.beta2[r.ref2].dlnz = r.beta2[r.ref2].dlnz_err = r.beta2[r.ref2].cov = 0.0;
     // (P.39): β̂ from two references differ by a constant; weighted mean and χ² of that

@@ -21,11 +21,12 @@ double truncated_exponential(double beta, double lo, double w, double u) {
   return lo - std::log1p(u * std::expm1(-bw)) / beta;
 }
 
-std::vector<double> quadron_gas_phi(double beta, int taps, const QuadronGasSpec& g,
-                                    std::uint64_t seed, std::uint64_t stream) {
+TapSeries quadron_gas_taps(double beta, int taps, const QuadronGasSpec& g, std::uint64_t seed,
+                           std::uint64_t stream) {
   if (!(g.refresh > 0.0 && g.refresh <= 1.0))
-    throw std::invalid_argument("quadron_gas_phi: refresh must lie in (0, 1]");
+    throw std::invalid_argument("quadron_gas_taps: refresh must lie in (0, 1]");
   const int n = quadron_gas_cells(g);
+  const int half = n / 2;
   const double a = quadron_gas_a(g);
   // per-cell limits from (P.24), (P.25): V₀ = 1/(a φ_rlp), Δ = Δφ⁻¹/a
   const double v0 = 1.0 / (a * g.limits.phi_rlp);
@@ -35,18 +36,31 @@ std::vector<double> quadron_gas_phi(double beta, int taps, const QuadronGasSpec&
   for (auto& c : cells)
     c = g.start_fill >= -1.0 ? v0 + g.start_fill * delta
                              : truncated_exponential(beta, v0 - delta, 2.0 * delta, rng.uniform());
-  // each tap: redraw every cell with probability p, then measure φ = V_g/Σv
-  std::vector<double> phi(taps);
+  // each tap: redraw every cell with probability p, then measure φ = V_g/Σv (and per half,
+  // each half's grain volume in proportion to its cells)
+  TapSeries s;
+  s.source = "synthetic quadron gas";
   for (int t = 0; t < taps; ++t) {
-    double vol = 0.0;
-    for (auto& c : cells) {
+    double vl = 0.0, vr = 0.0;
+    for (int i = 0; i < n; ++i) {
+      auto& c = cells[i];
       if (g.refresh >= 1.0 || rng.uniform() < g.refresh)
         c = truncated_exponential(beta, v0 - delta, 2.0 * delta, rng.uniform());
-      vol += c;
+      (i < half ? vl : vr) += c;
     }
-    phi[t] = g.v_g / vol;
+    s.tap.push_back(t + 1);
+    s.phi.push_back(g.v_g / (vl + vr));
+    if (half > 0) {
+      s.phi_left.push_back(g.v_g * half / n / vl);
+      s.phi_right.push_back(g.v_g * (n - half) / n / vr);
+    }
   }
-  return phi;
+  return s;
+}
+
+std::vector<double> quadron_gas_phi(double beta, int taps, const QuadronGasSpec& g,
+                                    std::uint64_t seed, std::uint64_t stream) {
+  return quadron_gas_taps(beta, taps, g, seed, stream).phi;
 }
 
 }  // namespace gs

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "analysis/quadron.hpp"
+#include "analysis/tap_analysis.hpp"
 
 namespace gs {
 
@@ -32,6 +33,11 @@ double quadron_gas_a(const QuadronGasSpec& g);
 /// (seed, stream). start_fill in [−1, 1] starts every cell at V₀ + start_fill·Δ (a transient).
 std::vector<double> quadron_gas_phi(double beta, int taps, const QuadronGasSpec& g,
                                     std::uint64_t seed, std::uint64_t stream);
+
+/// the same as a taps.csv series: tap = 1…taps, φ, and the halves φ_left, φ_right (the first
+/// and second half of the cells, each holding grain volume V_g/2), so σ_half/σ ≈ √2
+TapSeries quadron_gas_taps(double beta, int taps, const QuadronGasSpec& g, std::uint64_t seed,
+                           std::uint64_t stream);
 
 /// the volume of one cell drawn ∝ exp(−β v) on [lo, lo + w] from a uniform u in (0, 1)
 double truncated_exponential(double beta, double lo, double w, double u);

@@ -25,6 +25,7 @@ ContactModel::ContactModel(const World& w) : nsp_(w.species.size()) {
   poly_.resize(nsp_ * stride);
   disk_.resize(nsp_ * stride);
   hdot_fd_ = w.scene.model.hdot_finite_difference;
+  rocking_ = w.scene.model.rocking_damping;
   min_contact_time_ = 1e300;
   for (std::size_t a = 0; a < nsp_; ++a) {
     for (std::size_t b = 0; b <= nsp_; ++b) {
@@ -135,7 +136,7 @@ ForceStats ContactModel::evaluate_polygons(const World& w, const std::vector<Pai
 
     // normal force (P.34) with ḣ_eff analytic (chord × approach speed / l) or by difference
     const double h = g.overlap / l;
-    const double hdot = hdot_fd_ ? (state.h_prev > 0.0 ? (h - state.h_prev) / dt : 0.0)
+    const double hdot = hdot_fd_ ? (h - state.h_prev) / dt  // h_prev = 0 before first touch
                                  : g.chord * vn / l;
     state.h_prev = h;
     const double fn = law::poly_normal_force(p, h, hdot, m_perp);
@@ -151,6 +152,15 @@ ForceStats ContactModel::evaluate_polygons(const World& w, const std::vector<Pai
       f.fx[j] += F.x;
       f.fy[j] += F.y;
       f.tq[j] += cross(g.s - xj, F);
+    }
+    // the same dashpot spread along the contact line: its moment about s damps relative
+    // rotation, ∫ x·(γ√(E m⊥)/l)·ω_rel·x dx = γ√(E m⊥)·L³/(12 l)·ω_rel (only while pressing)
+    if (rocking_ && fn > 0.0) {
+      const double w_rel = w.s.w[i] - (wall ? 0.0 : w.s.w[j]);
+      const double couple = p.gamma * std::sqrt(p.E * m_perp) * g.chord * g.chord * g.chord /
+                            (12.0 * l) * w_rel;
+      f.tq[i] -= couple;
+      if (!wall) f.tq[j] += couple;
     }
     new_keys_.push_back(key);
     new_state_.push_back(state);

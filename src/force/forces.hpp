@@ -47,6 +47,7 @@ class ContactModel {
   std::vector<law::PolyLawParams> poly_;   ///< [si * (nsp+1) + sj], sj = nsp for walls
   std::vector<law::DiskLawParams> disk_;   ///< same layout
   bool hdot_fd_ = false;
+  bool rocking_ = true;
   double min_contact_time_ = 0.0;
   std::vector<Poly> shapes_;  ///< world-frame polygons of this step
   std::vector<PairKey> new_keys_;

@@ -13,10 +13,14 @@ namespace gs {
 // names as they appear in scene files
 std::string_view to_string(IntegratorKind k) {
   switch (k) {
-    case IntegratorKind::Gear6: return "gear6";
-    case IntegratorKind::VelocityVerlet: return "velocity_verlet";
-    case IntegratorKind::PositionVerlet: return "position_verlet";
-    case IntegratorKind::SemiImplicitEuler: return "semi_implicit_euler";
+    case IntegratorKind::Gear6:
+      return "gear6";
+    case IntegratorKind::VelocityVerlet:
+      return "velocity_verlet";
+    case IntegratorKind::PositionVerlet:
+      return "position_verlet";
+    case IntegratorKind::SemiImplicitEuler:
+      return "semi_implicit_euler";
   }
   return "unknown";
 }
@@ -38,20 +42,28 @@ bool parse_integrator(std::string_view s, IntegratorKind& out) {
 // order (tests/integrate measures 5.0 with an exact start) and its error constant is small.
 int integrator_order(IntegratorKind k) {
   switch (k) {
-    case IntegratorKind::Gear6: return 2;
-    case IntegratorKind::VelocityVerlet: return 2;
-    case IntegratorKind::PositionVerlet: return 2;
-    case IntegratorKind::SemiImplicitEuler: return 1;
+    case IntegratorKind::Gear6:
+      return 2;
+    case IntegratorKind::VelocityVerlet:
+      return 2;
+    case IntegratorKind::PositionVerlet:
+      return 2;
+    case IntegratorKind::SemiImplicitEuler:
+      return 1;
   }
   return 0;
 }
 
 std::unique_ptr<Integrator> make_integrator(IntegratorKind k) {
   switch (k) {
-    case IntegratorKind::Gear6: return std::make_unique<Gear6>();
-    case IntegratorKind::VelocityVerlet: return std::make_unique<VelocityVerlet>();
-    case IntegratorKind::PositionVerlet: return std::make_unique<PositionVerlet>();
-    case IntegratorKind::SemiImplicitEuler: return std::make_unique<SemiImplicitEuler>();
+    case IntegratorKind::Gear6:
+      return std::make_unique<Gear6>();
+    case IntegratorKind::VelocityVerlet:
+      return std::make_unique<VelocityVerlet>();
+    case IntegratorKind::PositionVerlet:
+      return std::make_unique<PositionVerlet>();
+    case IntegratorKind::SemiImplicitEuler:
+      return std::make_unique<SemiImplicitEuler>();
   }
   throw std::invalid_argument("make_integrator: unknown integrator kind");
 }
@@ -69,8 +81,7 @@ void ChannelLayout::set(std::span<const Channel> ch) {
 void ChannelLayout::check(std::span<const Channel> ch, const char* who) const {
   bool ok = ch.size() == sizes_.size();
   for (std::size_t c = 0; ok && c < ch.size(); ++c)
-    ok = ch[c].q.size() == sizes_[c] && ch[c].v.size() == sizes_[c] &&
-         ch[c].a.size() == sizes_[c];
+    ok = ch[c].q.size() == sizes_[c] && ch[c].v.size() == sizes_[c] && ch[c].a.size() == sizes_[c];
   if (!ok)
     throw std::invalid_argument(std::string(who) +
                                 ": channel layout differs from init(); call init() again "
@@ -89,8 +100,7 @@ constexpr double kTagBase = 7100.0;
 constexpr double kVersion = 1.0;
 }  // namespace
 
-void ChannelLayout::write_header(std::vector<double>& out, IntegratorKind k,
-                                 double dt) const {
+void ChannelLayout::write_header(std::vector<double>& out, IntegratorKind k, double dt) const {
   out.push_back(kTagBase + static_cast<double>(k));
   out.push_back(kVersion);
   out.push_back(dt);

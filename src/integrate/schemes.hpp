@@ -72,8 +72,7 @@ enum class VerletForceVelocity {
 /// The velocity written for the force evaluation is chosen by VerletForceVelocity.
 class VelocityVerlet final : public Integrator {
  public:
-  explicit VelocityVerlet(VerletForceVelocity fv = VerletForceVelocity::Extrapolated)
-      : fv_(fv) {}
+  explicit VelocityVerlet(VerletForceVelocity fv = VerletForceVelocity::Extrapolated) : fv_(fv) {}
   IntegratorKind kind() const override { return IntegratorKind::VelocityVerlet; }
   void init(std::span<const Channel> ch, double dt) override;
   void predict(std::span<const Channel> ch, double dt) override;
@@ -84,9 +83,9 @@ class VelocityVerlet final : public Integrator {
  private:
   VerletForceVelocity fv_;
   ChannelLayout layout_;
-  double dt_ = 0.0;                       ///< Δt of the last step, s
-  std::vector<std::vector<double>> a_;    ///< per channel, a_n of the last force evaluation
-  std::vector<std::vector<double>> vh_;   ///< per channel, v_{n+½} during a step
+  double dt_ = 0.0;                      ///< Δt of the last step, s
+  std::vector<std::vector<double>> a_;   ///< per channel, a_n of the last force evaluation
+  std::vector<std::vector<double>> vh_;  ///< per channel, v_{n+½} during a step
 };
 
 /// position (Störmer) Verlet (T.2.3): q_{n+1} = 2q_n − q_{n−1} + a_n·Δt². The history is the
@@ -113,11 +112,11 @@ class PositionVerlet final : public Integrator {
 
  private:
   ChannelLayout layout_;
-  double dt_ = 0.0;                        ///< Δt of the last step, s
-  std::vector<std::vector<double>> qp_;    ///< per channel, q_{n−1}
-  std::vector<std::vector<double>> qn_;    ///< per channel, q_n as last written
-  std::vector<std::vector<double>> vn_;    ///< per channel, v_n as last written
-  std::vector<std::vector<double>> a_;     ///< per channel, a_n
+  double dt_ = 0.0;                      ///< Δt of the last step, s
+  std::vector<std::vector<double>> qp_;  ///< per channel, q_{n−1}
+  std::vector<std::vector<double>> qn_;  ///< per channel, q_n as last written
+  std::vector<std::vector<double>> vn_;  ///< per channel, v_n as last written
+  std::vector<std::vector<double>> a_;   ///< per channel, a_n
 };
 
 /// semi-implicit (symplectic) Euler: forces at the current state (predict does nothing),

@@ -49,8 +49,10 @@ std::pair<double, double> value_range(const FrameSpec& spec, const std::vector<d
     amax = std::max(amax, std::abs(x));
   }
   switch (spec.color_by) {
-    case ColorBy::species: return {0.0, std::max(1.0, n_species - 1.0)};
-    case ColorBy::vy: return amax > 0.0 ? std::pair{-amax, amax} : std::pair{-1.0, 1.0};
+    case ColorBy::species:
+      return {0.0, std::max(1.0, n_species - 1.0)};
+    case ColorBy::vy:
+      return amax > 0.0 ? std::pair{-amax, amax} : std::pair{-1.0, 1.0};
     case ColorBy::extra:
       if (!(hi >= lo)) return {0.0, 1.0};
       if (hi == lo) return {lo - 0.5, hi + 0.5};
@@ -115,19 +117,25 @@ ColorBy parse_color_by(const std::string& name) {
   if (name == "vy") return ColorBy::vy;
   if (name == "extra") return ColorBy::extra;
   if (name == "uniform" || name == "none") return ColorBy::uniform;
-  throw InputError("", "color_by",
-                   "unknown colouring '" + name +
-                       "' (known: speed, speed_rms, species, vy, extra, uniform)");
+  throw InputError(
+      "", "color_by",
+      "unknown colouring '" + name + "' (known: speed, speed_rms, species, vy, extra, uniform)");
 }
 
 std::string to_string(ColorBy c) {
   switch (c) {
-    case ColorBy::speed: return "speed";
-    case ColorBy::speed_rms: return "speed_rms";
-    case ColorBy::species: return "species";
-    case ColorBy::vy: return "vy";
-    case ColorBy::extra: return "extra";
-    case ColorBy::uniform: return "uniform";
+    case ColorBy::speed:
+      return "speed";
+    case ColorBy::speed_rms:
+      return "speed_rms";
+    case ColorBy::species:
+      return "species";
+    case ColorBy::vy:
+      return "vy";
+    case ColorBy::extra:
+      return "extra";
+    case ColorBy::uniform:
+      return "uniform";
   }
   return "speed";
 }
@@ -160,14 +168,14 @@ std::vector<double> particle_values(const RenderParticles& p, ColorBy by) {
     case ColorBy::extra:
       for (std::size_t i = 0; i < n && i < p.value_extra.size(); ++i) v[i] = p.value_extra[i];
       break;
-    case ColorBy::uniform: break;
+    case ColorBy::uniform:
+      break;
   }
   return v;
 }
 
 FrameData build_frame(const RenderParticles& p, const RenderWalls& walls,
-                      const RenderOverlays& overlays, const FrameSpec& spec,
-                      const BoxExtent& box) {
+                      const RenderOverlays& overlays, const FrameSpec& spec, const BoxExtent& box) {
   check_spec(spec, p);
   const Colormap& map = colormap(spec.colormap);
   FrameData f;
@@ -180,8 +188,8 @@ FrameData build_frame(const RenderParticles& p, const RenderWalls& walls,
 
   // page layout: the colour-bar panel on the right, the world view in the rest
   detail::PageLayout page;
-  page.font = static_cast<float>(spec.font_px > 0.0 ? spec.font_px
-                                                    : std::max(10.0, std::round(spec.height / 40.0)));
+  page.font = static_cast<float>(
+      spec.font_px > 0.0 ? spec.font_px : std::max(10.0, std::round(spec.height / 40.0)));
   page.colorbar = spec.colorbar && spec.color_by != ColorBy::uniform;
   const float panel = page.colorbar ? std::min(6.5f * page.font, 0.35f * spec.width) : 0.0f;
   page.plot_x0 = 0;
@@ -190,9 +198,34 @@ FrameData build_frame(const RenderParticles& p, const RenderWalls& walls,
   page.plot_y1 = static_cast<float>(spec.height);
   f.camera = fit_camera(spec, walls, box, page);
 
+  // header and gravity inset must not cover the box: if they would, fit the box below them
+  // (not for an explicit camera region, which the user chose)
+  if (!spec.camera.region) {
+    double bx0 = box.x0, by0 = box.y0, bx1 = box.x1, by1 = box.y1;
+    for (const auto& q : walls.rects)
+      for (const auto& c : q) {
+        bx0 = std::min(bx0, c.x), bx1 = std::max(bx1, c.x);
+        by0 = std::min(by0, c.y), by1 = std::max(by1, c.y);
+      }
+    const Vec2 lo = f.camera.to_canvas({bx0, by0}), hi = f.camera.to_canvas({bx1, by1});
+    float band = 0.0f;
+    auto reserve = [&](const detail::Rect& r) {
+      if (r[2] > r[0] && r[0] < hi.x && r[2] > lo.x && r[1] < hi.y && r[3] > lo.y)
+        band = std::max(band, page.plot_y1 - r[1]);
+    };
+    reserve(detail::header_rect(detail::header_lines(overlays), page));
+    if (overlays.show_gravity) reserve(detail::gravity_rect(page));
+    if (band > 0.0f && band < 0.5f * spec.height) {
+      detail::PageLayout fit = page;
+      fit.plot_y1 -= band;
+      f.camera = fit_camera(spec, walls, box, fit);
+    }
+  }
+
   // particles are clipped to the plot area, and to the box in periodic directions
   const Vec2 b0 = f.camera.to_canvas({box.x0, box.y0}), b1 = f.camera.to_canvas({box.x1, box.y1});
-  f.particle_clip = {page.plot_x0, page.plot_y0, page.plot_x1, page.plot_y1};
+  f.view_clip = {page.plot_x0, page.plot_y0, page.plot_x1, page.plot_y1};
+  f.particle_clip = f.view_clip;
   if (box.periodic_x) {
     f.particle_clip[0] = std::max(f.particle_clip[0], static_cast<float>(b0.x));
     f.particle_clip[2] = std::min(f.particle_clip[2], static_cast<float>(b1.x));
@@ -216,15 +249,15 @@ FrameData build_frame(const RenderParticles& p, const RenderWalls& walls,
   for (std::size_t i = 0; i < p.size(); ++i) {
     const int n = p.sides[i];
     if (n != 0 && n < 3)
-      throw InputError("", "sides", "particle " + std::to_string(i) + " has " +
-                                        std::to_string(n) + " sides (0 = disk, or 3 or more)");
+      throw InputError("", "sides",
+                       "particle " + std::to_string(i) + " has " + std::to_string(n) +
+                           " sides (0 = disk, or 3 or more)");
     ShapeInstance s;
     s.radius = static_cast<float>(p.radius[i] * f.camera.scale);
     s.angle = static_cast<float>(p.theta.empty() ? 0.0 : p.theta[i]);
     s.sides = n > kMaxSides ? 0 : n;
-    s.fill = spec.color_by == ColorBy::uniform
-                 ? spec.uniform_color
-                 : map.at((values[i] - lo) / (hi - lo));
+    s.fill = spec.color_by == ColorBy::uniform ? spec.uniform_color
+                                               : map.at((values[i] - lo) / (hi - lo));
     radii_px.push_back(s.radius);
     auto& dest = s.sides == 0 ? f.disks : f.polygons;
     for_each_image(box, p.x[i], p.y[i], p.radius[i], [&](double x, double y) {

@@ -22,13 +22,13 @@ namespace gs {
 
 /// particles as structure of arrays; all arrays have the same length except value_extra
 struct RenderParticles {
-  std::vector<double> x, y;           ///< centre, m
-  std::vector<double> theta;          ///< orientation (vertex 0 at angle θ), rad
-  std::vector<double> radius;         ///< circumradius (n-gon) or radius (disk), m
-  std::vector<int> sides;             ///< 0 = disk, n >= 3 = regular n-gon
-  std::vector<double> vx, vy;         ///< velocity, m/s
-  std::vector<int> species;           ///< species index (0, 1, …)
-  std::vector<double> value_extra;    ///< optional per-particle scalar (contacts, stress); may be empty
+  std::vector<double> x, y;         ///< centre, m
+  std::vector<double> theta;        ///< orientation (vertex 0 at angle θ), rad
+  std::vector<double> radius;       ///< circumradius (n-gon) or radius (disk), m
+  std::vector<int> sides;           ///< 0 = disk, n >= 3 = regular n-gon
+  std::vector<double> vx, vy;       ///< velocity, m/s
+  std::vector<int> species;         ///< species index (0, 1, …)
+  std::vector<double> value_extra;  ///< optional scalar per particle (contacts, …); may be empty
 
   std::size_t size() const { return x.size(); }
 };
@@ -46,16 +46,16 @@ struct ContactLine {
 
 /// optional overlays
 struct RenderOverlays {
-  double time = 0.0;                              ///< simulated time, s
-  bool show_time = true;                          ///< print "t = … s"
-  int tap = 0;                                    ///< tap (excitation) counter
-  bool has_tap = false;                           ///< print "tap N"
-  Vec2 gravity{0.0, -9.81};                       ///< gravity vector, m/s²
-  bool show_gravity = false;                      ///< draw the gravity arrow (rotating g)
-  std::optional<std::array<double, 4>> test_rect; ///< measurement rectangle x0, y0, x1, y1, m
-  std::vector<ContactLine> force_chains;          ///< contacts to draw as force chains
-  std::string title;                              ///< a line above everything else
-  std::vector<std::string> lines;                 ///< extra text lines under the time (e.g. "φ = 0.81")
+  double time = 0.0;                               ///< simulated time, s
+  bool show_time = true;                           ///< print "t = … s"
+  int tap = 0;                                     ///< tap (excitation) counter
+  bool has_tap = false;                            ///< print "tap N"
+  Vec2 gravity{0.0, -9.81};                        ///< gravity vector, m/s²
+  bool show_gravity = false;                       ///< draw the gravity arrow (rotating g)
+  std::optional<std::array<double, 4>> test_rect;  ///< measurement rectangle x0, y0, x1, y1, m
+  std::vector<ContactLine> force_chains;           ///< contacts to draw as force chains
+  std::string title;                               ///< a line above everything else
+  std::vector<std::string> lines;  ///< extra text lines under the time (e.g. "φ = 0.81")
 };
 
 /// the extent of the simulation box (inner region), m; periodic directions draw image copies
@@ -83,14 +83,14 @@ std::string to_string(ColorBy c);
 
 /// which part of the world fills the frame
 struct CameraSpec {
-  double margin = 0.04;                        ///< empty border around the box, fraction of its larger side
-  std::optional<std::array<double, 4>> region; ///< show x0, y0, x1, y1 (m) instead of the box
+  double margin = 0.04;  ///< empty border around the box, fraction of its larger side
+  std::optional<std::array<double, 4>> region;  ///< show x0, y0, x1, y1 (m) instead of the box
 };
 
 struct FrameSpec {
-  int width = 1280;                   ///< image width, px
-  int height = 720;                   ///< image height, px
-  int msaa = 4;                       ///< samples per pixel (GL backend; 1 = off)
+  int width = 1280;  ///< image width, px
+  int height = 720;  ///< image height, px
+  int msaa = 4;      ///< samples per pixel (GL backend; 1 = off)
   ColorBy color_by = ColorBy::speed;
   std::string colormap = "viridis";
   std::optional<std::pair<double, double>> range;  ///< fixed colour range; automatic when empty
@@ -98,8 +98,8 @@ struct FrameSpec {
   std::string extra_label = "value";  ///< colour-bar label for ColorBy::extra
   std::string extra_unit;             ///< its unit ("" = dimensionless)
   CameraSpec camera;
-  double outline_px = -1.0;           ///< particle outline width, px (< 0: automatic from size)
-  double font_px = 0.0;               ///< text height, px (0: automatic, height / 40)
+  double outline_px = -1.0;  ///< particle outline width, px (< 0: automatic from size)
+  double font_px = 0.0;      ///< text height, px (0: automatic, height / 40)
   Rgba8 background{250, 250, 250, 255};
   Rgba8 outline_color{25, 25, 25, 255};
   Rgba8 wall_color{120, 120, 128, 255};
@@ -157,21 +157,25 @@ struct ColorBarInfo {
 };
 
 struct FrameData {
-  int width = 0, height = 0;      ///< px
-  int msaa = 4;                   ///< samples per pixel wanted
+  int width = 0, height = 0;  ///< px
+  int msaa = 4;               ///< samples per pixel wanted
   Rgba8 background;
   Camera camera;
+  std::array<float, 4> view_clip{};      ///< the world view x0, y0, x1, y1, px: walls and
+                                         ///< world overlays are clipped to it
   std::array<float, 4> particle_clip{};  ///< particles are clipped to x0, y0, x1, y1, px
   float outline_px = 1.0f;               ///< particle outline width, px (0 = none)
   Rgba8 outline_color;
-  std::vector<ShapeInstance> polygons;   ///< regular n-gons
+  std::vector<ShapeInstance> polygons;  ///< regular n-gons
   std::vector<ShapeInstance> disks;
-  std::vector<ColorVertex> walls;        ///< triangles, drawn first (hatched)
-  std::vector<ColorVertex> overlay;      ///< triangles, drawn over the particles
-  std::vector<TextItem> text;            ///< drawn last
+  std::vector<ColorVertex> walls;          ///< triangles, drawn first (hatched), view-clipped
+  std::vector<ColorVertex> world_overlay;  ///< force chains, test rectangle: over the particles,
+                                           ///< view-clipped
+  std::vector<ColorVertex> overlay;        ///< colour bar, arrow, panels: on top, not clipped
+  std::vector<TextItem> text;              ///< drawn last
   ColorBarInfo colorbar;
   std::string colormap;
-  double value_lo = 0.0, value_hi = 1.0; ///< colour range used
+  double value_lo = 0.0, value_hi = 1.0;  ///< colour range used
 };
 
 /// build the frame: camera fit, particle instances and colours, walls, overlays, colour bar

@@ -57,7 +57,7 @@ namespace {
 std::string power_of_ten(int p) {
   static const char* sup[] = {"⁰", "¹", "²", "³", "⁴", "⁵", "⁶", "⁷", "⁸", "⁹"};
   std::string digits;
-  for (int a = std::abs(p); ; a /= 10) {
+  for (int a = std::abs(p);; a /= 10) {
     digits = sup[a % 10] + digits;
     if (a < 10) break;
   }
@@ -67,22 +67,27 @@ std::string power_of_ten(int p) {
 // the colour-bar title for the quantity
 std::string bar_label(const FrameSpec& spec) {
   switch (spec.color_by) {
-    case ColorBy::speed: return "speed (m/s)";
-    case ColorBy::speed_rms: return "|v| / v_rms";
-    case ColorBy::species: return "species";
-    case ColorBy::vy: return "v_y (m/s)";
+    case ColorBy::speed:
+      return "speed (m/s)";
+    case ColorBy::speed_rms:
+      return "|v| / v_rms";
+    case ColorBy::species:
+      return "species";
+    case ColorBy::vy:
+      return "v_y (m/s)";
     case ColorBy::extra:
       return spec.extra_unit.empty() ? spec.extra_label
                                      : spec.extra_label + " (" + spec.extra_unit + ")";
-    case ColorBy::uniform: break;
+    case ColorBy::uniform:
+      break;
   }
   return "";
 }
 
 }  // namespace
 
-void add_colorbar(FrameData& f, const FrameSpec& spec, const PageLayout& page, double lo,
-                  double hi, int n_species) {
+void add_colorbar(FrameData& f, const FrameSpec& spec, const PageLayout& page, double lo, double hi,
+                  int n_species) {
   const Colormap& map = colormap(spec.colormap);
   const float fs = page.font, H = static_cast<float>(f.height);
   Painter paint{f.overlay};
@@ -101,8 +106,8 @@ void add_colorbar(FrameData& f, const FrameSpec& spec, const PageLayout& page, d
   const int strips = discrete ? n_species : 256;
   for (int k = 0; k < strips; ++k) {
     const float ya = y0 + (y1 - y0) * k / strips, yb = y0 + (y1 - y0) * (k + 1) / strips;
-    const Rgba8 c = discrete ? map.at(n_species > 1 ? double(k) / (n_species - 1) : 0.0)
-                             : map.lut[k];
+    const Rgba8 c =
+        discrete ? map.at(n_species > 1 ? double(k) / (n_species - 1) : 0.0) : map.lut[k];
     paint.rect(x0, ya, x1, yb, c);
   }
   const float lw = std::max(1.0f, fs / 16.0f);
@@ -133,27 +138,27 @@ void add_colorbar(FrameData& f, const FrameSpec& spec, const PageLayout& page, d
   for (std::size_t k = 0; k < ticks.size(); ++k) {
     const float y = static_cast<float>(y0 + (y1 - y0) * (ticks[k] - t_lo) / (t_hi - t_lo));
     paint.rect(x1, y - 0.5f * lw, x1 + 0.35f * fs, y + 0.5f * lw, spec.text_color);
-    f.text.push_back({labels[k], x1 + 0.55f * fs, y, 0.85f * fs, HAlign::left, VAlign::middle,
-                      spec.text_color});
+    f.text.push_back(
+        {labels[k], x1 + 0.55f * fs, y, 0.85f * fs, HAlign::left, VAlign::middle, spec.text_color});
   }
 
   // the title above the bar, the power of ten under it
   const float tx = page.plot_x1 + 0.4f * fs;
   if (p10 != 0) {
-    f.text.push_back({info.label, tx, y1 + 1.9f * fs, fs, HAlign::left, VAlign::baseline,
-                      spec.text_color});
+    f.text.push_back(
+        {info.label, tx, y1 + 1.9f * fs, fs, HAlign::left, VAlign::baseline, spec.text_color});
     f.text.push_back({power_of_ten(p10), tx, y1 + 0.7f * fs, 0.85f * fs, HAlign::left,
                       VAlign::baseline, spec.text_color});
   } else {
-    f.text.push_back({info.label, tx, y1 + 0.8f * fs, fs, HAlign::left, VAlign::baseline,
-                      spec.text_color});
+    f.text.push_back(
+        {info.label, tx, y1 + 0.8f * fs, fs, HAlign::left, VAlign::baseline, spec.text_color});
   }
 }
 
 void add_overlays(FrameData& f, const RenderOverlays& ov, const FrameSpec& spec,
                   const PageLayout& page, float r_typ) {
   const float fs = page.font;
-  Painter paint{f.overlay};
+  Painter paint{f.overlay}, world{f.world_overlay};
 
   // force chains: segments between centres, width proportional to the force
   double fmax = 0.0;
@@ -162,14 +167,14 @@ void add_overlays(FrameData& f, const RenderOverlays& ov, const FrameSpec& spec,
   for (const auto& c : ov.force_chains) {
     if (!(c.force > 0.0)) continue;
     const float w = std::max(0.75f, static_cast<float>(wmax * c.force / fmax));
-    paint.line(f.camera.to_canvas(c.a), f.camera.to_canvas(c.b), w, {170, 20, 20, 220});
+    world.line(f.camera.to_canvas(c.a), f.camera.to_canvas(c.b), w, {170, 20, 20, 220});
   }
 
   // the test (measurement) rectangle as a red frame
   if (ov.test_rect) {
     const auto& r = *ov.test_rect;
     const Vec2 a = f.camera.to_canvas({r[0], r[1]}), b = f.camera.to_canvas({r[2], r[3]});
-    paint.frame(static_cast<float>(std::min(a.x, b.x)), static_cast<float>(std::min(a.y, b.y)),
+    world.frame(static_cast<float>(std::min(a.x, b.x)), static_cast<float>(std::min(a.y, b.y)),
                 static_cast<float>(std::max(a.x, b.x)), static_cast<float>(std::max(a.y, b.y)),
                 std::max(1.5f, fs / 9.0f), {220, 40, 40, 235});
   }
@@ -177,7 +182,8 @@ void add_overlays(FrameData& f, const RenderOverlays& ov, const FrameSpec& spec,
   // the gravity arrow in an inset at the top right of the view
   if (ov.show_gravity) {
     const float R = 2.2f * fs;
-    const Vec2 c{page.plot_x1 - 1.3f * R, page.plot_y1 - 1.3f * R};
+    const Rect box = gravity_rect(page);
+    const Vec2 c{box[2] - 1.1f * R, box[3] - 1.1f * R};
     paint.disk(c, R, {255, 255, 255, 200}, 48);
     for (int k = 0; k < 48; ++k) {
       const double a0 = 2 * M_PI * k / 48, a1 = 2 * M_PI * (k + 1) / 48;
@@ -197,11 +203,21 @@ void add_overlays(FrameData& f, const RenderOverlays& ov, const FrameSpec& spec,
     }
     char buf[64];
     std::snprintf(buf, sizeof buf, "g = %.2f m/s²", g);
-    f.text.push_back({buf, static_cast<float>(c.x), static_cast<float>(c.y - R - 1.1f * fs),
-                      0.85f * fs, HAlign::center, VAlign::baseline, spec.text_color});
+    f.text.push_back({buf, static_cast<float>(c.x - R - 0.5f * fs), static_cast<float>(c.y),
+                      0.85f * fs, HAlign::right, VAlign::middle, spec.text_color});
   }
 
-  // header lines at the top left: title, time and tap, extra lines
+  // header lines at the top left on a translucent panel
+  const std::vector<std::string> lines = header_lines(ov);
+  if (lines.empty()) return;
+  const Rect panel = header_rect(lines, page);
+  paint.rect(panel[0], panel[1], panel[2], panel[3], {255, 255, 255, 190});
+  for (std::size_t k = 0; k < lines.size(); ++k)
+    f.text.push_back({lines[k], panel[0] + 0.35f * fs, panel[3] - 0.95f * fs - 1.35f * fs * k, fs,
+                      HAlign::left, VAlign::baseline, spec.text_color});
+}
+
+std::vector<std::string> header_lines(const RenderOverlays& ov) {
   std::vector<std::string> lines;
   if (!ov.title.empty()) lines.push_back(ov.title);
   std::string clock;
@@ -210,22 +226,28 @@ void add_overlays(FrameData& f, const RenderOverlays& ov, const FrameSpec& spec,
     std::snprintf(buf, sizeof buf, "t = %.3f s", ov.time);
     clock = buf;
   }
-  if (ov.has_tap) clock += (clock.empty() ? "" : "    ") + std::string("tap ") + std::to_string(ov.tap);
+  if (ov.has_tap)
+    clock += (clock.empty() ? "" : "    ") + std::string("tap ") + std::to_string(ov.tap);
   if (!clock.empty()) lines.push_back(clock);
   for (const auto& l : ov.lines) lines.push_back(l);
-  if (lines.empty()) return;
+  return lines;
+}
 
-  // a translucent panel behind them (width from an average glyph of 0.6 em), then the text
-  const float x = page.plot_x0 + 0.7f * fs, step = 1.35f * fs;
-  const float top = page.plot_y1 - 0.35f * fs;
+Rect header_rect(const std::vector<std::string>& lines, const PageLayout& page) {
+  if (lines.empty()) return {};
+  // width from an average DejaVu Sans glyph of 0.56 em, 1.35 em per line
+  const float fs = page.font;
   int chars = 0;
   for (const auto& l : lines) chars = std::max(chars, utf8_length(l));
-  const float last_base = page.plot_y1 - 1.3f * fs - step * (lines.size() - 1);
-  paint.rect(page.plot_x0 + 0.35f * fs, last_base - 0.6f * fs, x + 0.62f * fs * chars + 0.35f * fs,
-             top, {255, 255, 255, 190});
-  for (std::size_t k = 0; k < lines.size(); ++k)
-    f.text.push_back({lines[k], x, page.plot_y1 - 1.3f * fs - step * k, fs, HAlign::left,
-                      VAlign::baseline, spec.text_color});
+  const float x0 = page.plot_x0 + 0.35f * fs, y1 = page.plot_y1 - 0.35f * fs;
+  return {x0, y1 - 1.35f * fs * lines.size() - 0.3f * fs, x0 + 0.56f * fs * chars + 0.7f * fs, y1};
+}
+
+Rect gravity_rect(const PageLayout& page) {
+  // the inset disk (radius 2.2 em) with "g = 9.81 m/s²" (about 6 em) to its left
+  const float fs = page.font, R = 2.2f * fs;
+  const float x1 = page.plot_x1 - 0.2f * R, y1 = page.plot_y1 - 0.2f * R;
+  return {x1 - 2.2f * R - 6.8f * fs, y1 - 2.2f * R, x1, y1};
 }
 
 }  // namespace detail
@@ -235,21 +257,23 @@ std::vector<double> nice_ticks(double lo, double hi, int max_count) {
   max_count = std::max(2, max_count);
   // the smallest step of 1, 2, 2.5, 5 × 10^k giving at most max_count ticks in [lo, hi]
   const double raw = (hi - lo) / (max_count - 1);
-  const double mag = std::pow(10.0, std::floor(std::log10(raw)));
-  double step = 10.0 * mag;
-  for (double m : {1.0, 2.0, 2.5, 5.0, 10.0}) {
-    const double s = m * mag;
+  const int e = static_cast<int>(std::floor(std::log10(raw)));
+  const double mag = std::pow(10.0, std::abs(e));
+  // k·m·10^e, dividing by 10^|e| for negative e so that 3 × 0.1 prints and compares as 0.3
+  auto value = [&](double km) { return e < 0 ? km / mag : km * mag; };
+  double m = 10.0;
+  for (double cand : {1.0, 2.0, 2.5, 5.0, 10.0}) {
+    const double s = value(cand);
     const double count = std::floor(hi / s + 1e-9) - std::ceil(lo / s - 1e-9) + 1;
     if (count <= max_count) {
-      step = s;
+      m = cand;
       break;
     }
   }
+  const double step = value(m);
   std::vector<double> ticks;
-  for (double k = std::ceil(lo / step - 1e-9); k <= std::floor(hi / step + 1e-9); k += 1.0) {
-    const double v = k * step;
-    ticks.push_back(std::abs(v) < 1e-12 * step ? 0.0 : v);
-  }
+  for (double k = std::ceil(lo / step - 1e-9); k <= std::floor(hi / step + 1e-9); k += 1.0)
+    ticks.push_back(k == 0.0 ? 0.0 : value(k * m));
   return ticks;
 }
 

@@ -1,6 +1,7 @@
 // internal to the frame builder: the page layout and the overlay geometry (colour bar, text,
 // gravity arrow, test rectangle, force chains). Everything here is in canvas pixels, y up.
 #pragma once
+#include <array>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,16 @@ struct PageLayout {
   float font = 14;                                           ///< text height, px
   bool colorbar = false;                                     ///< a colour-bar panel on the right
 };
+
+/// a canvas rectangle x0, y0, x1, y1, px
+using Rect = std::array<float, 4>;
+
+/// the header lines: title, "t = … s    tap N", extra lines
+std::vector<std::string> header_lines(const RenderOverlays& ov);
+/// where the header panel goes (top left of the view); empty (all 0) without lines
+Rect header_rect(const std::vector<std::string>& lines, const PageLayout& page);
+/// where the gravity inset and its label go (top right of the view)
+Rect gravity_rect(const PageLayout& page);
 
 /// append coloured triangles for simple shapes
 struct Painter {

@@ -18,7 +18,9 @@ RendererKind parse_renderer_kind(const std::string& name) {
 
 std::array<int, 4> clip_pixels(const std::array<float, 4>& r, int width, int height) {
   // pixel i is inside when its centre i + 0.5 lies in [x0, x1)
-  auto first = [](float a, int n) { return std::clamp(static_cast<int>(std::ceil(a - 0.5f)), 0, n); };
+  auto first = [](float a, int n) {
+    return std::clamp(static_cast<int>(std::ceil(a - 0.5f)), 0, n);
+  };
   return {first(r[0], width), first(r[1], height), first(r[2], width), first(r[3], height)};
 }
 
@@ -34,7 +36,7 @@ class SoftwareRenderer final : public Renderer {
   Image render(const FrameData& f) override {
     Image img(f.width, f.height);
     img_ = &img;
-    // background, walls, particles (clipped), overlays, text
+    // background, walls, particles, world overlays (clipped), overlays, text
     for (std::size_t k = 0; k < img.rgba.size(); k += 4) {
       img.rgba[k] = f.background.r;
       img.rgba[k + 1] = f.background.g;
@@ -42,10 +44,12 @@ class SoftwareRenderer final : public Renderer {
       img.rgba[k + 3] = 255;
     }
     const std::array<int, 4> all{0, 0, f.width, f.height};
-    triangles(f.walls, all, true);
+    const auto view = clip_pixels(f.view_clip, f.width, f.height);
+    triangles(f.walls, view, true);
     const auto clip = clip_pixels(f.particle_clip, f.width, f.height);
     for (const auto& s : f.polygons) shape(s, f, clip);
     for (const auto& s : f.disks) shape(s, f, clip);
+    triangles(f.world_overlay, view, false);
     triangles(f.overlay, all, false);
     if (fonts_)
       for (const auto& t : f.text) text(t);
@@ -154,8 +158,8 @@ class SoftwareRenderer final : public Renderer {
         for (int u = 0; u < q.aw; ++u) {
           const int i = static_cast<int>(q.x0) + u, j = static_cast<int>(q.y1) - 1 - v;
           if (i < 0 || j < 0 || i >= img_->width || j >= img_->height) continue;
-          const std::uint8_t a = atlas->alpha[static_cast<std::size_t>(q.ay + v) * atlas->width +
-                                              q.ax + u];
+          const std::uint8_t a =
+              atlas->alpha[static_cast<std::size_t>(q.ay + v) * atlas->width + q.ax + u];
           if (a) blend(i, j, t.color, a / 255.0f);
         }
   }

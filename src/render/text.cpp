@@ -42,7 +42,8 @@ std::vector<GlyphQuad> layout_text(const TextItem& item, const GlyphAtlas& atlas
   // the advance width for horizontal alignment
   float width = 0.0f;
   for (char32_t c : cps)
-    if (auto it = atlas.glyphs.find(c); it != atlas.glyphs.end()) width += std::round(it->second.advance);
+    if (auto it = atlas.glyphs.find(c); it != atlas.glyphs.end())
+      width += std::round(it->second.advance);
   float pen = item.x;
   if (item.halign == HAlign::center) pen -= 0.5f * width;
   if (item.halign == HAlign::right) pen -= width;

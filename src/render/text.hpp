@@ -14,19 +14,19 @@ namespace gs {
 
 /// one glyph in the atlas
 struct Glyph {
-  int x = 0, y = 0;          ///< top-left corner in the atlas, px (row 0 = top)
-  int w = 0, h = 0;          ///< bitmap size, px
-  int left = 0, top = 0;     ///< bitmap offset from the pen: right of it, above the baseline, px
-  float advance = 0.0f;      ///< pen advance, px
+  int x = 0, y = 0;       ///< top-left corner in the atlas, px (row 0 = top)
+  int w = 0, h = 0;       ///< bitmap size, px
+  int left = 0, top = 0;  ///< bitmap offset from the pen: right of it, above the baseline, px
+  float advance = 0.0f;   ///< pen advance, px
 };
 
 /// the glyphs of one font at one pixel size
 struct GlyphAtlas {
-  int size_px = 0;                            ///< nominal pixel height
-  int width = 0, height = 0;                  ///< atlas size, px
-  std::vector<std::uint8_t> alpha;            ///< coverage, row 0 at the top
-  std::unordered_map<char32_t, Glyph> glyphs; ///< by code point
-  float ascender = 0.0f, descender = 0.0f;    ///< above / below (negative) the baseline, px
+  int size_px = 0;                             ///< nominal pixel height
+  int width = 0, height = 0;                   ///< atlas size, px
+  std::vector<std::uint8_t> alpha;             ///< coverage, row 0 at the top
+  std::unordered_map<char32_t, Glyph> glyphs;  ///< by code point
+  float ascender = 0.0f, descender = 0.0f;     ///< above / below (negative) the baseline, px
 };
 
 /// gives the atlas for a pixel size (nullptr: no font, text is skipped)

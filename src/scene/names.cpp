@@ -10,9 +10,8 @@ constexpr EnumName<ModelKind> kModel[] = {{"P", ModelKind::P},
                                           {"S", ModelKind::S},
                                           {"polygon_dem", ModelKind::P},
                                           {"soft_disk", ModelKind::S}};
-constexpr EnumName<BoxKind> kBox[] = {{"walls", BoxKind::Walls},
-                                      {"periodic", BoxKind::Periodic},
-                                      {"ring", BoxKind::Ring1D}};
+constexpr EnumName<BoxKind> kBox[] = {
+    {"walls", BoxKind::Walls}, {"periodic", BoxKind::Periodic}, {"ring", BoxKind::Ring1D}};
 constexpr EnumName<PlacementKind> kPlacement[] = {{"loose_column", PlacementKind::LooseColumn},
                                                   {"hexagonal", PlacementKind::Hexagonal},
                                                   {"square", PlacementKind::Square},

@@ -42,9 +42,10 @@ std::string line_of(const toml::node& n) { return std::to_string(n.source().begi
 
 void read_model(const Ctx& ctx, const TableReader& top, SceneSpec& s) {
   TableReader r(ctx, table_or_empty(sub_table(top, "model")), "model",
-                {"kind", "hdot_finite_difference", "clip_attractive", "rotation"});
+                {"kind", "hdot_finite_difference", "rocking_damping", "clip_attractive", "rotation"});
   s.model.kind = r.choice("kind", ModelKind::P);
   s.model.hdot_finite_difference = r.boolean("hdot_finite_difference", false);
+  s.model.rocking_damping = r.boolean("rocking_damping", true);
   s.model.clip_attractive = r.boolean("clip_attractive", false);
   s.model.rotation = r.boolean("rotation", true);
 }
@@ -111,8 +112,7 @@ struct SpeciesRead {
 
 std::vector<SpeciesRead> read_species(const Ctx& ctx, const TableReader& top, SceneSpec& s) {
   auto tables = scene_detail::table_array(top, "species");
-  if (tables.empty())
-    top.fail("species", "missing: at least one [[species]] table is required");
+  if (tables.empty()) top.fail("species", "missing: at least one [[species]] table is required");
   std::vector<SpeciesRead> out;
   for (std::size_t i = 0; i < tables.size(); ++i) {
     TableReader r(ctx, *tables[i], "species[" + std::to_string(i) + "]", kSpeciesKeys);
@@ -133,8 +133,7 @@ std::vector<SpeciesRead> read_species(const Ctx& ctx, const TableReader& top, Sc
     if (sp.shape == ShapeKind::Disk && r.has("sides"))
       r.fail("sides", "only for shape = \"polygon\" (this species is a disk)");
     sp.sides = static_cast<int>(r.integer("sides", sp.sides, 3, 64));
-    sp.radius = r.number_required("radius", Range::positive(),
-                                  "circumradius or disk radius in m");
+    sp.radius = r.number_required("radius", Range::positive(), "circumradius or disk radius in m");
     sp.density = r.number("density", sp.density, Range::positive());
     sp.mass = r.number_optional("mass", Range::positive());
     sp.material = material_ref(r, s);
@@ -152,8 +151,7 @@ void read_box(const Ctx& ctx, const TableReader& top, SceneSpec& s) {
   const toml::table* t = sub_table(top, "box");
   if (!t) top.fail("box", "missing: a [box] section is required (kind, width, ...)");
   TableReader r(ctx, *t, "box",
-                {"kind", "width", "height", "lid", "wall_thickness", "reduced_length",
-                 "material"});
+                {"kind", "width", "height", "lid", "wall_thickness", "reduced_length", "material"});
   BoxSpec& b = s.box;
   b.kind = r.choice("kind", BoxKind::Walls);
   b.reduced_length = r.number_optional("reduced_length", Range::positive());
@@ -162,11 +160,12 @@ void read_box(const Ctx& ctx, const TableReader& top, SceneSpec& s) {
     if (b.kind != BoxKind::Ring1D)
       r.fail("reduced_length", "only for kind = \"ring\" (the 1D periodic line)");
     if (r.has("width"))
-      r.fail("width", "give either box.width (L) or box.reduced_length (L′ = L − N·d), "
-                      "not both");
+      r.fail("width",
+             "give either box.width (L) or box.reduced_length (L′ = L − N·d), "
+             "not both");
   } else {
-    b.width = r.number_required("width", Range::positive(),
-                                "inner width in m; for a ring its length L");
+    b.width =
+        r.number_required("width", Range::positive(), "inner width in m; for a ring its length L");
   }
   // periodic boxes are square unless told otherwise
   double def_height = b.kind == BoxKind::Periodic ? b.width : b.height;
@@ -178,8 +177,8 @@ void read_box(const Ctx& ctx, const TableReader& top, SceneSpec& s) {
   if (b.kind == BoxKind::Ring1D)
     for (const auto& sp : s.species)
       if (sp.shape != ShapeKind::Disk)
-        r.fail("kind", "a ring (1D RFM, SPEC 5.2) holds disks only; species " +
-                           quote(sp.name) + " is a polygon");
+        r.fail("kind", "a ring (1D RFM, SPEC 5.2) holds disks only; species " + quote(sp.name) +
+                           " is a polygon");
 }
 
 // ---------------------------------------------------------------------------------------
@@ -187,9 +186,9 @@ void read_box(const Ctx& ctx, const TableReader& top, SceneSpec& s) {
 
 void read_preparation(const Ctx& ctx, const TableReader& top, SceneSpec& s,
                       const std::vector<SpeciesRead>& species) {
-  TableReader r(ctx, table_or_empty(sub_table(top, "preparation")), "preparation",
-                {"placement", "seed", "column_height", "velocity_amplitude", "settle_time",
-                 "particle"});
+  TableReader r(
+      ctx, table_or_empty(sub_table(top, "preparation")), "preparation",
+      {"placement", "seed", "column_height", "velocity_amplitude", "settle_time", "particle"});
   PreparationSpec& p = s.prep;
   // a loose column needs a floor; periodic boxes and rings default to random placement
   p.placement = r.choice("placement", s.box.kind == BoxKind::Walls ? PlacementKind::LooseColumn
@@ -269,10 +268,10 @@ void read_integrator(const Ctx& ctx, const TableReader& top, SceneSpec& s) {
 // [drive]: every key is checked whatever the kind, so an override can switch kinds
 
 void read_drive(const Ctx& ctx, const TableReader& top, SceneSpec& s) {
-  TableReader r(ctx, table_or_empty(sub_table(top, "drive")), "drive",
-                {"kind", "g", "gx", "gy", "g_p", "t1", "period", "f", "relax", "D",
-                 "com_removal_every", "early_rest", "rest_speed", "rest_energy", "rest_hold",
-                 "taps"});
+  TableReader r(
+      ctx, table_or_empty(sub_table(top, "drive")), "drive",
+      {"kind", "g", "gx", "gy", "g_p", "t1", "period", "f", "relax", "D", "com_removal_every",
+       "early_rest", "rest_speed", "rest_energy", "rest_hold", "taps"});
   DriveSpec& d = s.drive;
   // closed boxes fall under gravity by default; periodic boxes and rings are undriven
   d.kind = r.choice("kind", s.box.kind == BoxKind::Walls ? DriveKind::Gravity : DriveKind::None);
@@ -286,10 +285,10 @@ void read_drive(const Ctx& ctx, const TableReader& top, SceneSpec& s) {
   d.t1 = r.number("t1", d.t1, Range::positive());
   d.period = r.number("period", d.period, Range::positive());
   if (d.t1 >= d.period)
-    r.fail(r.has("t1") ? "t1" : "period",
-           "pulse duration t1 (" + scene_detail::format_double(d.t1) +
-               " s) must be shorter than the period (" + scene_detail::format_double(d.period) +
-               " s)");
+    r.fail(r.has("t1") ? "t1" : "period", "pulse duration t1 (" +
+                                              scene_detail::format_double(d.t1) +
+                                              " s) must be shorter than the period (" +
+                                              scene_detail::format_double(d.period) + " s)");
   // rotating g (P.38)
   d.f = r.number("f", d.f, Range::positive());
   d.relax = r.number("relax", d.relax, Range::non_negative());
@@ -297,8 +296,8 @@ void read_drive(const Ctx& ctx, const TableReader& top, SceneSpec& s) {
   d.D = r.number("D", d.D, Range::non_negative());
   if (d.kind == DriveKind::RandomForce && d.D == 0.0)
     r.fail("D", "must be > 0 for kind = \"random_force\" (got 0)");
-  d.com_removal_every = static_cast<int>(r.integer("com_removal_every", d.com_removal_every,
-                                                   0, kIntMax));
+  d.com_removal_every =
+      static_cast<int>(r.integer("com_removal_every", d.com_removal_every, 0, kIntMax));
   // early end of a relaxation once at rest (SPEC 2.4)
   d.early_rest = r.boolean("early_rest", d.early_rest);
   d.rest_speed = r.number("rest_speed", d.rest_speed, Range::positive());
@@ -318,8 +317,8 @@ void read_health(const Ctx& ctx, const TableReader& top, SceneSpec& s) {
   TableReader r(ctx, table_or_empty(sub_table(top, "health")), "health",
                 {"max_overlap", "check_every", "allow_unstable"});
   s.health.max_overlap = r.number("max_overlap", s.health.max_overlap, {0.0, 1.0, true, false});
-  s.health.check_every = static_cast<int>(r.integer("check_every", s.health.check_every, 1,
-                                                    kIntMax));
+  s.health.check_every =
+      static_cast<int>(r.integer("check_every", s.health.check_every, 1, kIntMax));
   s.health.allow_unstable = r.boolean("allow_unstable", false);
 }
 
@@ -384,9 +383,9 @@ SceneSpec parse_scene_string(std::string_view text, const std::string& name_for_
     root = toml::parse(text, name_for_messages);
   } catch (const toml::parse_error& e) {
     const auto& b = e.source().begin;
-    throw InputError(name_for_messages + ":" + std::to_string(b.line) + ":" +
-                         std::to_string(b.column),
-                     "", "TOML syntax error: " + std::string(e.description()));
+    throw InputError(
+        name_for_messages + ":" + std::to_string(b.line) + ":" + std::to_string(b.column), "",
+        "TOML syntax error: " + std::string(e.description()));
   }
   // overrides replace or add keys before anything is validated
   for (const auto& o : overrides) scene_detail::apply_override(ctx, root, o);

@@ -14,8 +14,7 @@ namespace gs {
 /// parse and validate a scene file; overrides are "dotted.key=value" strings (value in TOML
 /// syntax, e.g. "drive.g_p=8", "integrator.kind=\"velocity_verlet\"", or bare words accepted
 /// as strings) applied before validation. Throws InputError naming file, line and key.
-SceneSpec parse_scene_file(const std::string& path,
-                           const std::vector<std::string>& overrides = {});
+SceneSpec parse_scene_file(const std::string& path, const std::vector<std::string>& overrides = {});
 
 /// the same for scene text already in memory; name_for_messages stands in for the file name
 SceneSpec parse_scene_string(std::string_view toml, const std::string& name_for_messages,

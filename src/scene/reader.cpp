@@ -3,8 +3,8 @@
 #include "scene/reader.hpp"
 
 #include <algorithm>
-#include <charconv>
 #include <cctype>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 
@@ -43,11 +43,21 @@ std::string quote(std::string_view s) {
   std::string out = "\"";
   for (char c : s) {
     switch (c) {
-      case '"': out += "\\\""; break;
-      case '\\': out += "\\\\"; break;
-      case '\n': out += "\\n"; break;
-      case '\t': out += "\\t"; break;
-      case '\r': out += "\\r"; break;
+      case '"':
+        out += "\\\"";
+        break;
+      case '\\':
+        out += "\\\\";
+        break;
+      case '\n':
+        out += "\\n";
+        break;
+      case '\t':
+        out += "\\t";
+        break;
+      case '\r':
+        out += "\\r";
+        break;
       default:
         if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) {
           char buf[8];
@@ -63,16 +73,26 @@ std::string quote(std::string_view s) {
 
 std::string_view type_name(const toml::node& n) {
   switch (n.type()) {
-    case toml::node_type::table: return "table";
-    case toml::node_type::array: return "array";
-    case toml::node_type::string: return "string";
-    case toml::node_type::integer: return "integer";
-    case toml::node_type::floating_point: return "float";
-    case toml::node_type::boolean: return "boolean";
-    case toml::node_type::date: return "date";
-    case toml::node_type::time: return "time";
-    case toml::node_type::date_time: return "date-time";
-    default: return "nothing";
+    case toml::node_type::table:
+      return "table";
+    case toml::node_type::array:
+      return "array";
+    case toml::node_type::string:
+      return "string";
+    case toml::node_type::integer:
+      return "integer";
+    case toml::node_type::floating_point:
+      return "float";
+    case toml::node_type::boolean:
+      return "boolean";
+    case toml::node_type::date:
+      return "date";
+    case toml::node_type::time:
+      return "time";
+    case toml::node_type::date_time:
+      return "date-time";
+    default:
+      return "nothing";
   }
 }
 
@@ -156,9 +176,9 @@ TableReader::TableReader(const Ctx& ctx, const toml::table& table, std::string p
     if (std::find(known_.begin(), known_.end(), name) != known_.end()) continue;
     std::string accepted;
     for (auto kk : known_) accepted += (accepted.empty() ? "" : ", ") + std::string(kk);
-    throw InputError(ctx_.where(&node), key(name),
-                     "unknown key" + suggestion(name, known_) + " (accepted here: " +
-                         accepted + ")");
+    throw InputError(
+        ctx_.where(&node), key(name),
+        "unknown key" + suggestion(name, known_) + " (accepted here: " + accepted + ")");
   }
 }
 
@@ -219,14 +239,13 @@ std::optional<std::int64_t> TableReader::integer_optional(std::string_view k, st
   const toml::node* n = get(k);
   if (!n) return std::nullopt;
   auto i = n->as_integer();
-  if (!i)
-    fail(k, "expected an integer, got " + std::string(type_name(*n)) + " " + node_text(*n));
+  if (!i) fail(k, "expected an integer, got " + std::string(type_name(*n)) + " " + node_text(*n));
   std::int64_t v = i->get();
   if (v < lo || v > hi) {
     // an int-sized upper bound is only worth naming when it was exceeded
     bool huge = hi >= std::numeric_limits<int>::max() && v <= hi;
     std::string range = huge ? ">= " + std::to_string(lo)
-                            : "in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+                             : "in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
     fail(k, "must be an integer " + range + " (got " + std::to_string(v) + ")");
   }
   return v;
@@ -247,14 +266,13 @@ bool TableReader::boolean(std::string_view k, bool def) const {
   return b->get();
 }
 
-std::optional<std::string> TableReader::string_optional(std::string_view k,
-                                                        bool non_empty) const {
+std::optional<std::string> TableReader::string_optional(std::string_view k, bool non_empty) const {
   const toml::node* n = get(k);
   if (!n) return std::nullopt;
   auto s = n->as_string();
   if (!s)
-    fail(k, "expected a string (in quotes), got " + std::string(type_name(*n)) + " " +
-                node_text(*n));
+    fail(k,
+         "expected a string (in quotes), got " + std::string(type_name(*n)) + " " + node_text(*n));
   if (non_empty && s->get().empty()) fail(k, "must not be empty");
   return s->get();
 }
@@ -268,8 +286,8 @@ const toml::table* sub_table(const TableReader& parent, std::string_view k) {
   if (!n) return nullptr;
   if (auto t = n->as_table()) return t;
   std::string hint = n->is_array() ? " (write [" + parent.key(k) + "], not [[...]])" : "";
-  parent.fail(k, "expected a table [" + parent.key(k) + "], got " +
-                     std::string(type_name(*n)) + hint);
+  parent.fail(k,
+              "expected a table [" + parent.key(k) + "], got " + std::string(type_name(*n)) + hint);
 }
 
 std::vector<const toml::table*> table_array(const TableReader& parent, std::string_view k) {
@@ -305,8 +323,8 @@ struct Segment {
 };
 
 bool is_key_char(char c) {
-  return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
-         c == '_' || c == '-';
+  return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' ||
+         c == '-';
 }
 
 std::string trim(std::string_view s) {
@@ -359,8 +377,8 @@ void apply_override(const Ctx& ctx, toml::table& root, const std::string& text) 
     parsed = toml::parse("v = " + value, source);
   } catch (const toml::parse_error& e) {
     if (!value.empty() && std::string_view("[{\"'").find(value[0]) != std::string_view::npos)
-      throw InputError(where, key, "cannot parse the value as TOML: " +
-                                       std::string(e.description()));
+      throw InputError(where, key,
+                       "cannot parse the value as TOML: " + std::string(e.description()));
     parsed = toml::parse("v = " + quote(value), source);
   }
 
@@ -375,9 +393,9 @@ void apply_override(const Ctx& ctx, toml::table& root, const std::string& text) 
       auto arr = n ? n->as_array() : nullptr;
       if (!arr) throw InputError(where, key, "'" + path + "' is not an array of tables");
       if (*seg.index >= arr->size())
-        throw InputError(where, key, "'" + path + "' has " + std::to_string(arr->size()) +
-                                         " entries (index " + std::to_string(*seg.index) +
-                                         " is out of range)");
+        throw InputError(where, key,
+                         "'" + path + "' has " + std::to_string(arr->size()) + " entries (index " +
+                             std::to_string(*seg.index) + " is out of range)");
       cur = (*arr)[*seg.index].as_table();
       if (!cur) throw InputError(where, key, "'" + path + "[...]' is not a table");
       path += '[';
@@ -387,8 +405,9 @@ void apply_override(const Ctx& ctx, toml::table& root, const std::string& text) 
     }
     if (!n) n = cur->insert_or_assign(seg.name, toml::table{}).first->second.as_table();
     if (n->is_array())
-      throw InputError(where, key, "'" + path + "' is an array of tables; write " + path +
-                                       "[0]." + (*segs)[s + 1].name + " etc.");
+      throw InputError(where, key,
+                       "'" + path + "' is an array of tables; write " + path + "[0]." +
+                           (*segs)[s + 1].name + " etc.");
     cur = n->as_table();
     if (!cur) throw InputError(where, key, "'" + path + "' is not a table");
   }

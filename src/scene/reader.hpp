@@ -2,14 +2,14 @@
 // keys, typed, range-checked, and every failure becomes an InputError naming file:line and
 // the full dotted key. Internal to the scene module (parse.cpp); nothing outside needs toml++.
 #pragma once
+#include <toml++/toml.h>
+
 #include <cstdint>
 #include <limits>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
-
-#include <toml++/toml.h>
 
 #include "core/error.hpp"
 #include "scene/names.hpp"

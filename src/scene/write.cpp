@@ -43,6 +43,7 @@ std::vector<Block> emit(const SceneSpec& s) {
   Block& m = out.emplace_back(Block{"[model]", "model", {}});
   m.name("kind", s.model.kind);
   m.flag("hdot_finite_difference", s.model.hdot_finite_difference);
+  m.flag("rocking_damping", s.model.rocking_damping);
   m.flag("clip_attractive", s.model.clip_attractive);
   m.flag("rotation", s.model.rotation);
   // [[material]]
@@ -65,7 +66,13 @@ std::vector<Block> emit(const SceneSpec& s) {
     b.name("shape", sp.shape);
     if (sp.shape == ShapeKind::Polygon) b.integer("sides", sp.sides);
     b.num("radius", sp.radius);
-    b.integer("count", sp.count);
+    // with explicit particles the list is the truth (builders may leave count at 0)
+    long long count = sp.count;
+    if (!s.prep.particles.empty()) {
+      count = 0;
+      for (const auto& q : s.prep.particles) count += q.species == sp.name;
+    }
+    b.integer("count", count);
     b.num("density", sp.density);
     if (sp.mass) b.num("mass", *sp.mass);
     std::string mat = material_name(s, sp.material);
@@ -92,8 +99,8 @@ std::vector<Block> emit(const SceneSpec& s) {
   p.num("settle_time", s.prep.settle_time);
   for (std::size_t i = 0; i < s.prep.particles.size(); ++i) {
     const auto& q = s.prep.particles[i];
-    Block& b = out.emplace_back(Block{"[[preparation.particle]]",
-                                      "preparation.particle[" + std::to_string(i) + "]", {}});
+    Block& b = out.emplace_back(
+        Block{"[[preparation.particle]]", "preparation.particle[" + std::to_string(i) + "]", {}});
     b.str("species", q.species);
     b.num("x", q.x);
     b.num("y", q.y);

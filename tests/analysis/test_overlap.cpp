@@ -107,7 +107,8 @@ TEST(Overlap, VolumeAndPhiFormsAgree) {
 }
 
 // the points used are those where both densities exceed 5 % of their maxima: check against
-// the analytic gamma densities (allowing 2.5–10 % for histogram noise near the threshold)
+// the analytic gamma densities (allowing 2.5–10 %: the region comes from kernel estimates,
+// whose smoothing and noise move the 5 % points by a fraction of a bin)
 TEST(Overlap, UsesOnlyTheCommonSupport) {
   const GammaEnsemble g;
   RngStream rng(77, 2);

@@ -37,8 +37,8 @@ struct Collision {
 /// the overlap h (m) of two bodies with reduced mass m (kg) that touch at t = 0 approaching at
 /// v0 (m/s): m·ḧ = −F(h, ḣ) until h returns to 0. The end is located by linear interpolation
 /// inside the last step (error O(Δt²), far below the tolerances at Δt = t_c/1000).
-inline Collision collide(const std::function<double(double, double)>& force, double m,
-                         double v0, double dt) {
+inline Collision collide(const std::function<double(double, double)>& force, double m, double v0,
+                         double dt) {
   std::array<double, 2> y{0.0, v0};
   auto f = [&](const std::array<double, 2>& s) {
     return std::array<double, 2>{s[1], -force(s[0], s[1]) / m};

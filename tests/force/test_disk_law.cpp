@@ -34,8 +34,8 @@ TEST(DiskLaw, ForceComponents) {
 // a head-on collision: m12·δ̈ = −f_n(δ, δ̇) from δ = 0, δ̇ = v0, until δ < 0 again
 test::Collision head_on(const DiskLawParams& p, double dt) {
   return test::collide(
-      [&](double d, double dd) { return law::linear_spring_dashpot(p, d, dd, 0.0).fn; }, kM12,
-      kV0, dt);
+      [&](double d, double dd) { return law::linear_spring_dashpot(p, d, dd, 0.0).fn; }, kM12, kV0,
+      dt);
 }
 
 // (T.2.6) is exact for the unclipped law: the realised restitution equals ε (1e-3 asked; RK4
@@ -144,7 +144,7 @@ TEST(DiskLaw, FrictionCap) {
   const double u0 = 5.0, uc = mu * fn / gt;  // the crossover speed
   ASSERT_GT(u0, 2.0 * uc);
   const double t1 = kM12 * (u0 - uc) / (mu * fn);  // end of the Coulomb phase
-  const double tau = kM12 / gt;                     // dashpot time constant
+  const double tau = kM12 / gt;                    // dashpot time constant
   auto f = [&](const std::array<double, 1>& y) {
     return std::array<double, 1>{-law::linear_spring_dashpot(p, delta, 0.0, y[0]).ft / kM12};
   };

@@ -128,9 +128,9 @@ TEST(PolyNormal, CollisionLosesEnergyAndMatchesClippedLinearTheory) {
     const PolyLawParams p{kPaper.E, gamma, kPaper.mu};
     const test::LinearContact lin(p.E, gamma * std::sqrt(p.E * kMperp), kMperp);
     const double dt = lin.duration() / 2000.0;
-    const auto c = test::collide(
-        [&](double h, double hd) { return law::poly_normal_force(p, h, hd, kMperp); }, kMperp,
-        v0, dt);
+    const auto c =
+        test::collide([&](double h, double hd) { return law::poly_normal_force(p, h, hd, kMperp); },
+                      kMperp, v0, dt);
     std::printf("  %5.2f   %.5f     %.5f           %.5f\n", gamma, c.restitution,
                 lin.clipped_restitution(), lin.restitution());
     // kinetic energy after ≤ before (equal for γ = 0: RK4 at Δt = t_c/2000 keeps 1e-9)

@@ -1,12 +1,11 @@
 // shared test harness: damped harmonic oscillators q'' = −ω²q − c·q' on several channels,
 // stepped through the predict → force → correct sequence, and their exact solutions
 #pragma once
+#include <Eigen/Dense>
 #include <cmath>
 #include <cstddef>
 #include <span>
 #include <vector>
-
-#include <Eigen/Dense>
 
 #include "integrate/integrator.hpp"
 
@@ -70,8 +69,8 @@ struct OscillatorSystem {
 
 /// one oscillator from (q0, v0) integrated to time T with step dt; returns the phase-space
 /// error √(Δq² + (Δv/ω)²) against the exact solution
-inline double oscillator_error(Integrator& I, double w, double c, double q0, double v0,
-                               double dt, double T) {
+inline double oscillator_error(Integrator& I, double w, double c, double q0, double v0, double dt,
+                               double T) {
   OscillatorSystem s;
   s.add(w, c, {q0}, {v0});
   s.init(I, dt);

@@ -17,10 +17,10 @@ using test::oscillator_error;
 
 // generic initial conditions: q0 = 1 m, v0 = 0.5 m/s, so that no odd derivative vanishes at
 // t = 0 (starting at a turning point hides Gear's start-up error: q''' = −ω²v0 = 0 there)
-constexpr double kW = 1.0;    // 1/s
-constexpr double kQ0 = 1.0;   // m
-constexpr double kV0 = 0.5;   // m/s
-constexpr double kT = 10.0;   // s, about 1.6 periods
+constexpr double kW = 1.0;   // 1/s
+constexpr double kQ0 = 1.0;  // m
+constexpr double kV0 = 0.5;  // m/s
+constexpr double kT = 10.0;  // s, about 1.6 periods
 // Δt·ω from 0.05 to 0.00625: asymptotic for all four (the measured local slopes change by
 // < 0.1 over this range) and the smallest error (≈1e-7 for Gear6) stays far above round-off
 const std::vector<double> kDts = {0.05, 0.025, 0.0125, 0.00625};

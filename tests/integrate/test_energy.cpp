@@ -76,8 +76,10 @@ TEST(Gear6Energy, DriftIsSmallAndScalesAsDt5) {
   const auto r100 = run_energy(IntegratorKind::Gear6, 100);
   const auto r200 = run_energy(IntegratorKind::Gear6, 200);
   const double p = std::log2(r100.drift() / r200.drift());
-  std::printf("[ gear6 ] 1000 periods: drift %.3e (100 steps/period), %.3e (200 steps/period), "
-              "exponent %.2f\n", r100.drift(), r200.drift(), p);
+  std::printf(
+      "[ gear6 ] 1000 periods: drift %.3e (100 steps/period), %.3e (200 steps/period), "
+      "exponent %.2f\n",
+      r100.drift(), r200.drift(), p);
   EXPECT_LT(std::abs(r100.drift()), 1e-3);
   EXPECT_NEAR(p, 5.0, 0.5);
   // and it is a drift, unlike the symplectic schemes: larger than 1% of its own oscillation

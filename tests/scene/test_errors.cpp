@@ -27,8 +27,8 @@ std::string at(const std::string& text, std::string_view needle) {
 // the exact message format of the brief
 TEST(SceneErrors, NegativeRadiusExactMessage) {
   std::string text = edit(kFullScene, "radius = 0.00636", "radius = -0.002");
-  EXPECT_EQ(error_of(text), at(text, "radius = -0.002") +
-                                " key 'species[1].radius': must be > 0 (got -0.002)");
+  EXPECT_EQ(error_of(text),
+            at(text, "radius = -0.002") + " key 'species[1].radius': must be > 0 (got -0.002)");
 }
 
 TEST(SceneErrors, SyntaxErrorGivesLineAndColumn) {
@@ -45,8 +45,8 @@ TEST(SceneErrors, UnknownKeySuggestsTheClosest) {
                                    "did you mean 'radius'", "accepted here: name, shape"});
   // sections too
   std::string t2 = edit(kFullScene, "[integrator]", "[integratr]");
-  expect_contains(error_of(t2), {at(t2, "[integratr]"), "'integratr'",
-                                 "did you mean 'integrator'"});
+  expect_contains(error_of(t2),
+                  {at(t2, "[integratr]"), "'integratr'", "did you mean 'integrator'"});
   // nothing close: no suggestion, but the list
   std::string t3 = edit(kFullScene, "lid = true", "colour = 3");
   std::string m3 = error_of(t3);
@@ -67,14 +67,14 @@ TEST(SceneErrors, WrongType) {
   expect_contains(error_of(t3), {at(t3, "lid ="), "'box.lid'", "expected a boolean"});
   // a table where an array of tables is expected
   std::string t4 = "[species]\nname = \"g\"\nradius = 0.01\ncount = 1\n[box]\nwidth = 1\n";
-  expect_contains(error_of(t4), {"scenes/t.toml:1:", "'species'",
-                                 "expected an array of tables [[species]]"});
+  expect_contains(error_of(t4),
+                  {"scenes/t.toml:1:", "'species'", "expected an array of tables [[species]]"});
 }
 
 TEST(SceneErrors, NotFinite) {
   std::string text = edit(kFullScene, "dt = 1e-5", "dt = nan");
-  expect_contains(error_of(text), {at(text, "dt = nan"), "'integrator.dt'",
-                                   "must be a finite number (got nan)"});
+  expect_contains(error_of(text),
+                  {at(text, "dt = nan"), "'integrator.dt'", "must be a finite number (got nan)"});
   std::string t2 = edit(kFullScene, "gx = 0.5", "gx = -inf");
   expect_contains(error_of(t2), {at(t2, "gx = -inf"), "'drive.gx'", "(got -inf)"});
 }
@@ -87,8 +87,8 @@ TEST(SceneErrors, ZeroDt) {
 TEST(SceneErrors, OutOfRange) {
   // restitution in (0, 1]
   std::string t1 = edit(kFullScene, "eps_n = 0.9", "eps_n = 1.5");
-  expect_contains(error_of(t1), {at(t1, "eps_n = 1.5"), "'material[0].eps_n'",
-                                 "must be in (0, 1] (got 1.5)"});
+  expect_contains(error_of(t1),
+                  {at(t1, "eps_n = 1.5"), "'material[0].eps_n'", "must be in (0, 1] (got 1.5)"});
   std::string t1b = edit(kFullScene, "eps_t = 0.8", "eps_t = 0");
   expect_contains(error_of(t1b), {at(t1b, "eps_t = 0"), "must be in (0, 1] (got 0)"});
   // polygon sides 3..64
@@ -115,17 +115,17 @@ TEST(SceneErrors, OutOfRange) {
 
 TEST(SceneErrors, UnknownMaterial) {
   std::string text = edit(kFullScene, "material = \"steel\"", "material = \"steal\"");
-  expect_contains(error_of(text), {at(text, "\"steal\""), "'species[0].material'",
-                                   "unknown material \"steal\"", "\"steel\", \"wall\"",
-                                   "did you mean 'steel'"});
+  expect_contains(error_of(text),
+                  {at(text, "\"steal\""), "'species[0].material'", "unknown material \"steal\"",
+                   "\"steel\", \"wall\"", "did you mean 'steel'"});
 }
 
 TEST(SceneErrors, DuplicateNames) {
   std::string text = edit(kFullScene, "name = \"small\"", "name = \"big\"");
-  expect_contains(error_of(text), {at(text, "name = \"big\"\nsides = 7"),
-                                   "'species[1].name'", "duplicate species name \"big\"",
-                                   "first defined at line " +
-                                       std::to_string(line_of(text, "[[species]]"))});
+  expect_contains(
+      error_of(text),
+      {at(text, "name = \"big\"\nsides = 7"), "'species[1].name'", "duplicate species name \"big\"",
+       "first defined at line " + std::to_string(line_of(text, "[[species]]"))});
   std::string t2 = edit(kFullScene, "name = \"wall\"", "name = \"steel\"");
   expect_contains(error_of(t2), {"'material[1].name'", "duplicate material name"});
 }
@@ -140,9 +140,10 @@ TEST(SceneErrors, MissingSectionsAndKeys) {
   expect_contains(error_of(nobox), {"scenes/t.toml: key 'box'", "missing"});
   // a missing required key names the line of its section
   std::string t2 = edit(kFullScene, "radius = 0.00636\n", "");
-  expect_contains(error_of(t2), {"scenes/t.toml:" + std::to_string(line_of(
-                                     t2, "[[species]]\nname = \"small\"")) + ":",
-                                 "'species[1].radius'", "missing: required", "> 0"});
+  expect_contains(
+      error_of(t2),
+      {"scenes/t.toml:" + std::to_string(line_of(t2, "[[species]]\nname = \"small\"")) + ":",
+       "'species[1].radius'", "missing: required", "> 0"});
   std::string t3 = edit(kFullScene, "count = 544\n", "");
   expect_contains(error_of(t3), {"'species[0].count'", "missing"});
 }
@@ -161,8 +162,7 @@ TEST(SceneErrors, BadEnumString) {
 TEST(SceneErrors, ModelConsistency) {
   // Model S is soft disks only
   std::string t1 = edit(kFullScene, "kind = \"polygon_dem\"", "kind = \"S\"");
-  expect_contains(error_of(t1), {at(t1, "shape = \"polygon\""), "'species[0].shape'",
-                                 "model S"});
+  expect_contains(error_of(t1), {at(t1, "shape = \"polygon\""), "'species[0].shape'", "model S"});
   // sides makes no sense for a disk
   std::string t2 = edit(kFullScene, "shape = \"polygon\"", "shape = \"disk\"");
   expect_contains(error_of(t2), {at(t2, "sides = 10"), "'species[0].sides'"});

@@ -254,11 +254,11 @@ omega = 2.5
 
 // overrides: numbers, bare words, quoted strings, arrays, new sections, indexed tables
 TEST(SceneParse, OverridesTakeEffect) {
-  SceneSpec s = parse_scene_string(
-      kFullScene, "full.toml",
-      {"drive.g_p=8", "integrator.kind=velocity_verlet", "box.kind=\"periodic\"",
-       "species[1].count=5", "output.test_rect=[0, 0, 0.1, 0.2]", "scene.name = my run",
-       "model.rotation=true", "preparation.seed=7"});
+  SceneSpec s =
+      parse_scene_string(kFullScene, "full.toml",
+                         {"drive.g_p=8", "integrator.kind=velocity_verlet", "box.kind=\"periodic\"",
+                          "species[1].count=5", "output.test_rect=[0, 0, 0.1, 0.2]",
+                          "scene.name = my run", "model.rotation=true", "preparation.seed=7"});
   EXPECT_EQ(s.drive.g_p, 8.0);
   EXPECT_EQ(s.integrator.kind, IntegratorKind::VelocityVerlet);
   EXPECT_EQ(s.box.kind, BoxKind::Periodic);
@@ -272,8 +272,8 @@ TEST(SceneParse, OverridesTakeEffect) {
   EXPECT_EQ(s.drive.t1, 0.2);
   // a section the file lacks is created; later overrides win
   const char* minimal = "[[species]]\nname='g'\nradius=0.01\ncount=1\n[box]\nwidth=1\n";
-  SceneSpec m = parse_scene_string(minimal, "m.toml",
-                                   {"health.check_every=7", "health.check_every=9"});
+  SceneSpec m =
+      parse_scene_string(minimal, "m.toml", {"health.check_every=7", "health.check_every=9"});
   EXPECT_EQ(m.health.check_every, 9);
 }
 
@@ -308,6 +308,14 @@ TEST(SceneParse, RoundTripOfBuiltSpec) {
   EXPECT_EQ(back.prep.seed, 9007199254740993ull);
   EXPECT_EQ(back.output.test_rect[0], -1e-300);
   EXPECT_EQ(back.species[0].material, "m");  // empty reference resolved to the first
+
+  // explicit particles with count left at 0 (as builders do): the list sets the count
+  s.species[0].count = 0;
+  s.prep.particles.push_back({.species = "a", .x = 1.0, .y = 2.0});
+  s.prep.particles.push_back({.species = "a", .x = 3.0, .y = 2.0});
+  SceneSpec two = parse_scene_string(scene_to_toml(s), "two.toml");
+  EXPECT_EQ(two.species[0].count, 2);
+  EXPECT_EQ(two.prep.particles[1].x, 3.0);
 }
 
 // files: parse_scene_file reads from disk and names the path; a missing file is an error
@@ -351,7 +359,8 @@ TEST(SceneParse, ShippedScenesParse) {
 
 // enum tables: every canonical name reads back to its value
 TEST(SceneNames, CanonicalNamesRoundTrip) {
-  for (auto n : enum_names(DriveKind{})) EXPECT_EQ(scene_enum<DriveKind>(scene_name(n.value)), n.value);
+  for (auto n : enum_names(DriveKind{}))
+    EXPECT_EQ(scene_enum<DriveKind>(scene_name(n.value)), n.value);
   for (auto n : enum_names(IntegratorKind{}))
     EXPECT_EQ(scene_enum<IntegratorKind>(scene_name(n.value)), n.value);
   EXPECT_EQ(scene_name(ModelKind::S), "S");

@@ -1,4 +1,4 @@
-// the MP4 encoder: RGBA → yuv420p (swscale) → H.264 or MPEG-4 (libavcodec) → mp4 (libavformat)
+// the MP4 encoder: RGBA → yuv420p (swscale) → H.264 / MPEG-4 (libavcodec) → mp4 (libavformat)
 #include "output/movie/movie.hpp"
 
 extern "C" {
@@ -30,9 +30,9 @@ std::string av_error(int code) {
 
 struct MovieEncoder::Impl {
   std::string path;
-  int width = 0, height = 0;    ///< frame size given to open, px
-  int ew = 0, eh = 0;           ///< encoded (even) size, px
-  int count = 0;                ///< frames sent
+  int width = 0, height = 0;  ///< frame size given to open, px
+  int ew = 0, eh = 0;         ///< encoded (even) size, px
+  int count = 0;              ///< frames sent
   AVFormatContext* fmt = nullptr;
   AVCodecContext* ctx = nullptr;
   AVStream* stream = nullptr;
@@ -158,6 +158,7 @@ void MovieEncoder::open(const std::string& path, int width, int height, const Mo
                            SWS_BILINEAR | SWS_ACCURATE_RND, nullptr, nullptr, nullptr);
   if (!im->sws) im->fail("cannot create the RGBA to yuv420p converter");
   impl_ = std::move(im);
+  frames_ = 0;
 }
 
 void MovieEncoder::add_frame(const Image& img) {
@@ -186,6 +187,7 @@ void MovieEncoder::add_frame(const Image& img) {
   sws_scale(im.sws, &src, &stride, 0, im.eh, im.frame->data, im.frame->linesize);
   im.frame->pts = im.count++;
   im.encode(im.frame);
+  frames_ = im.count;
 }
 
 void MovieEncoder::close() {
@@ -198,7 +200,7 @@ void MovieEncoder::close() {
 }
 
 bool MovieEncoder::is_open() const { return impl_ != nullptr; }
-int MovieEncoder::frames() const { return impl_ ? impl_->count : 0; }
+int MovieEncoder::frames() const { return frames_; }
 std::string MovieEncoder::codec_name() const { return impl_ ? impl_->codec : std::string(); }
 
 }  // namespace gs

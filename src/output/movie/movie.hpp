@@ -33,12 +33,13 @@ class MovieEncoder {
   void close();
 
   bool is_open() const;
-  int frames() const;              ///< frames added so far
+  int frames() const;              ///< frames added since the last open (also after close)
   std::string codec_name() const;  ///< "libx264" or "mpeg4"
 
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
+  int frames_ = 0;  ///< frames added since open
 };
 
 /// what a movie file holds, by decoding it

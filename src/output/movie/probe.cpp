@@ -125,8 +125,9 @@ Image movie_frame(const std::string& path, int index) {
     return false;
   });
   if (img.width == 0)
-    throw InputError(path, "", "movie has no frame " + std::to_string(index) + " (only " +
-                                   std::to_string(seen) + ")");
+    throw InputError(
+        path, "",
+        "movie has no frame " + std::to_string(index) + " (only " + std::to_string(seen) + ")");
   return img;
 }
 

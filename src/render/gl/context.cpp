@@ -13,13 +13,20 @@ namespace {
 
 // a context of the given profile and minimum version, or nullptr
 OSMesaContext create(int profile, int major, int minor) {
-  const int attribs[] = {OSMESA_FORMAT, OSMESA_RGBA,
-                         OSMESA_DEPTH_BITS, 0,
-                         OSMESA_STENCIL_BITS, 0,
-                         OSMESA_ACCUM_BITS, 0,
-                         OSMESA_PROFILE, profile,
-                         OSMESA_CONTEXT_MAJOR_VERSION, major,
-                         OSMESA_CONTEXT_MINOR_VERSION, minor,
+  const int attribs[] = {OSMESA_FORMAT,
+                         OSMESA_RGBA,
+                         OSMESA_DEPTH_BITS,
+                         0,
+                         OSMESA_STENCIL_BITS,
+                         0,
+                         OSMESA_ACCUM_BITS,
+                         0,
+                         OSMESA_PROFILE,
+                         profile,
+                         OSMESA_CONTEXT_MAJOR_VERSION,
+                         major,
+                         OSMESA_CONTEXT_MINOR_VERSION,
+                         minor,
                          0};
   return OSMesaCreateContextAttribs(attribs, nullptr);
 }
@@ -53,10 +60,12 @@ void OsMesaContext::make_current(int width, int height) {
     width_ = width;
     height_ = height;
   }
-  if (!OSMesaMakeCurrent(static_cast<OSMesaContext>(ctx_), buffer_.data(), GL_UNSIGNED_BYTE,
-                         width, height))
+  if (!OSMesaMakeCurrent(static_cast<OSMesaContext>(ctx_), buffer_.data(), GL_UNSIGNED_BYTE, width,
+                         height))
     throw RenderError("OSMesaMakeCurrent failed for a " + std::to_string(width) + "x" +
                       std::to_string(height) + " buffer");
+  // rows top first, as gs::Image has them
+  OSMesaPixelStore(OSMESA_Y_UP, 0);
 }
 
 OsMesaContext::Proc OsMesaContext::proc(const char* name) {

@@ -18,15 +18,17 @@ class OsMesaContext {
 
   /// bind the context to this thread with a width × height colour buffer
   void make_current(int width, int height);
+  /// the default framebuffer's pixels, RGBA8, top row first
+  const unsigned char* pixels() const { return buffer_.data(); }
   /// "core" or "compatibility"
   const std::string& profile() const { return profile_; }
   /// an entry point by name (OSMesaGetProcAddress)
   static Proc proc(const char* name);
 
  private:
-  void* ctx_ = nullptr;               ///< OSMesaContext
-  std::vector<unsigned char> buffer_; ///< the default framebuffer, RGBA8
-  int width_ = 0, height_ = 0;        ///< its size, px
+  void* ctx_ = nullptr;                ///< OSMesaContext
+  std::vector<unsigned char> buffer_;  ///< the default framebuffer, RGBA8
+  int width_ = 0, height_ = 0;         ///< its size, px
   std::string profile_;
 };
 

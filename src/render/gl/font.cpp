@@ -35,7 +35,8 @@ struct FontCache {
     if (face) return true;
     if (failed) return false;
     failed = FT_Init_FreeType(&lib) != 0 || FT_New_Face(lib, path.c_str(), 0, &face) != 0;
-    if (failed) std::fprintf(stderr, "gransim: cannot load font %s; frames get no text\n", path.c_str());
+    if (failed)
+      std::fprintf(stderr, "gransim: cannot load font %s; frames get no text\n", path.c_str());
     return !failed;
   }
 

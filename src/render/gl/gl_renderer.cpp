@@ -1,7 +1,8 @@
-// the OSMesa backend: draw FrameData with GL 3.3 core into a 4× multisampled framebuffer,
-// resolve it to a single-sample one, read it back and flip it to top-row-first
+// the OSMesa backend: draw FrameData with GL 3.3 core into a 4× multisampled framebuffer and
+// resolve it into OSMesa's own (top-row-first) buffer, which becomes the Image
 #include <algorithm>
 #include <cstddef>
+#include <cstdio>
 #include <cstring>
 #include <map>
 
@@ -71,8 +72,10 @@ class GlRenderer final : public Renderer {
   }
 
   std::string describe() const override {
+    const std::string msaa = wanted_ == 0 ? "MSAA up to " + std::to_string(max_samples_) + "x"
+                                          : std::to_string(samples_) + "x MSAA";
     return "OSMesa OpenGL " + version_ + " (" + ctx_.profile() + " profile), " + device_ + ", " +
-           std::to_string(samples_) + "x MSAA";
+           msaa;
   }
 
   Image render(const FrameData& f) override {
@@ -80,10 +83,10 @@ class GlRenderer final : public Renderer {
       throw RenderError("frame size " + std::to_string(f.width) + "x" + std::to_string(f.height) +
                         " exceeds the GL limit of " + std::to_string(max_size_));
     ctx_.make_current(f.width, f.height);
-    targets(f.width, f.height, std::clamp(f.msaa, 1, std::max(1, max_samples_)));
+    target(f.width, f.height, std::clamp(f.msaa, 1, std::max(1, max_samples_)));
 
     // clear to the background, blend straight alpha (the destination stays opaque)
-    gl_.BindFramebuffer(GL_FRAMEBUFFER, ms_fbo_ ? ms_fbo_ : fbo_);
+    gl_.BindFramebuffer(GL_FRAMEBUFFER, ms_fbo_);
     gl_.Viewport(0, 0, f.width, f.height);
     gl_.Disable(GL_DEPTH_TEST);
     gl_.Disable(GL_CULL_FACE);
@@ -93,33 +96,33 @@ class GlRenderer final : public Renderer {
     gl_.BlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
     if (samples_ > 1) gl_.Enable(GL_MULTISAMPLE);
 
-    // walls, particles inside the clip box, overlays, text
-    triangles(wall_, f.walls, f);
-    const auto clip = clip_pixels(f.particle_clip, f.width, f.height);
+    // walls in the view, particles in their clip box, world overlays in the view, the rest
     gl_.Enable(GL_SCISSOR_TEST);
-    gl_.Scissor(clip[0], clip[1], std::max(0, clip[2] - clip[0]), std::max(0, clip[3] - clip[1]));
+    scissor(f.view_clip, f);
+    triangles(wall_, f.walls, f);
+    scissor(f.particle_clip, f);
     shapes(polygon_, f.polygons, f, true);
     shapes(disk_, f.disks, f, false);
+    scissor(f.view_clip, f);
+    triangles(overlay_, f.world_overlay, f);
     gl_.Disable(GL_SCISSOR_TEST);
     triangles(overlay_, f.overlay, f);
     text(f);
 
-    // resolve the samples, read back bottom-up, flip to top-row-first
+    // resolve the samples straight into OSMesa's buffer (framebuffer 0) and wait for it:
+    // the buffer then holds the picture top row first (OSMESA_Y_UP = 0), so no glReadPixels
+    // and no flip are needed (measured 15-20% faster than a resolve FBO + glReadPixels + flip;
+    // byte-identical with MSAA, a handful of edge pixels differ without it)
     if (ms_fbo_) {
       gl_.BindFramebuffer(GL_READ_FRAMEBUFFER, ms_fbo_);
-      gl_.BindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo_);
+      gl_.BindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
       gl_.BlitFramebuffer(0, 0, f.width, f.height, 0, 0, f.width, f.height, GL_COLOR_BUFFER_BIT,
                           GL_NEAREST);
     }
-    gl_.BindFramebuffer(GL_READ_FRAMEBUFFER, fbo_);
-    gl_.PixelStorei(GL_PACK_ALIGNMENT, 1);
-    Image img(f.width, f.height);
-    std::vector<std::uint8_t> rows(img.rgba.size());
-    gl_.ReadPixels(0, 0, f.width, f.height, GL_RGBA, GL_UNSIGNED_BYTE, rows.data());
+    gl_.Finish();
     check("drawing");
-    const std::size_t stride = static_cast<std::size_t>(f.width) * 4;
-    for (int r = 0; r < f.height; ++r)
-      std::memcpy(img.rgba.data() + r * stride, rows.data() + (f.height - 1 - r) * stride, stride);
+    Image img(f.width, f.height);
+    std::memcpy(img.rgba.data(), ctx_.pixels(), img.rgba.size());
     for (std::size_t k = 3; k < img.rgba.size(); k += 4) img.rgba[k] = 255;
     return img;
   }
@@ -174,47 +177,50 @@ class GlRenderer final : public Renderer {
     gl_.BindVertexArray(0);
   }
 
-  // the multisampled and the resolve framebuffers, remade when the size or samples change
-  void targets(int w, int h, int samples) {
-    if (w == tw_ && h == th_ && samples == samples_ && fbo_) return;
+  // the multisampled framebuffer, remade when the size or the samples change; with one
+  // sample (or when multisampling fails) everything is drawn straight into framebuffer 0
+  void target(int w, int h, int samples) {
+    if (w == tw_ && h == th_ && samples == wanted_) return;
     free_targets();
-    auto make = [&](GLuint& fbo, GLuint& rb, int s) {
-      gl_.GenFramebuffers(1, &fbo);
-      gl_.GenRenderbuffers(1, &rb);
-      gl_.BindRenderbuffer(GL_RENDERBUFFER, rb);
-      if (s > 1)
-        gl_.RenderbufferStorageMultisample(GL_RENDERBUFFER, s, GL_RGBA8, w, h);
-      else
-        gl_.RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, w, h);
-      gl_.BindFramebuffer(GL_FRAMEBUFFER, fbo);
-      gl_.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, rb);
-      return gl_.CheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
-    };
-    if (!make(fbo_, rb_, 1)) throw RenderError("cannot make a framebuffer object");
-    // multisampling when asked and possible, else draw straight into the resolve target
-    if (samples > 1 && !make(ms_fbo_, ms_rb_, samples)) {
-      gl_.DeleteFramebuffers(1, &ms_fbo_);
-      gl_.DeleteRenderbuffers(1, &ms_rb_);
-      ms_fbo_ = ms_rb_ = 0;
-      samples = 1;
+    tw_ = w, th_ = h, wanted_ = samples, samples_ = 1;
+    if (samples <= 1) return;
+    gl_.GenFramebuffers(1, &ms_fbo_);
+    gl_.GenRenderbuffers(1, &ms_rb_);
+    gl_.BindRenderbuffer(GL_RENDERBUFFER, ms_rb_);
+    gl_.RenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_RGBA8, w, h);
+    gl_.BindFramebuffer(GL_FRAMEBUFFER, ms_fbo_);
+    gl_.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, ms_rb_);
+    if (gl_.CheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE) {
+      samples_ = samples;
+    } else {
+      std::fprintf(stderr, "gransim: no %dx multisampled framebuffer; drawing without MSAA\n",
+                   samples);
+      free_targets();
     }
-    tw_ = w, th_ = h, samples_ = samples;
+    gl_.BindFramebuffer(GL_FRAMEBUFFER, 0);
   }
 
   void free_targets() {
-    for (GLuint* f : {&fbo_, &ms_fbo_})
-      if (*f) gl_.DeleteFramebuffers(1, f), *f = 0;
-    for (GLuint* r : {&rb_, &ms_rb_})
-      if (*r) gl_.DeleteRenderbuffers(1, r), *r = 0;
+    if (ms_fbo_) gl_.DeleteFramebuffers(1, &ms_fbo_);
+    if (ms_rb_) gl_.DeleteRenderbuffers(1, &ms_rb_);
+    ms_fbo_ = ms_rb_ = 0;
+  }
+
+  // the scissor box of the pixels whose centres lie in a canvas rectangle
+  void scissor(const std::array<float, 4>& rect, const FrameData& f) {
+    const auto c = clip_pixels(rect, f.width, f.height);
+    gl_.Scissor(c[0], c[1], std::max(0, c[2] - c[0]), std::max(0, c[3] - c[1]));
   }
 
   // the uniforms every program shares
   void use(const Program& p, const FrameData& f) {
     gl_.UseProgram(p.id);
-    if (p.canvas >= 0) gl_.Uniform2f(p.canvas, static_cast<float>(f.width), static_cast<float>(f.height));
+    if (p.canvas >= 0)
+      gl_.Uniform2f(p.canvas, static_cast<float>(f.width), static_cast<float>(f.height));
     if (p.outline_width >= 0) gl_.Uniform1f(p.outline_width, f.outline_px);
     const Rgba8& o = f.outline_color;
-    if (p.outline >= 0) gl_.Uniform4f(p.outline, o.r / 255.0f, o.g / 255.0f, o.b / 255.0f, o.a / 255.0f);
+    if (p.outline >= 0)
+      gl_.Uniform4f(p.outline, o.r / 255.0f, o.g / 255.0f, o.b / 255.0f, o.a / 255.0f);
     if (p.atlas >= 0) gl_.Uniform1i(p.atlas, 0);
   }
 
@@ -306,8 +312,9 @@ class GlRenderer final : public Renderer {
   FontProvider fonts_;
   Program polygon_, disk_, wall_, overlay_, text_;
   GLuint vao_[3] = {}, vbo_[3] = {};
-  GLuint fbo_ = 0, rb_ = 0, ms_fbo_ = 0, ms_rb_ = 0;
-  int tw_ = 0, th_ = 0, samples_ = 1;
+  GLuint ms_fbo_ = 0, ms_rb_ = 0;  ///< the multisampled target (0: draw into framebuffer 0)
+  int tw_ = 0, th_ = 0;            ///< its size, px
+  int wanted_ = 0, samples_ = 1;   ///< samples asked for and obtained
   GLint max_samples_ = 1, max_size_ = 4096;
   std::map<const GlyphAtlas*, std::pair<std::shared_ptr<const GlyphAtlas>, GLuint>> textures_;
   std::string version_, device_;

@@ -12,10 +12,9 @@ struct AttribBinding {
   const char* name;
   GLuint location;
 };
-inline constexpr AttribBinding kAttribs[] = {{"a_pos", kPos},       {"a_color", kColor},
-                                             {"a_uv", kUv},         {"a_center", kCenter},
-                                             {"a_shape", kShape},   {"a_fill", kFill},
-                                             {"a_sides", kSides}};
+inline constexpr AttribBinding kAttribs[] = {
+    {"a_pos", kPos},     {"a_color", kColor}, {"a_uv", kUv},      {"a_center", kCenter},
+    {"a_shape", kShape}, {"a_fill", kFill},   {"a_sides", kSides}};
 
 /// the shader folder: $GS_SHADER_DIR if set, else the GS_SHADER_DIR the build was given
 std::string shader_dir();

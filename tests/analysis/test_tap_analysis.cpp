@@ -1,0 +1,205 @@
+// the tapping analysis end to end on an exactly sampled ideal quadron gas (known β, a, ln Z),
+// and the taps.csv reader's errors
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "analysis/tap_analysis.hpp"
+#include "analysis/tap_synthetic.hpp"
+#include "core/error.hpp"
+
+namespace gs {
+namespace {
+
+namespace fs = std::filesystem;
+
+// the study: two protocols over a range of β of the synthetic gas (x = βΔ = 0.4…2.6)
+struct Study {
+  QuadronGasSpec gas;
+  std::vector<TapRunInput> runs;
+  std::vector<double> beta;  ///< true β of each run, 1/m²
+  TapAnalysisOptions opts;
+
+  Study() {
+    gas.refresh = 0.5;     // τ_int = (2 − p)/(2p) = 1.5 taps
+    gas.start_fill = 0.9;  // a loose start: the transient the analysis discards
+    const double scale = quadron_gas_a(gas) / gas.limits.delta_inv();  // β per unit x
+    auto add = [&](const std::string& protocol, double control, double x, std::uint64_t stream) {
+      TapRunInput r;
+      r.protocol = protocol;
+      r.control = control;
+      r.series = quadron_gas_taps(x * scale, 3000, gas, 4711, stream);
+      runs.push_back(r);
+      beta.push_back(x * scale);
+    };
+    add("negative_g", 6, 1.4, 1);
+    add("negative_g", 10, 1.0, 2);
+    add("negative_g", 14, 0.7, 3);
+    add("negative_g", 20, 0.5, 4);
+    add("negative_g", 28, 0.9, 5);
+    add("rotating_g", 0.5, 2.6, 6);
+    add("rotating_g", 0.75, 1.9, 7);
+    add("rotating_g", 1.25, 1.2, 8);
+    add("rotating_g", 2.0, 1.6, 9);
+    // V_T such that V_g = V_T φ̄_ref is the gas' grain volume
+    opts.test_area = gas.v_g / quadron_phi(beta[0], quadron_gas_a(gas), gas.limits);
+  }
+};
+
+TEST(TapAnalysis, SyntheticStudyRecoversTheGas) {
+  const Study st;
+  const TapAnalysisResult r = run_tap_analysis(st.runs, st.opts);
+  const double a = quadron_gas_a(st.gas);
+  const auto& lim = st.gas.limits;
+  ASSERT_EQ(r.runs.size(), st.runs.size());
+  EXPECT_EQ(r.ref, 0);
+  EXPECT_EQ(r.ref2, 1);  // next run of the reference's protocol
+  EXPECT_NEAR(r.v_g, st.gas.v_g, 1e-3 * st.gas.v_g);
+  const double lz_ref = quadron_lnz(st.beta[0], a, st.gas.v_g, lim);
+  for (std::size_t i = 0; i < r.runs.size(); ++i) {
+    const auto& s = r.runs[i];
+    const auto& b = r.beta[i];
+    EXPECT_EQ(s.n_used, 2990);
+    // φ̄ (P.26) within 3 standard errors (τ-corrected); E[V_g/V] − V_g/⟨V⟩ ≈ 1e-5 ≪ the error
+    EXPECT_NEAR(s.phi_mean, quadron_phi(st.beta[i], a, lim), 3.0 * s.phi_err) << s.label;
+    // σ_φ (P.17 with P.26) inside its τ-corrected chi-square interval widened to ≈ 3σ
+    const double sp = quadron_sigma_phi(st.beta[i], a, st.gas.v_g, lim);
+    const double half = 0.5 * (s.sigma_ci_tau.hi - s.sigma_ci_tau.lo);
+    EXPECT_NEAR(s.sigma, sp, 1.5 * half) << s.label;
+    // τ_int = 1.5 taps for refresh 1/2, within 3 of Sokal's errors
+    EXPECT_NEAR(s.tau.tau_int, 1.5, 3.0 * s.tau.tau_err) << s.label;
+    // halves of 36 cells each: σ ratio √2 (σ of a ratio of stds ≈ √2/√n_eff ≈ 3.5 %)
+    ASSERT_TRUE(s.has_halves);
+    EXPECT_NEAR(s.sigma_left / s.sigma, std::sqrt(2.0), 0.12) << s.label;
+    EXPECT_NEAR(s.sigma_right / s.sigma, std::sqrt(2.0), 0.12) << s.label;
+    // β̂ and Δln Z against the reference (P.39, P.40, and P.21 for ln Z) within 3σ
+    ASSERT_TRUE(b.valid) << s.label << ": " << b.fit.note;
+    if (static_cast<int>(i) == r.ref) continue;
+    EXPECT_NEAR(b.dbeta, st.beta[i] - st.beta[0], 3.0 * b.dbeta_err) << s.label;
+    const double dlnz = quadron_lnz(st.beta[i], a, st.gas.v_g, lim) - lz_ref;
+    EXPECT_NEAR(b.dlnz, dlnz, 3.0 * b.dlnz_err) << s.label;
+  }
+  // the two references differ by the constant β_ref2 − β_ref, within the error of β̂(ref2)
+  EXPECT_NEAR(r.ref_offset, st.beta[1] - st.beta[0], 3.0 * r.beta[1].dbeta_err);
+
+  // the quadron fit over all runs recovers a = N z̄/V_g and β₀ = β_ref within 3σ
+  ASSERT_TRUE(r.quadron.count("all"));
+  const QuadronFit& f = r.quadron.at("all");
+  ASSERT_TRUE(f.converged) << f.note;
+  std::printf("tap study: a = %.1f +- %.1f (true %.2f), beta0 = %.0f +- %.0f (true %.0f), "
+              "chi2/dof = %.1f/%d\n",
+              f.a, f.a_err, a, f.beta0, f.beta0_err, st.beta[0], f.chi2, f.dof);
+  EXPECT_NEAR(f.a, a, 3.0 * f.a_err);
+  EXPECT_NEAR(f.beta0, st.beta[0], 3.0 * f.beta0_err);
+  // each protocol alone: fitted too (4–5 points), consistent with the truth
+  for (const char* p : {"negative_g", "rotating_g"}) {
+    ASSERT_TRUE(r.quadron.count(p)) << p;
+    const QuadronFit& fp = r.quadron.at(p);
+    EXPECT_TRUE(fp.converged) << p << ": " << fp.note;
+    EXPECT_NEAR(fp.a, a, 3.0 * fp.a_err) << p;
+  }
+}
+
+// the files the charts read: present, with their headers and one row per run and reference
+TEST(TapAnalysis, WritesTheOutputFiles) {
+  const Study st;
+  const fs::path out = fs::temp_directory_path() / "gs_test_tap_analysis";
+  fs::remove_all(out);
+  analyze_tapping(st.runs, st.opts, out.string());
+  std::printf("tap study written to %s\n", out.c_str());
+  auto lines = [&](const char* name) {
+    std::ifstream f(out / name);
+    std::vector<std::string> v;
+    for (std::string l; std::getline(f, l);) v.push_back(l);
+    return v;
+  };
+  const auto summary = lines("summary.csv");
+  ASSERT_EQ(summary.size(), 1 + st.runs.size());
+  EXPECT_EQ(summary[0].rfind("label,protocol,control,n_total,n_used,phi_mean", 0), 0u);
+  EXPECT_EQ(summary[1].rfind("negative_g_6,negative_g,6,3000,2990,", 0), 0u);
+  const auto beta = lines("beta.csv");
+  EXPECT_EQ(beta.size(), 1 + 2 * st.runs.size());  // two references
+  EXPECT_EQ(lines("kde.csv").size(), 1 + st.runs.size() * st.opts.kde_points);
+  EXPECT_EQ(lines("series.csv").size(), 1 + st.runs.size() * 3000);
+  EXPECT_GT(lines("q_lines.csv").size(), 2 * st.runs.size());
+  for (const char* j : {"quadron.json", "analysis.json"}) {
+    const auto l = lines(j);
+    ASSERT_FALSE(l.empty()) << j;
+    EXPECT_EQ(l.front(), "{");
+    EXPECT_EQ(l.back(), "}");
+  }
+  std::string q;
+  for (const auto& l : lines("quadron.json")) q += l;
+  EXPECT_NE(q.find("\"all\""), std::string::npos);
+  EXPECT_NE(q.find("\"curve\""), std::string::npos);
+}
+
+TEST(TapCsv, ReadsColumnsByName) {
+  std::istringstream in(
+      "# written by a test\n"
+      "t,phi_right,tap,extra,phi,phi_left\n"
+      "3.0,0.81,1,x,0.82,0.83\n"
+      "\n"
+      "6.0, 0.80 ,2,y,0.815,0.825\n");
+  const TapSeries s = parse_taps_csv(in, "mem.csv");
+  ASSERT_EQ(s.phi.size(), 2u);
+  EXPECT_DOUBLE_EQ(s.tap[1], 2.0);
+  EXPECT_DOUBLE_EQ(s.t[1], 6.0);
+  EXPECT_DOUBLE_EQ(s.phi[1], 0.815);
+  EXPECT_DOUBLE_EQ(s.phi_left[0], 0.83);
+  EXPECT_DOUBLE_EQ(s.phi_right[1], 0.80);
+}
+
+TEST(TapCsv, ErrorsNameFileLineAndColumn) {
+  // a missing required column names the column and the file
+  std::istringstream no_phi("tap,t,phi_left\n1,0.0,0.8\n");
+  try {
+    parse_taps_csv(no_phi, "runs/a/taps.csv");
+    FAIL() << "no exception";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.key(), "phi");
+    EXPECT_NE(std::string(e.what()).find("runs/a/taps.csv"), std::string::npos) << e.what();
+  }
+  // a bad number names the line
+  std::istringstream bad("tap,phi\n1,0.82\n2,abc\n");
+  try {
+    parse_taps_csv(bad, "b.csv");
+    FAIL() << "no exception";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where(), "b.csv:3");
+    EXPECT_EQ(e.key(), "phi");
+  }
+  // an unreadable file names the path
+  try {
+    read_taps_csv("/nonexistent/dir/taps.csv");
+    FAIL() << "no exception";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where(), "/nonexistent/dir/taps.csv");
+  }
+}
+
+TEST(TapCsv, LoadsARunFromAFile) {
+  const fs::path p = fs::temp_directory_path() / "gs_test_taps.csv";
+  {
+    std::ofstream f(p);
+    f << "tap,t,phi,phi_left,phi_right\n";
+    for (int i = 1; i <= 40; ++i) f << i << ',' << 3.0 * i << ',' << 0.82 + 1e-4 * (i % 7) << ",0.82,0.82\n";
+  }
+  const TapRunInput r = load_tap_run(p.string(), "rotating_g", 0.75);
+  EXPECT_EQ(tap_run_label(r), "rotating_g_0.75");
+  EXPECT_EQ(r.series.phi.size(), 40u);
+  EXPECT_EQ(r.series.source, p.string());
+  // too few taps after the transient is an input error, not a crash
+  TapAnalysisOptions o;
+  o.discard = 30;
+  EXPECT_THROW(run_tap_analysis({r}, o), InputError);
+  fs::remove(p);
+}
+
+}  // namespace
+}  // namespace gs
