@@ -57,6 +57,15 @@ double kernel_reach(Kernel k) {
   return 1.0;
 }
 
+double equivalent_bandwidth(Kernel k, double h_normal) {
+  // μ₂(K) = ∫u²K: 1, 1/5, 1/12
+  auto delta = [](Kernel kk) {
+    const double mu2 = kk == Kernel::Normal ? 1.0 : (kk == Kernel::Epanechnikov ? 0.2 : 1.0 / 12.0);
+    return std::pow(kernel_roughness(kk) / (mu2 * mu2), 0.2);
+  };
+  return h_normal * delta(k) / delta(Kernel::Normal);
+}
+
 double silverman_bandwidth(const std::vector<double>& x) {
   // (B7): (4σ⁵/(3n))^{1/5} ≈ 1.06 σ n^{−1/5}
   return 1.06 * stddev(x) * std::pow(static_cast<double>(x.size()), -0.2);

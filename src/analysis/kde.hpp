@@ -28,6 +28,12 @@ double kernel_reach(Kernel k);
 /// Silverman's rule of thumb h = 1.06 σ n^{−1/5} (B7), σ the sample standard deviation
 double silverman_bandwidth(const std::vector<double>& x);
 
+/// the bandwidth of kernel k that smooths as much as a normal kernel of bandwidth h_normal:
+/// canonical bandwidths (Marron & Nolan 1988), h_k = h_normal·δ_k/δ_normal with
+/// δ = (R(K)/μ₂(K)²)^{1/5}; ×2.214 for Epanechnikov, ×3.480 for the box. (B1) takes h as the
+/// kernel's own scale, so the same h smooths the compact kernels much less.
+double equivalent_bandwidth(Kernel k, double h_normal);
+
 /// n equally spaced points from a to b inclusive (n ≥ 2)
 std::vector<double> linspace(double a, double b, int n);
 

@@ -105,12 +105,14 @@ TapAnalysisResult run_tap_analysis(const std::vector<TapRunInput>& runs,
     r.runs.push_back(summarize(run, phis.back(), opts));
   }
 
-  // KDEs (B1–B7): Silverman h, the three kernels on the same grid
+  // KDEs (B1–B7): Silverman h for the normal kernel; the compact kernels on the same grid with
+  // the equivalent (canonical) bandwidth, so that the three smooth alike (paper Fig. 13)
   for (const auto& phi : phis) {
     r.kde_normal.push_back(kde_auto(phi, opts.kde_points, Kernel::Normal));
     const auto& c = r.kde_normal.back();
-    r.kde_epanechnikov.push_back(kde(phi, c.x, c.bandwidth, Kernel::Epanechnikov));
-    r.kde_box.push_back(kde(phi, c.x, c.bandwidth, Kernel::Box));
+    r.kde_epanechnikov.push_back(
+        kde(phi, c.x, equivalent_bandwidth(Kernel::Epanechnikov, c.bandwidth), Kernel::Epanechnikov));
+    r.kde_box.push_back(kde(phi, c.x, equivalent_bandwidth(Kernel::Box, c.bandwidth), Kernel::Box));
   }
 
   // the references: by label, else the first run; the second one defaults to the next run

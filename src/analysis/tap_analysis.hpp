@@ -85,8 +85,9 @@ struct TapRunSummary {
 struct TapAnalysisResult {
   std::vector<TapRunSummary> runs;          ///< per-run statistics, input order
   std::vector<KdeCurve> kde_normal;         ///< per-run KDE, normal kernel (Silverman h)
-  std::vector<std::vector<double>> kde_epanechnikov;  ///< same grid, Epanechnikov kernel
-  std::vector<std::vector<double>> kde_box;           ///< same grid, box kernel
+  std::vector<std::vector<double>> kde_epanechnikov;  ///< same grid, Epanechnikov kernel with
+                                                      ///< the equivalent bandwidth
+  std::vector<std::vector<double>> kde_box;           ///< same grid, box kernel, equivalent h
   int ref = 0;                              ///< index of the reference run
   int ref2 = -1;                            ///< index of the second reference (−1: none)
   double v_g = 0.0;                         ///< V_g = V_T φ̄_ref, m²

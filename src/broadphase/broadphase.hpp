@@ -11,10 +11,14 @@
 namespace gs {
 
 /// a candidate pair key: particle i, partner j (j >= N means wall j − N), periodic image of j
-/// relative to i (4 = no shift; (sx+1)·3 + (sy+1) for a shift of j by (sx·Lx, sy·Ly)).
+/// relative to i: j is shifted by (sx·Lx, sy·Ly), stored as ((sx+128) << 8) | (sy+128), so
+/// kNoImage is the unshifted partner. Positions are kept within ±64 box lengths (sim).
 /// Sorting keys orders contacts by (i, j, image), so forces never depend on report order.
 using PairKey = std::uint64_t;
-inline constexpr int kNoImage = 4;
+inline constexpr std::uint32_t kNoImage = (128u << 8) | 128u;
+constexpr std::uint32_t make_image(int sx, int sy) {
+  return (static_cast<std::uint32_t>(sx + 128) << 8) | static_cast<std::uint32_t>(sy + 128);
+}
 constexpr PairKey make_key(std::uint32_t i, std::uint32_t j, std::uint32_t image) {
   return (static_cast<PairKey>(i) << 40) | (static_cast<PairKey>(j) << 16) | image;
 }
@@ -22,8 +26,8 @@ constexpr std::uint32_t key_i(PairKey k) { return static_cast<std::uint32_t>(k >
 constexpr std::uint32_t key_j(PairKey k) { return static_cast<std::uint32_t>((k >> 16) & 0xffffffu); }
 constexpr std::uint32_t key_image(PairKey k) { return static_cast<std::uint32_t>(k & 0xffffu); }
 /// the shift (in box lengths) that an image code applies to j
-constexpr int image_sx(std::uint32_t image) { return static_cast<int>(image) / 3 - 1; }
-constexpr int image_sy(std::uint32_t image) { return static_cast<int>(image) % 3 - 1; }
+constexpr int image_sx(std::uint32_t image) { return static_cast<int>(image >> 8) - 128; }
+constexpr int image_sy(std::uint32_t image) { return static_cast<int>(image & 0xffu) - 128; }
 
 class BroadPhase {
  public:

@@ -98,7 +98,7 @@ class CellGrid final : public BroadPhase {
           const double rr = w.radius[i] + w.radius[j];
           if (d.x * d.x + d.y * d.y < rr * rr)
             out.push_back(make_key(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j),
-                                   static_cast<std::uint32_t>((sx + 1) * 3 + (sy + 1))));
+                                   make_image(sx, sy)));
         }
       }
       // walls: circle against the wall's box

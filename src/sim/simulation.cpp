@@ -63,8 +63,10 @@ void Simulation::step() {
   if (d.kind == DriveKind::RandomForce && w_.box != BoxKind::Ring1D && d.com_removal_every > 0 &&
       w_.s.step % d.com_removal_every == 0)
     remove_com_velocity(w_);
-  if (w_.scene.health.check_every > 0 && w_.s.step % w_.scene.health.check_every == 0)
+  if (w_.scene.health.check_every > 0 && w_.s.step % w_.scene.health.check_every == 0) {
     health_check();
+    w_.rewrap();  // periodic: keep |x| within 32 box lengths (image shifts fit in 8 bits)
+  }
 }
 
 // non-finite state or overlaps beyond the scene threshold stop the run with a diagnosis

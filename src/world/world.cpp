@@ -9,6 +9,28 @@ namespace gs {
 
 void State::resize(std::size_t n) {
   for (auto* v : {&x, &y, &th, &vx, &vy, &w, &ax, &ay, &aw}) v->resize(n, 0.0);
+  wrap_x.resize(n, 0);
+  wrap_y.resize(n, 0);
+}
+
+void World::rewrap(double limit) {
+  if (box == BoxKind::Walls) return;
+  for (std::size_t i = 0; i < size(); ++i) {
+    if (std::abs(s.x[i]) > limit * Lx) {
+      const double k = std::floor(s.x[i] / Lx);
+      s.x[i] -= k * Lx;
+      s.wrap_x[i] += static_cast<int>(k);
+    }
+    if (box == BoxKind::Periodic && std::abs(s.y[i]) > limit * Ly) {
+      const double k = std::floor(s.y[i] / Ly);
+      s.y[i] -= k * Ly;
+      s.wrap_y[i] += static_cast<int>(k);
+    }
+  }
+}
+
+Vec2 World::unwrapped(std::size_t i) const {
+  return {s.x[i] + s.wrap_x[i] * Lx, s.y[i] + s.wrap_y[i] * Ly};
 }
 
 void World::add_particle(int k, Vec2 pos, double theta, Vec2 vel, double omega) {
@@ -25,6 +47,8 @@ void World::add_particle(int k, Vec2 pos, double theta, Vec2 vel, double omega) 
   s.vy.push_back(vel.y);
   s.w.push_back(omega);
   s.ax.push_back(0.0);
+  s.wrap_x.push_back(0);
+  s.wrap_y.push_back(0);
   s.ay.push_back(0.0);
   s.aw.push_back(0.0);
 }

@@ -38,6 +38,7 @@ struct State {
   std::vector<double> x, y, th;   ///< position (m) and orientation (rad)
   std::vector<double> vx, vy, w;  ///< velocity (m/s) and angular velocity (rad/s)
   std::vector<double> ax, ay, aw; ///< accelerations at the current state (m/s², rad/s²)
+  std::vector<int> wrap_x, wrap_y;///< periodic boxes: box lengths removed from x, y so far
   double t = 0.0;                 ///< simulated time, s
   std::int64_t step = 0;          ///< steps taken
   std::size_t size() const { return x.size(); }
@@ -69,6 +70,11 @@ struct World {
   Poly shape(std::size_t i) const;
   /// kinetic energy (translation + rotation), J
   double kinetic_energy() const;
+  /// periodic boxes: bring positions far outside the cell back by whole box lengths (counted
+  /// in wrap_x/wrap_y so unwrapped displacements stay available)
+  void rewrap(double limit_boxes = 32.0);
+  /// unwrapped position of particle i
+  Vec2 unwrapped(std::size_t i) const;
   /// minimum-image separation xj − xi (identity in walled boxes)
   Vec2 separation(std::size_t i, std::size_t j) const;
 };
