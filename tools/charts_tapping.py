@@ -271,7 +271,7 @@ def chart_beta_phi(beta, quad, analysis, out):
                     lw=1, label="fit to %s only" % protocol_name(name))
     ax.set_xlabel(r"mean volume fraction $\bar\phi$")
     ax.set_ylabel(r"inverse compactivity $\beta = \hat\beta + \beta_0$ (m$^{-2}$)")
-    ax.set_title(r"$\beta(\bar\phi)$, both protocols; $\beta_0$ = %.0f $\pm$ %.0f m$^{-2}$"
+    ax.set_title(r"$\beta(\bar\phi)$ of all runs; $\beta_0$ = %.0f $\pm$ %.0f m$^{-2}$"
                  % (b0, allfit["beta0_err"]))
     ax.legend(fontsize=7)
     save(fig, out, "fig9_beta_phi.png", "beta vs phi with the quadron fit")

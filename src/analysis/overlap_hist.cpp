@@ -1,4 +1,5 @@
-// overlapping histograms (P.19, P.20, P.39) with weighted line and parabola fits
+// overlapping histograms (P.19, P.20, P.39): binomial fits of histogram pairs, or weighted
+// least squares on kernel estimates; straight line for β and ln Z, parabola for linearity
 #include "analysis/overlap_hist.hpp"
 
 #include <Eigen/Dense>
@@ -46,10 +47,6 @@ double correlated_points(Kernel k, double h, double dx) {
   }
   return std::max(1.0, sum);
 }
-
-}  // namespace
-
-namespace {
 
 // centring and scaling of x, u = (x − x̄)/s, that keeps the normal equations well conditioned
 struct Scale {

@@ -115,7 +115,9 @@ CrossoverFit fit_crossover(const Histogram& h, double alpha, bool fit_alpha, dou
   // a Gaussian core of the same variance: v_r = √2 σ; crossover a little further out
   const double vr0 = std::sqrt(2.0 * m2 / m0);
   Eigen::VectorXd p0(npar);
-  p0 << pmax, vr0, 2.0 * vr0;
+  p0[0] = pmax;
+  p0[1] = vr0;
+  p0[2] = 2.0 * vr0;
   if (fit_alpha) p0[3] = alpha;
   // the model is the Simpson average of T.5.32 over each bin (x is the bin index), so the
   // curvature of the density across a bin brings no bias

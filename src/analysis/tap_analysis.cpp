@@ -103,6 +103,9 @@ TapAnalysisResult run_tap_analysis(const std::vector<TapRunInput>& runs,
                            " taps after discarding " + std::to_string(opts.discard) +
                            " (needs at least 20)");
     r.runs.push_back(summarize(run, phis.back(), opts));
+    if (!r.runs.back().tau.converged)
+      r.notes.push_back("run '" + label + "': no autocorrelation window M ≥ 5τ below n/2; " +
+                        "τ_int and the τ-corrected intervals are unreliable (series too short)");
   }
 
   // KDEs (B1–B7): Silverman h for the normal kernel; the compact kernels on the same grid with
@@ -115,9 +118,19 @@ TapAnalysisResult run_tap_analysis(const std::vector<TapRunInput>& runs,
     r.kde_box.push_back(kde(phi, c.x, equivalent_bandwidth(Kernel::Box, c.bandwidth), Kernel::Box));
   }
 
-  // the references: by label, else the first run; the second one defaults to the next run
-  // of the same protocol
-  r.ref = opts.reference.empty() ? 0 : find_label(r.runs, opts.reference);
+  // the references: by label, else the paper's (negative g with g_p nearest 6), else the
+  // first run; the second one defaults to the next run of the same protocol
+  if (opts.reference.empty()) {
+    r.ref = 0;
+    double best = 1e300;
+    for (std::size_t i = 0; i < runs.size(); ++i)
+      if (runs[i].protocol == "negative_g" && std::abs(runs[i].control - 6.0) < best) {
+        best = std::abs(runs[i].control - 6.0);
+        r.ref = static_cast<int>(i);
+      }
+  } else {
+    r.ref = find_label(r.runs, opts.reference);
+  }
   if (r.ref < 0) throw InputError("", "reference", "no run labelled '" + opts.reference + "'");
   if (!opts.reference2.empty()) {
     r.ref2 = find_label(r.runs, opts.reference2);

@@ -50,7 +50,8 @@ struct TapAnalysisOptions {
   double level = 0.95;         ///< confidence level of the intervals
   double alpha = 0.05;         ///< significance of the normality test
   double test_area = 0.16;     ///< area V_T of the test rectangle, m² (V_g = V_T φ̄_ref)
-  std::string reference;       ///< label of the reference run; empty: the first run
+  std::string reference;       ///< label of the reference run; empty: the paper's choice, the
+                               ///< negative_g run with g_p nearest 6, else the first run
   std::string reference2;      ///< second reference; empty: the next run of the reference's
                                ///< protocol (none if it has no other run)
   OverlapOptions overlap;      ///< density method, bins, 5 % threshold

@@ -139,6 +139,32 @@ TEST(TapAnalysis, WritesTheOutputFiles) {
   EXPECT_NE(q.find("\"curve\""), std::string::npos);
 }
 
+// the default reference is the paper's (negative g, g_p nearest 6), wherever it is listed;
+// an explicit label overrides it, and an unknown label is an input error
+TEST(TapAnalysis, ReferenceSelection) {
+  QuadronGasSpec gas;
+  const double scale = quadron_gas_a(gas) / gas.limits.delta_inv();
+  std::vector<TapRunInput> runs;
+  const struct { const char* p; double c; double x; } spec[] = {
+      {"rotating_g", 0.5, 1.2}, {"negative_g", 10, 1.1}, {"negative_g", 5, 1.3}, {"negative_g", 8, 1.2}};
+  std::uint64_t k = 0;
+  for (const auto& s : spec) {
+    TapRunInput r;
+    r.protocol = s.p;
+    r.control = s.c;
+    r.series = quadron_gas_taps(s.x * scale, 300, gas, 5, ++k);
+    runs.push_back(r);
+  }
+  TapAnalysisOptions o;
+  const TapAnalysisResult r = run_tap_analysis(runs, o);
+  EXPECT_EQ(r.runs[r.ref].label, "negative_g_5");  // |5 − 6| < |8 − 6|
+  EXPECT_EQ(r.runs[r.ref2].label, "negative_g_8"); // the next negative_g run after it
+  o.reference = "rotating_g_0.5";
+  EXPECT_EQ(run_tap_analysis(runs, o).ref, 0);
+  o.reference = "nope";
+  EXPECT_THROW(run_tap_analysis(runs, o), InputError);
+}
+
 TEST(TapCsv, ReadsColumnsByName) {
   std::istringstream in(
       "# written by a test\n"
