@@ -9,6 +9,7 @@
 #include <ctime>
 #include <sstream>
 
+#include "app/observers.hpp"
 #include "app/progress.hpp"
 #include "app/version.hpp"
 #include "core/error.hpp"
@@ -93,6 +94,8 @@ int run_command(const RunOptions& opt) {
   std::fprintf(stderr, "gransim %s: %s, %zu particles, %lld steps of %g s (%s, %s), contact time %.3g s\n",
                program_version().data(), scene.name.c_str(), n, static_cast<long long>(nsteps), dt,
                std::string(to_string(scene.integrator.kind)).c_str(), sim.broadphase().name(), tc);
+  Observers observers = make_observers(scene);
+  for (auto& o : observers) o->start(sim, out);
   install_stop_handlers();
   Progress progress("run", scene.duration, "s", opt.quiet);
   const auto t0 = std::chrono::steady_clock::now();
@@ -102,6 +105,7 @@ int run_command(const RunOptions& opt) {
   try {
     for (std::int64_t k = 0; k < nsteps; ++k) {
       sim.step();
+      for (auto& o : observers) o->after_step(sim);
       if (sim.world().s.step % scene.output.series_every == 0) write_row();
       if ((k & 63) == 0) {
         progress.update(sim.world().s.t);
@@ -119,6 +123,7 @@ int run_command(const RunOptions& opt) {
   const double steps_done = static_cast<double>(sim.world().s.step);
   const double rate = wall > 0 ? steps_done * static_cast<double>(n) / wall : 0.0;
 
+  for (auto& o : observers) o->finish(sim);
   // final state and run.json, also for interrupted and failed runs (nothing is lost)
   write_state_file(sim.world(), out + "/state.csv");
   std::ostringstream js;
