@@ -98,11 +98,13 @@ ForceStats ContactModel::evaluate_polygons(const World& w, const std::vector<Pai
       g = polygon_wall(bi, w.walls[j - N]);
     } else {
       xj = image_pos(w, j, key_image(key));
-      Poly pj = shapes_[j];
-      if (key_image(key) != kNoImage) {
+      if (key_image(key) == kNoImage) {
+        g = polygon_polygon(bi, BodyView{xj, w.radius[j], &shapes_[j]});
+      } else {  // a periodic image: shift a copy of j's polygon
+        Poly pj = shapes_[j];
         for (int k = 0; k < pj.n; ++k) pj.v[k] += xj - Vec2{w.s.x[j], w.s.y[j]};
+        g = polygon_polygon(bi, BodyView{xj, w.radius[j], &pj});
       }
-      g = polygon_polygon(bi, BodyView{xj, w.radius[j], &pj});
     }
     if (!g.touching) continue;
 
