@@ -35,11 +35,13 @@ FrameSpec spec(int w, int h, int msaa) {
   return f;
 }
 
-// one renderer per kind for the whole run (context and shaders are made once)
+// one renderer per kind for the whole run (context and shaders are made once); never
+// destroyed, since OSMesa is torn down before static destructors would run
 Renderer& renderer(RendererKind kind) {
-  static std::unique_ptr<Renderer> gl, sw;
-  auto& slot = kind == RendererKind::gl ? gl : sw;
-  if (!slot) slot = make_renderer(kind);
+  static Renderer* gl = nullptr;
+  static Renderer* sw = nullptr;
+  Renderer*& slot = kind == RendererKind::gl ? gl : sw;
+  if (!slot) slot = make_renderer(kind).release();
   return *slot;
 }
 

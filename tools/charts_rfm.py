@@ -16,6 +16,7 @@ metadata lines, one header line, numeric rows) from a directory and draws one PN
   bisection.csv    segment lengths against (-ln x)^(n-1)/(n-1)!   -> bisection.png
   walk_l*.csv      Q(v, l) collapsed in v/l^(1/3)                 -> walks.png
   heating.csv      <v_x^2>(t) and <x^2>(t) of free particles      -> heating.png
+  interval.csv     arrival velocities at x = L against B.32       -> interval.png
   cascade_*.csv    cascade S(k), exact expectation, fit, D2       -> cascade_*.png
 
 Usage: charts_rfm.py CSV_DIR [--out PNG_DIR]
@@ -276,6 +277,21 @@ def heating(src, out):
     save(fig, out, "heating.png")
 
 
+def interval(src, out):
+    m, c = read_csv(src)
+    ok = c["count"] > 0
+    fig, ax = plt.subplots(figsize=(6.5, 4.5))
+    ax.errorbar(c["u"][ok], c["f"][ok], yerr=c["f_err"][ok], fmt="o", ms=3, mfc="none", color="k",
+                elinewidth=0.5, label=f"walks: <τ> = {m['mean_exit_time']:.4f} ± {m['exit_time_err']:.4f}")
+    ax.plot(c["u"], c["f_theory"], color="C3",
+            label=f"appendix B (B.32): <τ> = {m['mean_exit_time_theory']:.4f}")
+    ax.set_xlabel("u = v / (D L/M²)^(1/3)")
+    ax.set_ylabel("density of arrival velocities at x = L")
+    ax.set_title("1D interval, release at rest at uniform x (thesis Fig. B.1)")
+    ax.legend(fontsize=8)
+    save(fig, out, "interval.png")
+
+
 def cascade(src, out):
     m, c = read_csv(src)
     name = os.path.splitext(os.path.basename(src))[0]
@@ -306,7 +322,8 @@ def main():
     p = lambda n: os.path.join(a.csv_dir, n)
     jobs = [("temperature.csv", temperature), ("velocity.csv", velocity), ("tail_scan.csv", tail_scan),
             ("sk.csv", structure_factor), ("gr.csv", pair_correlation), ("gh.csv", gap_distributions),
-            ("freepath.csv", free_paths), ("bisection.csv", bisection), ("heating.csv", heating)]
+            ("freepath.csv", free_paths), ("bisection.csv", bisection), ("heating.csv", heating),
+            ("interval.csv", interval)]
     for name, fn in jobs:
         if os.path.exists(p(name)):
             fn(p(name), out)

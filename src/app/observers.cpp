@@ -1,11 +1,14 @@
 #include "app/observers.hpp"
 
+#include "measure/tap_observer.hpp"
+
 namespace gs {
 
-Observers make_observers(const SceneSpec& /*scene*/) {
+Observers make_observers(const SceneSpec& scene) {
   Observers obs;
-  // each feature appends its observers here, e.g.
-  //   if (scene.drive.kind == DriveKind::NegativeG) obs.push_back(make_tap_observer(scene));
+  // each feature appends its observers here
+  // tapping (negative g, rotating g): taps.csv and segregation.csv, one row per tap
+  if (auto tap = make_tap_observer(scene)) obs.push_back(std::move(tap));
   return obs;
 }
 

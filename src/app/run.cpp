@@ -13,8 +13,10 @@
 #include "app/progress.hpp"
 #include "app/version.hpp"
 #include "core/error.hpp"
+#include "drive/protocol.hpp"
 #include "output/csv.hpp"
 #include "output/run_dir.hpp"
+#include "scene/names.hpp"
 #include "scene/parse.hpp"
 #include "sim/simulation.hpp"
 #include "sim/state_file.hpp"
@@ -60,6 +62,10 @@ int run_command(const RunOptions& opt) {
   if (opt.allow_unstable) scene.health.allow_unstable = true;
   World world = make_world(scene);
   place_particles(world);
+  // the protocol clock starts after preparation.settle_time (constant gravity until then); it
+  // is set before the first force evaluation so the initial accelerations see settling gravity
+  ProtocolClock clock(scene);
+  clock.start(world);
   Simulation sim(std::move(world));
   const double dt = scene.integrator.dt, tc = sim.model().min_contact_time();
   if (!scene.health.allow_unstable && dt > tc / 5.0) {
@@ -89,26 +95,51 @@ int run_command(const RunOptions& opt) {
                 static_cast<double>(sim.contacts().degenerate)});
   };
 
-  const auto nsteps = static_cast<std::int64_t>(std::llround(scene.duration / dt));
+  // how long: taps of a tapping protocol (the clock says when the last one is measured), or
+  // settling plus scene.duration
+  const bool by_taps = scene.drive.taps > 0 && is_tapping(scene.drive);
+  const double nominal = clock.nominal_duration();
+  const auto nsteps = static_cast<std::int64_t>(std::llround(nominal / dt));
+  auto finished = [&] {
+    if (by_taps) return clock.done(sim.world());
+    return sim.world().s.step + std::llround(clock.time_saved() / dt) >= nsteps;
+  };
+  auto taps_done = [&]() -> long {
+    const DrivePhase p = drive_phase(sim.world().scene.drive, sim.world().s.t + dt);
+    return is_tapping(scene.drive) && !p.settling ? p.tap : 0;
+  };
   const std::size_t n = sim.world().size();
   std::fprintf(stderr, "gransim %s: %s, %zu particles, %lld steps of %g s (%s, %s), contact time %.3g s\n",
                program_version().data(), scene.name.c_str(), n, static_cast<long long>(nsteps), dt,
                std::string(to_string(scene.integrator.kind)).c_str(), sim.broadphase().name(), tc);
+  if (is_tapping(scene.drive))
+    std::fprintf(stderr, "gransim: %s, settle %g s, then %d taps of T = %g s (excitation %g s)%s\n",
+                 std::string(scene_name(scene.drive.kind)).c_str(), scene.prep.settle_time,
+                 scene.drive.taps, drive_period(scene.drive), excitation_length(scene.drive),
+                 scene.drive.early_rest ? ", early rest on" : "");
   Observers observers = make_observers(scene);
   for (auto& o : observers) o->start(sim, out);
   install_stop_handlers();
-  Progress progress("run", scene.duration, "s", opt.quiet);
+  Progress progress("run", nominal, "s", opt.quiet);
   const auto t0 = std::chrono::steady_clock::now();
   write_row();
   int code = kExitOk;
   std::string failure;
+  // wall time when the protocol clock started (after settling), for the time per tap
+  double wall_settled = drive_phase(sim.world().scene.drive, sim.world().s.t + dt).settling ? -1.0 : 0.0;
   try {
-    for (std::int64_t k = 0; k < nsteps; ++k) {
+    for (std::int64_t k = 0; !finished(); ++k) {
       sim.step();
+      clock.after_step(sim.world());  // may end a relaxation early (moves the clock origin)
+      if (wall_settled < 0 && !drive_phase(sim.world().scene.drive, sim.world().s.t + dt).settling)
+        wall_settled = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       for (auto& o : observers) o->after_step(sim);
       if (sim.world().s.step % scene.output.series_every == 0) write_row();
       if ((k & 63) == 0) {
-        progress.update(sim.world().s.t);
+        progress.update(clock.progress(sim.world()),
+                        by_taps ? "tap " + std::to_string(taps_done()) + "/" +
+                                      std::to_string(scene.drive.taps)
+                                : std::string());
         if (stop_requested()) {
           code = kExitInterrupted;
           break;
@@ -135,7 +166,24 @@ int run_command(const RunOptions& opt) {
      << "  \"particle_steps_per_s\": " << rate << ",\n"
      << "  \"broad_phase\": \"" << sim.broadphase().name() << "\",\n"
      << "  \"contact_time_s\": " << tc << ",\n"
-     << "  \"degenerate_contacts\": " << sim.contacts().degenerate << ",\n";
+     << "  \"degenerate_contacts\": " << sim.contacts().degenerate << ",\n"
+     << "  \"settle_time_s\": " << scene.prep.settle_time << ",\n";
+  // tapping: the protocol, its control value and how the taps went
+  if (is_tapping(scene.drive)) {
+    const bool neg = scene.drive.kind == DriveKind::NegativeG;
+    js << "  \"protocol\": \"" << scene_name(scene.drive.kind) << "\",\n"
+       << "  \"control\": " << (neg ? scene.drive.g_p : scene.drive.f) << ",\n"
+       << "  \"control_name\": \"" << (neg ? "g_p" : "f") << "\",\n"
+       << "  \"period_s\": " << drive_period(scene.drive) << ",\n"
+       << "  \"taps_requested\": " << scene.drive.taps << ",\n"
+       << "  \"taps_done\": " << taps_done() << ",\n"
+       << "  \"early_ends\": " << clock.early_ends() << ",\n"
+       << "  \"time_saved_s\": " << clock.time_saved() << ",\n"
+       << "  \"wall_time_settling_s\": " << std::max(wall_settled, 0.0) << ",\n"
+       << "  \"wall_time_per_tap_s\": "
+       << (taps_done() > 0 ? (wall - std::max(wall_settled, 0.0)) / static_cast<double>(taps_done()) : 0.0)
+       << ",\n";
+  }
   if (!failure.empty()) js << "  \"failure\": \"" << json_escape(failure) << "\",\n";
   js << "  \"scene\": {";
   bool first = true;

@@ -1,4 +1,6 @@
-// driving schedules: pure functions of time (what applies them lives in the simulation step)
+// driving schedules: pure functions of the scene's drive and the time (what applies them — the
+// protocol clock, early rest — lives in drive/protocol.hpp; the simulation step calls
+// gravity_at once per force evaluation)
 #pragma once
 #include <cmath>
 
@@ -7,12 +9,18 @@
 
 namespace gs {
 
-/// where a periodic protocol is: tap number (from 0), time within the period, phase
+/// where a periodic protocol is at one instant
 struct DrivePhase {
+  bool settling = false;  ///< before the protocol clock starts (t < clock_origin)
   long tap = 0;           ///< completed periods before this one
-  double t_in = 0.0;      ///< t̃ = t mod T, s
+  double t_in = 0.0;      ///< t̃ = (t − clock_origin) mod T, s
   bool exciting = false;  ///< inside the excitation window (pulse or rotation)
 };
+
+/// is this one of the tapping protocols (negative g P.37, rotating g P.38)?
+inline bool is_tapping(const DriveSpec& d) {
+  return d.kind == DriveKind::NegativeG || d.kind == DriveKind::RotatingG;
+}
 
 /// the period T of a tapping protocol (negative g: T; rotating g: 2π/ω + relax), s; 0 if none
 inline double drive_period(const DriveSpec& d) {
@@ -21,32 +29,58 @@ inline double drive_period(const DriveSpec& d) {
   return 0.0;
 }
 
-/// the length of the excitation window of a period, s
+/// the length of the excitation window of a period (t1, or one rotation 2π/ω = 1/f), s
 inline double excitation_length(const DriveSpec& d) {
   if (d.kind == DriveKind::NegativeG) return d.t1;
   if (d.kind == DriveKind::RotatingG) return 1.0 / d.f;
   return 0.0;
 }
 
+/// the protocol time t − clock_origin, s (negative while settling)
+inline double protocol_time(const DriveSpec& d, double t) { return t - d.clock_origin; }
+
+/// the phase of the protocol at simulated time t
 inline DrivePhase drive_phase(const DriveSpec& d, double t) {
   DrivePhase p;
   const double T = drive_period(d);
   if (T <= 0.0) return p;
-  p.tap = static_cast<long>(std::floor(t / T));
-  p.t_in = t - p.tap * T;
+  const double tau = protocol_time(d, t);
+  if (tau < 0.0) {
+    p.settling = true;
+    return p;
+  }
+  p.tap = static_cast<long>(std::floor(tau / T));
+  p.t_in = tau - static_cast<double>(p.tap) * T;
+  // round-off can put t̃ a hair outside [0, T)
+  if (p.t_in >= T) {
+    ++p.tap;
+    p.t_in -= T;
+  }
+  if (p.t_in < 0.0) p.t_in = 0.0;
   p.exciting = p.t_in < excitation_length(d);
   return p;
 }
 
+/// does the step from t to t + dt enter a new excitation window? (the per-tap measurement is
+/// taken at t, "just before the next excitation", SPEC 2.5)
+inline bool excitation_starts_next(const DriveSpec& d, double t, double dt) {
+  if (!is_tapping(d)) return false;
+  const DrivePhase now = drive_phase(d, t), next = drive_phase(d, t + dt);
+  if (next.settling || !next.exciting) return false;
+  return now.settling || !now.exciting || now.tap != next.tap;
+}
+
 /// gravitational acceleration at time t, m/s²:
 /// negative g (P.37): g·e_y·(g_p if t̃ < t1 else −1);
-/// rotating g (P.38, window t̃ < 2π/ω per SPEC 9.3): g·(sin ωt̃, −cos ωt̃), else (0, −g)
+/// rotating g (P.38, window t̃ < 2π/ω per SPEC 9.3): g·(sin ωt̃, −cos ωt̃), else (0, −g);
+/// before the protocol clock starts (settling): (0, −g) for every kind but constant gravity
 inline Vec2 gravity_at(const DriveSpec& d, double t) {
+  if (d.kind == DriveKind::Gravity) {
+    const double n = std::hypot(d.gx, d.gy);
+    return n > 0 ? Vec2{d.g * d.gx / n, d.g * d.gy / n} : Vec2{};
+  }
+  if (protocol_time(d, t) < 0.0) return {0.0, -d.g};
   switch (d.kind) {
-    case DriveKind::Gravity: {
-      const double n = std::hypot(d.gx, d.gy);
-      return n > 0 ? Vec2{d.g * d.gx / n, d.g * d.gy / n} : Vec2{};
-    }
     case DriveKind::NegativeG: {
       const DrivePhase p = drive_phase(d, t);
       return {0.0, d.g * (p.exciting ? d.g_p : -1.0)};

@@ -11,6 +11,7 @@
 #include "core/error.hpp"
 #include "core/rng.hpp"
 #include "core/vec.hpp"
+#include "models/interval_theory.hpp"
 
 namespace gs::models {
 
@@ -186,16 +187,17 @@ WalkResult interval_walk(const WalkParams& p, double length, IntervalStart start
   for (long w = 0; w < p.walks; ++w) {
     RngStream rng(p.seed, static_cast<std::uint64_t>(w));
     const double x0 = start == IntervalStart::centre ? 0.5 * length : rng.uniform(0.0, length);
-    double x = x0, v = 0.0, moved = 0.0, sum_v2 = 0.0;
+    double x = x0, v = 0.0, moved = 0.0, sum_v2 = 0.0, z[2] = {0.0, 0.0};
     long n = 0;
     bool inside = true;
-    // the 1D version of T.5.11, one normal per step (the pair's second value is discarded)
+    // the 1D version of T.5.11, one normal per step (both of each Box–Muller pair are used)
     while (n < p.max_steps) {
       q.add(v);
       sum_v2 += v * v;
       x += v * dt;
       moved = v;
-      v += kick * rng.normal();
+      if (n % 2 == 0) rng.normal_pair(z[0], z[1]);
+      v += kick * z[n % 2];
       ++n;
       if (x <= 0.0 || x >= length) {
         inside = false;
@@ -292,6 +294,28 @@ void write_walk_csv(const std::filesystem::path& path, const WalkResult& r, cons
   const auto qb = r.q.bins(), ab = r.arrival.bins();
   for (std::size_t i = 0; i < qb.size(); ++i)
     w.row({qb[i].x, qb[i].x / vs, qb[i].count, qb[i].p, qb[i].p_err, qb[i].p * vs, ab[i].p});
+}
+
+void write_interval_csv(const std::filesystem::path& path, const WalkResult& r,
+                        const WalkParams& p, double length) {
+  // arrivals at x = L in u = v/(D_v L)^(1/3), normalised over u > 0, beside B.32
+  const double vs = walk_velocity_scale(p, length);
+  const double tau_theory = appendix_b_mean_exit_time_coefficient() * walk_time_scale(p, length);
+  rfm::CsvWriter w(path, {"u", "count", "f", "f_err", "f_theory"},
+                   {{"mean_exit_time", r.mean_exit_time},
+                    {"exit_time_err", r.exit_time_err},
+                    {"mean_exit_time_theory", tau_theory},
+                    {"length", length}});
+  const auto bins = r.arrival.bins();
+  double total = 0.0;
+  for (const auto& b : bins)
+    if (b.x > 0.0) total += b.count;
+  for (const auto& b : bins) {
+    if (!(b.x > 0.0)) continue;
+    const double du = (b.hi - b.lo) / vs;
+    w.row({b.x / vs, b.count, b.count / (total * du), std::sqrt(b.count) / (total * du),
+           appendix_b_arrival_density(b.x / vs)});
+  }
 }
 
 void write_heating_csv(const std::filesystem::path& path, const HeatingCurve& h,

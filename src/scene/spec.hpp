@@ -124,6 +124,10 @@ struct DriveSpec {
   double rest_hold = 0.1;      ///< s
   // taps
   int taps = 0;          ///< number of taps (0 = run for duration)
+  /// run-time protocol clock, not a scene key: the schedules run on t − clock_origin and give
+  /// plain gravity before it (settling). The run sets it after preparation.settle_time and
+  /// moves it forward when a relaxation ends early (drive/protocol.hpp), s
+  double clock_origin = 0.0;
 };
 
 struct HealthSpec {

@@ -168,6 +168,11 @@ TEST(ChartsData, WritesEveryCsv) {
     }
     p.dt = 1e-3;
     write_heating_csv(dir / "heating.csv", free_heating(p, 2, 1000, 2000, 50), p);
+    // appendix B: arrivals at x = L against B.32 (thesis Fig. B.1)
+    p.walks = 20000;
+    p.v_max = 5.0;
+    p.bins = 100;
+    write_interval_csv(dir / "interval.csv", interval_walk(p, 1.0, IntervalStart::uniform), p, 1.0);
   }
 
   // cascade S(k): UCP, 8 levels, with the exact expectation and the mid-range fit
@@ -185,7 +190,7 @@ TEST(ChartsData, WritesEveryCsv) {
   // every file is there and parses
   for (const char* name : {"temperature.csv", "velocity.csv", "tail_scan.csv", "lnln_A0.csv", "lnln_P0.csv",
                            "sk.csv", "gr.csv", "gh.csv", "bisection.csv", "freepath.csv", "walk_l1.csv",
-                           "walk_l8.csv", "heating.csv", "cascade_ucp.csv"}) {
+                           "walk_l8.csv", "heating.csv", "interval.csv", "cascade_ucp.csv"}) {
     const rfm::CsvTable t = rfm::read_csv(dir / name);
     EXPECT_FALSE(t.names.empty()) << name;
     EXPECT_FALSE(t.column.at(t.names[0]).empty()) << name;

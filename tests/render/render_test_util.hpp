@@ -21,11 +21,14 @@ inline std::vector<std::string> backends() {
 #endif
 }
 
-/// one renderer per backend for the whole test program (GL shader compilation is slow)
+/// one renderer per backend for the whole test program (GL shader compilation is slow).
+/// Deliberately never destroyed: at exit OSMesa tears itself down before static destructors
+/// would run, and making its context current then crashes.
 inline Renderer& renderer(const std::string& kind) {
-  static std::unique_ptr<Renderer> sw, gl;
-  auto& slot = kind == "gl" ? gl : sw;
-  if (!slot) slot = make_renderer(parse_renderer_kind(kind));
+  static Renderer* sw = nullptr;
+  static Renderer* gl = nullptr;
+  Renderer*& slot = kind == "gl" ? gl : sw;
+  if (!slot) slot = make_renderer(parse_renderer_kind(kind)).release();
   return *slot;
 }
 

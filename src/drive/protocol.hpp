@@ -1,0 +1,56 @@
+// what applies a tapping protocol: the protocol clock. It starts the schedule after the
+// settling time and ends a relaxation early once the pile is at rest (SPEC 2.4) by moving the
+// clock origin forward, so the schedules stay pure functions of (drive, t).
+#pragma once
+#include <cstdint>
+
+#include "drive/schedule.hpp"
+#include "world/world.hpp"
+
+namespace gs {
+
+/// the protocol clock of one run; it writes World::scene.drive.clock_origin
+class ProtocolClock {
+ public:
+  explicit ProtocolClock(const SceneSpec& scene);
+
+  /// start the protocol clock after preparation.settle_time. The origin sits half a step past
+  /// the settling time so that no step time falls on a phase boundary: every pulse lasts
+  /// exactly round(t1/Δt) force evaluations whatever the round-off in t = step·Δt
+  void start(World& w) const;
+
+  /// after a step: early rest (off unless drive.early_rest). While relaxing, once the largest
+  /// speed stays below drive.rest_speed and the kinetic energy below drive.rest_energy for
+  /// drive.rest_hold, the relaxation ends: the origin moves so that the next step begins the
+  /// next excitation. Returns true when it did so now.
+  bool after_step(World& w);
+
+  /// the number of full taps done: after this step the next one would start tap `taps`
+  /// (only when drive.taps > 0)
+  bool done(const World& w) const;
+
+  /// simulated time the run needs without early ends (settling plus taps·T, or settling plus
+  /// scene.duration when drive.taps = 0), s
+  double nominal_duration() const;
+  /// settling plus protocol time at t (counts skipped rest as done), s
+  double progress(const World& w) const;
+
+  /// relaxations ended early so far
+  std::int64_t early_ends() const { return early_ends_; }
+  /// simulated time saved by early ends so far, s
+  double time_saved() const { return saved_; }
+
+ private:
+  bool at_rest(const World& w) const;
+
+  DriveSpec drive_;         ///< the scene's drive (clock origin 0)
+  double settle_ = 0.0;     ///< settling time before the protocol, s
+  double duration_ = 0.0;   ///< scene.duration (used when drive.taps = 0), s
+  double dt_ = 0.0;         ///< time step, s
+  double rest_since_ = -1.0;  ///< time from which the pile has been at rest, s (−1: not)
+  long rest_tap_ = -1;        ///< the tap whose relaxation rest_since_ belongs to
+  std::int64_t early_ends_ = 0;
+  double saved_ = 0.0;
+};
+
+}  // namespace gs

@@ -1,0 +1,82 @@
+#include "measure/tap_observer.hpp"
+
+#include "drive/schedule.hpp"
+#include "measure/tap_measure.hpp"
+#include "sim/simulation.hpp"
+
+namespace gs {
+
+TapObserver::TapObserver(const SceneSpec& scene, double segregation_dh)
+    : scene_(scene), dh_(segregation_dh) {}
+
+std::vector<std::string> TapObserver::columns(const SceneSpec& scene) {
+  std::vector<std::string> c{"tap", "t", "phi", "phi_left", "phi_right", "kinetic_energy",
+                             "max_speed", "z_mean"};
+  for (const SpeciesSpec& s : scene.species) c.push_back("z_" + s.name);
+  for (const char* k : {"coordination", "S_xx", "S_xy", "S_yx", "S_yy", "relax_end", "early"})
+    c.push_back(k);
+  return c;
+}
+
+void TapObserver::start(const Simulation& sim, const std::string& run_dir) {
+  const World& w = sim.world();
+  taps_ = CsvWriter(run_dir + "/taps.csv", columns(scene_));
+  // segregation: n(h) per species on a grid up to the box height
+  grid_ = height_grid(w.Ly, dh_);
+  std::vector<std::string> cols{"tap", "t"};
+  for (auto& n : cumulative_count_names(w, grid_)) cols.push_back(n);
+  seg_ = CsvWriter(run_dir + "/segregation.csv", cols);
+  origin_seen_ = w.scene.drive.clock_origin;
+  // the prepared state is tap 0 when the first excitation starts with the first step
+  if (excitation_starts_next(w.scene.drive, w.s.t, sim.dt())) measure(sim);
+}
+
+void TapObserver::after_step(const Simulation& sim) {
+  const World& w = sim.world();
+  const DriveSpec& d = w.scene.drive;
+  // the protocol clock moved: this relaxation was ended early (drive/protocol.hpp)
+  if (d.clock_origin != origin_seen_) {
+    DriveSpec before = d;
+    before.clock_origin = origin_seen_;
+    early_ = true;
+    relax_end_ = drive_phase(before, w.s.t).t_in + 0.5 * sim.dt();
+    origin_seen_ = d.clock_origin;
+  }
+  if (excitation_starts_next(d, w.s.t, sim.dt())) measure(sim);
+}
+
+void TapObserver::finish(const Simulation& /*sim*/) {
+  // rows are flushed as they are written; close the files
+  taps_ = CsvWriter();
+  seg_ = CsvWriter();
+}
+
+// one row: the tap count is the number of the excitation about to start
+void TapObserver::measure(const Simulation& sim) {
+  const World& w = sim.world();
+  const DriveSpec& d = w.scene.drive;
+  const DrivePhase now = drive_phase(d, w.s.t), next = drive_phase(d, w.s.t + sim.dt());
+  const auto tap = static_cast<double>(next.tap);
+  // how the relaxation ended: its full length T, or early; tap 0 after settling
+  double relax_end = now.settling ? scene_.prep.settle_time : drive_period(d);
+  if (early_) relax_end = relax_end_;
+  const TapMeasurement m = measure_tap(w, sim.contacts(), scene_.output.test_rect);
+  std::vector<double> row{tap, w.s.t, m.phi, m.phi_left, m.phi_right, m.kinetic_energy,
+                          m.max_speed, m.z_mean};
+  row.insert(row.end(), m.z_species.begin(), m.z_species.end());
+  row.insert(row.end(), {m.coordination, m.S[0], m.S[1], m.S[2], m.S[3], relax_end,
+                         early_ ? 1.0 : 0.0});
+  taps_.row(row);
+  std::vector<double> seg{tap, w.s.t};
+  for (double n : cumulative_counts(w, grid_)) seg.push_back(n);
+  seg_.row(seg);
+  early_ = false;
+  ++rows_;
+}
+
+std::unique_ptr<Observer> make_tap_observer(const SceneSpec& scene) {
+  if (!is_tapping(scene.drive)) return nullptr;
+  return std::make_unique<TapObserver>(scene);
+}
+
+}  // namespace gs

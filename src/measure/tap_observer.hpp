@@ -1,0 +1,41 @@
+// the tapping study's observer: one row per tap in DIR/taps.csv and DIR/segregation.csv,
+// measured just before the next excitation (SPEC 2.5), appended and flushed
+#pragma once
+#include <memory>
+
+#include "output/csv.hpp"
+#include "scene/spec.hpp"
+#include "sim/observer.hpp"
+
+namespace gs {
+
+class TapObserver : public Observer {
+ public:
+  /// segregation_dh: spacing of the fixed height grid of n(h), m
+  explicit TapObserver(const SceneSpec& scene, double segregation_dh = 0.01);
+  void start(const Simulation& sim, const std::string& run_dir) override;
+  void after_step(const Simulation& sim) override;
+  void finish(const Simulation& sim) override;
+  /// rows written so far (taps measured, the prepared state as tap 0 included)
+  long rows() const { return rows_; }
+
+  /// the columns of taps.csv for a scene (species names give the z_<species> columns)
+  static std::vector<std::string> columns(const SceneSpec& scene);
+
+ private:
+  void measure(const Simulation& sim);
+
+  SceneSpec scene_;
+  double dh_;
+  CsvWriter taps_, seg_;
+  std::vector<double> grid_;
+  double origin_seen_ = 0.0;  ///< clock origin at the previous step, s
+  bool early_ = false;        ///< the current relaxation was ended early
+  double relax_end_ = 0.0;    ///< when it ended, time within its period, s
+  long rows_ = 0;
+};
+
+/// a TapObserver for tapping scenes (negative g, rotating g); null otherwise
+std::unique_ptr<Observer> make_tap_observer(const SceneSpec& scene);
+
+}  // namespace gs
