@@ -4,7 +4,10 @@
 #include <cstdio>
 #include <exception>
 
+#include "app/analyze.hpp"
+#include "app/render_cmd.hpp"
 #include "app/run.hpp"
+#include "app/sweep.hpp"
 #include "app/version.hpp"
 #include "core/error.hpp"
 
@@ -26,6 +29,37 @@ int run_cli(int argc, char** argv) {
   run->add_flag("-q,--quiet", ro.quiet, "no progress display");
   run->add_flag("--allow-unstable", ro.allow_unstable, "skip the up-front time-step check");
 
+  // sweep: one run directory per value of the swept keys, as child processes
+  SweepOptions so;
+  auto* sweep = app.add_subcommand("sweep", "run a scene at several values of scene keys, in parallel");
+  sweep->add_option("scene", so.scene, "scene file (TOML)")->required();
+  sweep->add_option("--param", so.params,
+                    "swept key and values, e.g. --param drive.g_p=4,6,8 (repeat for a grid)")
+      ->required();
+  sweep->add_option("-o,--out", so.out, "sweep directory (default runs/<name>-sweep-<keys>)");
+  sweep->add_option("--set", so.sets, "override a scene key in every run (repeatable)");
+  sweep->add_option("-j,--jobs", so.jobs, "runs at a time (default: the number of cores)")
+      ->check(CLI::NonNegativeNumber);
+  sweep->add_flag("--force", so.force, "redo unfinished runs (completed runs are always kept)");
+  sweep->add_flag("-q,--quiet", so.quiet, "no progress display");
+  sweep->add_flag("--allow-unstable", so.allow_unstable, "skip the up-front time-step check");
+
+  // analyze: the tapping statistics and charts of runs and sweeps
+  AnalyzeOptions ao;
+  auto* analyze = app.add_subcommand("analyze", "tapping statistics and charts of runs and sweeps");
+  analyze->add_option("dirs", ao.dirs, "run or sweep directories")->required();
+  analyze->add_option("-o,--out", ao.out, "analysis folder (default DIR/analysis; needed for several DIRs)");
+  analyze->add_option("--discard", ao.discard, "transient taps to drop (default: output.discard_taps)")
+      ->check(CLI::NonNegativeNumber);
+  analyze->add_option("--reference", ao.reference,
+                      "reference run label, e.g. negative_g_6 (default: g_p nearest 6)");
+  analyze->add_option("--reference2", ao.reference2, "second reference run label");
+  analyze->add_flag("--no-charts", [&](std::int64_t) { ao.charts = false; }, "write CSV/JSON only");
+  analyze->add_flag("-q,--quiet", ao.quiet, "no summary table");
+
+  // render and movie (app/render_cmd.cpp)
+  auto render_cmds = add_render_commands(app);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -34,6 +68,9 @@ int run_cli(int argc, char** argv) {
   }
   try {
     if (*run) return run_command(ro);
+    if (auto code = dispatch_render_commands(*render_cmds)) return *code;
+    if (*sweep) return sweep_command(so);
+    if (*analyze) return analyze_command(ao);
   } catch (const InputError& e) {
     std::fprintf(stderr, "gransim: error: %s\n", e.what());
     return kExitBadInput;

@@ -1,5 +1,7 @@
 #include "app/observers.hpp"
 
+#include "app/render_recorder.hpp"
+#include "measure/rfm_observer.hpp"
 #include "measure/tap_observer.hpp"
 
 namespace gs {
@@ -9,6 +11,10 @@ Observers make_observers(const SceneSpec& scene) {
   // each feature appends its observers here
   // tapping (negative g, rotating g): taps.csv and segregation.csv, one row per tap
   if (auto tap = make_tap_observer(scene)) obs.push_back(std::move(tap));
+  // Random Force Model ([rfm], on for the random force): measure/rfm_observer.hpp
+  if (auto rfm = make_rfm_observer(scene)) obs.push_back(std::move(rfm));
+  // [render]: frames and movie, trajectory.xyz (app/render_recorder.cpp)
+  add_render_observers(scene, obs);
   return obs;
 }
 

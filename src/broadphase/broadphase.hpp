@@ -1,4 +1,5 @@
-// broad phase: candidate pairs whose bounding circles overlap, as sorted keys (i, j, image).
+// broad phase: candidate pairs that may touch (a superset of the touching pairs: bounding
+// circles within a margin), as sorted keys (i, j, image).
 // Two implementations that must agree: Box2D 2.4.1's dynamic AABB tree (walled boxes; the only
 // code that sees Box2D) and a uniform cell grid (any box, needed for periodic ones).
 #pragma once
@@ -32,8 +33,8 @@ constexpr int image_sy(std::uint32_t image) { return static_cast<int>(image & 0x
 class BroadPhase {
  public:
   virtual ~BroadPhase() = default;
-  /// the candidate pairs of the current state, sorted ascending, no duplicates; each pair's
-  /// bounding circles (or circle and wall box) overlap
+  /// the candidate pairs of the current state, sorted ascending, no duplicates: every pair
+  /// whose bounding circles (or circle and wall box) overlap is among them
   virtual void update(const World& w, std::vector<PairKey>& out) = 0;
   virtual const char* name() const = 0;
 };

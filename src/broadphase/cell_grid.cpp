@@ -1,5 +1,7 @@
-// uniform cell grid: cells at least one largest grain diameter wide, rebuilt every step by a
-// counting sort (O(N)); periodic boxes wrap cells and use the minimum image
+// uniform cell grid with a Verlet skin: pairs closer than r_i + r_j + skin are found by a
+// counting sort into cells (O(N)) and reused until some grain has moved more than skin/2 since
+// (so no pair can have come within contact unseen); periodic boxes wrap cells and use the
+// minimum image, fixed per pair until the next rebuild
 #include <algorithm>
 #include <cmath>
 
@@ -13,8 +15,30 @@ class CellGrid final : public BroadPhase {
   const char* name() const override { return "cell_grid"; }
 
   void update(const World& w, std::vector<PairKey>& out) override {
+    if (needs_rebuild(w)) build(w);
+    out = pairs_;
+  }
+
+ private:
+  // has any grain moved more than half the skin since the last build?
+  bool needs_rebuild(const World& w) const {
+    const std::size_t n = w.size();
+    if (n != bx_.size()) return true;
+    const double lim = 0.25 * skin_ * skin_;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double dx = w.s.x[i] - bx_[i], dy = w.s.y[i] - by_[i];
+      if (dx * dx + dy * dy > lim) return true;
+    }
+    return false;
+  }
+
+  void build(const World& w) {
+    std::vector<PairKey>& out = pairs_;
     out.clear();
     const std::size_t n = w.size();
+    skin_ = 0.1 * 2.0 * w.max_radius;
+    bx_.assign(w.s.x.begin(), w.s.x.end());
+    by_.assign(w.s.y.begin(), w.s.y.end());
     if (n == 0) return;
     const bool periodic = w.box == BoxKind::Periodic || w.box == BoxKind::Ring1D;
     const bool ring = w.box == BoxKind::Ring1D;
@@ -29,7 +53,7 @@ class CellGrid final : public BroadPhase {
       }
       x0 = xmin; y0 = ymin; wx = xmax - xmin; wy = ymax - ymin;
     }
-    double cell = 2.0 * w.max_radius;
+    double cell = 2.0 * w.max_radius + skin_;
     // never many more cells than grains (a far grain, a huge dilute box)
     cell = std::max(cell, ring ? wx / (4.0 * static_cast<double>(n))
                                : std::sqrt(wx * wy / (4.0 * static_cast<double>(n))));
@@ -95,7 +119,7 @@ class CellGrid final : public BroadPhase {
               d.y += sy * w.Ly;
             }
           }
-          const double rr = w.radius[i] + w.radius[j];
+          const double rr = w.radius[i] + w.radius[j] + skin_;
           if (d.x * d.x + d.y * d.y < rr * rr)
             out.push_back(make_key(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j),
                                    make_image(sx, sy)));
@@ -103,15 +127,17 @@ class CellGrid final : public BroadPhase {
       }
       // walls: circle against the wall's box
       for (std::size_t k = 0; k < w.walls.size(); ++k)
-        if (circle_box_overlap(pi, w.radius[i], w.walls[k].lo, w.walls[k].hi))
+        if (circle_box_overlap(pi, w.radius[i] + skin_, w.walls[k].lo, w.walls[k].hi))
           out.push_back(make_key(static_cast<std::uint32_t>(i), N + static_cast<std::uint32_t>(k),
                                  kNoImage));
       std::sort(out.begin() + first, out.end());
     }
   }
 
- private:
   int nx_ = 1, ny_ = 1;
+  double skin_ = 0.0;                ///< extra reach of the pair list, m
+  std::vector<double> bx_, by_;      ///< positions at the last build, m
+  std::vector<PairKey> pairs_;       ///< the pair list of the last build, sorted
   std::vector<int> cell_of_, start_, fill_, order_;
 };
 

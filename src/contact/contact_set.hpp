@@ -26,7 +26,7 @@ struct ContactRecord {
 
 struct ContactSet {
   std::vector<PairKey> keys;         ///< touching pairs of the last step, ascending
-  std::vector<ContactState> state;   ///< parallel to keys
+  std::vector<ContactState> state;   ///< parallel to keys (Model P); empty for Model S (no history)
   std::vector<ContactRecord> records;///< the last step's contacts, parallel to keys
   std::size_t degenerate = 0;        ///< contacts seen with one polygon inside the other (total)
 };

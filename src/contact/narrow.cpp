@@ -40,29 +40,4 @@ ContactGeom polygon_wall(const BodyView& a, const Wall& w) {
   return from_overlap(ov, w.normal);
 }
 
-ContactGeom disk_disk(const BodyView& a, const BodyView& b) {
-  ContactGeom g;
-  const Vec2 d = b.c - a.c;
-  const double dist2 = norm2(d), rr = a.r + b.r;
-  if (dist2 >= rr * rr || dist2 == 0.0) return g;
-  const double dist = std::sqrt(dist2);
-  g.touching = true;
-  g.n = d / dist;
-  g.overlap = rr - dist;
-  g.s = a.c + g.n * (a.r - 0.5 * g.overlap);
-  return g;
-}
-
-ContactGeom disk_wall(const BodyView& a, const Wall& w) {
-  ContactGeom g;
-  // penetration of the disk through the wall's inner face (a half-plane)
-  const double delta = dot(a.c, w.normal) + a.r - w.offset;
-  if (delta <= 0.0) return g;
-  g.touching = true;
-  g.n = w.normal;
-  g.overlap = delta;
-  g.s = a.c + w.normal * (a.r - 0.5 * delta);
-  return g;
-}
-
 }  // namespace gs

@@ -2,6 +2,8 @@
 // contact geometry (SPEC 2.1 for polygons, SPEC 3 for disks). Periodic images arrive as a shift
 // already applied to the partner's position.
 #pragma once
+#include <cmath>
+
 #include "core/vec.hpp"
 #include "geometry/polygon.hpp"
 #include "world/world.hpp"
@@ -27,8 +29,32 @@ struct BodyView {
 
 ContactGeom polygon_polygon(const BodyView& a, const BodyView& b);
 ContactGeom polygon_wall(const BodyView& a, const Wall& w);
-ContactGeom disk_disk(const BodyView& a, const BodyView& b);
-ContactGeom disk_wall(const BodyView& a, const Wall& w);
+
+// disks are cheap enough that the call would cost as much as the test: inline
+inline ContactGeom disk_disk(const BodyView& a, const BodyView& b) {
+  ContactGeom g;
+  const Vec2 d = b.c - a.c;
+  const double dist2 = norm2(d), rr = a.r + b.r;
+  if (dist2 >= rr * rr || dist2 == 0.0) return g;
+  const double dist = std::sqrt(dist2);
+  g.touching = true;
+  g.n = d / dist;
+  g.overlap = rr - dist;
+  g.s = a.c + g.n * (a.r - 0.5 * g.overlap);
+  return g;
+}
+
+inline ContactGeom disk_wall(const BodyView& a, const Wall& w) {
+  ContactGeom g;
+  // penetration of the disk through the wall's inner face (a half-plane)
+  const double delta = dot(a.c, w.normal) + a.r - w.offset;
+  if (delta <= 0.0) return g;
+  g.touching = true;
+  g.n = w.normal;
+  g.overlap = delta;
+  g.s = a.c + w.normal * (a.r - 0.5 * delta);
+  return g;
+}
 
 /// the table: partner kind 0 = disk, 1 = polygon, 2 = wall; nullptr = unsupported pairing
 enum PartnerKind { kPartnerDisk = 0, kPartnerPolygon = 1, kPartnerWall = 2 };

@@ -8,6 +8,35 @@
 
 namespace gs {
 
+/// tables of the ziggurat normal sampler (Marsaglia & Tsang 2000, 128 layers)
+struct ZigguratTables {
+  std::uint32_t kn[128];
+  double wn[128], fn[128];
+  ZigguratTables() {
+    const double m1 = 2147483648.0;  // 2^31
+    double dn = 3.442619855899, tn = dn;
+    const double vn = 9.91256303526217e-3;
+    const double q = vn / std::exp(-0.5 * dn * dn);
+    kn[0] = static_cast<std::uint32_t>((dn / q) * m1);
+    kn[1] = 0;
+    wn[0] = q / m1;
+    wn[127] = dn / m1;
+    fn[0] = 1.0;
+    fn[127] = std::exp(-0.5 * dn * dn);
+    for (int i = 126; i >= 1; --i) {
+      dn = std::sqrt(-2.0 * std::log(vn / dn + std::exp(-0.5 * dn * dn)));
+      kn[i + 1] = static_cast<std::uint32_t>((dn / tn) * m1);
+      tn = dn;
+      fn[i] = std::exp(-0.5 * dn * dn);
+      wn[i] = dn / m1;
+    }
+  }
+  static const ZigguratTables& get() {
+    static const ZigguratTables t;
+    return t;
+  }
+};
+
 constexpr std::uint64_t mix64(std::uint64_t z) {
   z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
   z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
@@ -38,6 +67,32 @@ struct RngStream {
     double a, b;
     normal_pair(a, b);
     return a;
+  }
+  /// a standard normal by the ziggurat method: exact, and ~10× cheaper than Box–Muller because
+  /// 98.8% of draws need one 64-bit value and no transcendental function. The layer index (low
+  /// 7 bits) and the signed 32-bit abscissa (high bits) come from disjoint bits of each value.
+  double normal_fast() {
+    const ZigguratTables& t = ZigguratTables::get();
+    for (;;) {
+      const std::uint64_t u = next_u64();
+      const auto hz = static_cast<std::int32_t>(static_cast<std::uint32_t>(u >> 32));
+      const int iz = static_cast<int>(u & 127u);
+      const std::uint32_t ahz = hz < 0 ? static_cast<std::uint32_t>(-static_cast<std::int64_t>(hz))
+                                       : static_cast<std::uint32_t>(hz);
+      const double x = hz * t.wn[iz];
+      if (ahz < t.kn[iz]) return x;  // inside the layer's rectangle
+      if (iz == 0) {                 // the tail beyond r (Marsaglia's method)
+        constexpr double r = 3.442619855899;
+        double xt, yt;
+        do {
+          xt = -std::log(uniform()) / r;
+          yt = -std::log(uniform());
+        } while (yt + yt < xt * xt);
+        return hz > 0 ? r + xt : -r - xt;
+      }
+      // the wedge between layers: accept under the density
+      if (t.fn[iz] + uniform() * (t.fn[iz - 1] - t.fn[iz]) < std::exp(-0.5 * x * x)) return x;
+    }
   }
 };
 

@@ -202,7 +202,6 @@ ForceStats ContactModel::evaluate_disks(const World& w, const std::vector<PairKe
       f.fy[j] += F.y;
     }
     new_keys_.push_back(key);
-    new_state_.push_back({});
     new_records_.push_back({key, g.s, g.n, df.fn, df.ft, g.overlap});
     st.max_overlap = std::max(st.max_overlap, g.overlap);
     st.max_overlap_rel = std::max(st.max_overlap_rel,

@@ -10,6 +10,8 @@
 #include <sstream>
 
 #include "scene/reader.hpp"
+#include "scene/render_section.hpp"
+#include "scene/rfm_section.hpp"
 
 namespace gs {
 
@@ -395,7 +397,7 @@ SceneSpec parse_scene_string(std::string_view text, const std::string& name_for_
   s.path = name_for_messages;
   TableReader top(ctx, root, "",
                   {"scene", "model", "material", "species", "box", "preparation", "integrator",
-                   "drive", "health", "output"});
+                   "drive", "health", "output", "render", "rfm"});
   read_model(ctx, top, s);
   read_materials(ctx, top, s);
   auto species = read_species(ctx, top, s);
@@ -412,6 +414,8 @@ SceneSpec parse_scene_string(std::string_view text, const std::string& name_for_
   read_health(ctx, top, s);
   read_output(ctx, top, s);
   read_scene(ctx, top, s);
+  scene_detail::read_render(ctx, top, s);  // [render]: scene/render_section.cpp
+  scene_detail::read_rfm(ctx, top, s);     // [rfm]: scene/rfm_section.cpp
   s.resolved = scene_resolved(s);
   return s;
 }

@@ -1,6 +1,7 @@
 // SceneSpec: the plain-data description of a scene, validated once by the parser.
 // Every field says its unit. Parsing lives in parse.hpp; nothing here knows TOML.
 #pragma once
+#include <array>
 #include <cstdint>
 #include <map>
 #include <optional>
@@ -143,6 +144,64 @@ struct OutputSpec {
   int discard_taps = 10;
 };
 
+/// when the frame recorder takes a picture ([render] schedule)
+enum class RenderSchedule : std::uint8_t {
+  Time,   ///< fps·slowmo frames per simulated second
+  Steps,  ///< every N steps
+  Taps,   ///< at the start of each excitation and just before the next one
+  Rest,   ///< only just before each excitation (one frame per tap, the pile at rest)
+};
+
+/// [render]: frames and movies recorded while the scene runs, and the trajectory export
+/// (parsed in scene/render_section.cpp; names checked against render/ by tests/app)
+struct RenderSpec {
+  bool enabled = false;          ///< record frames/movie (default: true when [render] is present)
+  bool frames = false;           ///< write DIR/frames/frame_NNNNNN.png
+  bool movie = true;             ///< write DIR/movie.mp4 (H.264, in-process)
+  RenderSchedule schedule = RenderSchedule::Time;
+  int every = 1000;              ///< steps between frames (schedule "steps")
+  int fps = 30;                  ///< movie frame rate, 1/s
+  double slowmo = 1.0;           ///< video seconds per simulated second (schedule "time")
+  double start = 0.0;            ///< no frames before this simulated time, s
+  int width = 1280, height = 720;  ///< frame size, px
+  int msaa = 4;                  ///< samples per pixel (GL backend)
+  std::optional<std::array<double, 4>> region;  ///< camera x0, y0, x1, y1, m (none: fit box)
+  double margin = 0.04;          ///< camera margin around the box, fraction of its larger side
+  std::string color_by = "speed";  ///< speed, speed_rms, species, vy, contacts, pressure, uniform
+  std::string colormap = "viridis";
+  std::optional<std::array<double, 2>> range;  ///< fixed colour range lo, hi (none: automatic)
+  bool colorbar = true;
+  bool force_chains = false;     ///< contact force chains (line width ∝ normal force)
+  bool gravity_arrow = false;    ///< default: true for negative_g / rotating_g
+  bool test_rect = false;        ///< draw output.test_rect; default: true for tapping drives
+  bool clock = true;             ///< print "t = … s" (and the tap number when tapping)
+  std::string title;             ///< a header line ("" = none)
+  int crf = 20;                  ///< x264 quality (0 best … 51 worst)
+  std::string preset = "medium"; ///< x264 speed preset
+  std::string renderer = "auto"; ///< "auto", "gl", "software"
+  int trajectory_every = 0;      ///< steps between DIR/trajectory.xyz frames (0 = off)
+};
+
+/// [rfm]: the Random Force Model measurements (SPEC 5.3), taken by read-only observers on a
+/// sampling interval (parsed in scene/rfm_section.cpp; measure/rfm_observer.hpp; docs/rfm.md)
+struct RfmSpec {
+  bool given = false;          ///< the scene has an [rfm] section (not a key)
+  bool enabled = false;        ///< measure (default: true for drive.kind = "random_force")
+  int sample_every = 1000;     ///< steps between samples
+  double discard_time = 1.0;   ///< transient left out of every statistic, s
+  int blocks = 10;             ///< blocks of the T.2.20 averages and of the moment errors
+  double v_max = 0.0;          ///< velocity histogram half-range, m/s (0: 12 σ at the first sample)
+  int v_bins = 400;            ///< velocity histogram bins (one Cartesian component)
+  int sk_nmax = 0;             ///< S(k) cutoff |n| = |k|L/2π (0: 1.2 L/d, at most 96)
+  int gr_bins = 200;           ///< g(R) bins on [0, gr_rmax)
+  double gr_rmax = 0.0;        ///< g(R) range, m (0: L/4)
+  int path_bins = 90;          ///< free-path log bins
+  double path_min = 0.0;       ///< free-path lowest bin edge, m (0: 1e-4·d)
+  double path_max = 0.0;       ///< free-path highest bin edge, m (0: L, 1D: L′)
+  int gap_bins = 120;          ///< 1D G_h(R) log bins of R/L′ on [gap_min, 1)
+  double gap_min = 1e-12;      ///< lowest G_h bin edge, units of L′
+};
+
 struct SceneSpec {
   std::string path;            ///< file it came from
   std::string name;
@@ -156,6 +215,8 @@ struct SceneSpec {
   DriveSpec drive;
   HealthSpec health;
   OutputSpec output;
+  RenderSpec render;
+  RfmSpec rfm;
   double duration = 1.0;       ///< simulated time, s (ignored when drive.taps > 0)
   /// every key as written, resolved with defaults, for run.json (key path → TOML value text)
   std::map<std::string, std::string> resolved;

@@ -4,6 +4,8 @@
 
 #include "scene/parse.hpp"
 #include "scene/reader.hpp"
+#include "scene/render_section.hpp"
+#include "scene/rfm_section.hpp"
 
 namespace gs {
 
@@ -147,6 +149,11 @@ std::vector<Block> emit(const SceneSpec& s) {
   for (int i = 0; i < 4; ++i) rect += format_double(r[i]) + (i < 3 ? ", " : "]");
   o.kv.emplace_back("test_rect", rect);
   o.integer("discard_taps", s.output.discard_taps);
+  // [render]: scene/render_section.cpp
+  out.push_back(Block{"[render]", "render", scene_detail::render_entries(s.render)});
+  // [rfm]: scene/rfm_section.cpp (random-force scenes, or when the file had one)
+  if (scene_detail::rfm_written(s))
+    out.push_back(Block{"[rfm]", "rfm", scene_detail::rfm_entries(s.rfm)});
   return out;
 }
 

@@ -1,0 +1,222 @@
+#include "app/analyze.hpp"
+
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+
+#include "analysis/tap_analysis.hpp"
+#include "app/run_info.hpp"
+#include "core/error.hpp"
+#include "drive/schedule.hpp"
+#include "scene/names.hpp"
+#include "scene/parse.hpp"
+
+extern char** environ;
+
+namespace gs {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// a run directory with taps.csv, described by its scene.toml and run.json
+FoundTapRun describe_run(const fs::path& dir) {
+  const std::string scene_path = (dir / "scene.toml").string();
+  if (!fs::exists(scene_path))
+    throw InputError(dir.string(), "", "has taps.csv but no scene.toml (not a gransim run directory?)");
+  const SceneSpec s = parse_scene_file(scene_path);
+  if (!is_tapping(s.drive))
+    throw InputError(scene_path, "drive.kind", "not a tapping protocol (negative_g, rotating_g)");
+  FoundTapRun r;
+  r.dir = dir.string();
+  r.protocol = std::string(scene_name(s.drive.kind));
+  r.control = s.drive.kind == DriveKind::NegativeG ? s.drive.g_p : s.drive.f;
+  r.status = run_status(r.dir);
+  return r;
+}
+
+// the python interpreter for the charts: $GS_PYTHON, else /usr/bin/python3, else python3
+std::string python_path() {
+  if (const char* p = std::getenv("GS_PYTHON"); p && *p) return p;
+  std::error_code ec;
+  return fs::exists("/usr/bin/python3", ec) ? "/usr/bin/python3" : "python3";
+}
+
+// run a chart script on a folder; returns "" on success, else what went wrong
+std::string run_script(const std::string& python, const std::string& script,
+                       const std::vector<std::string>& script_args) {
+  std::vector<std::string> args{python, script};
+  args.insert(args.end(), script_args.begin(), script_args.end());
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = -1;
+  const int rc = posix_spawnp(&pid, python.c_str(), nullptr, nullptr, argv.data(), environ);
+  if (rc != 0) return python + " cannot be started (" + std::strerror(rc) + ")";
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return "";
+  if (WIFEXITED(status) && WEXITSTATUS(status) == 127) return python + " was not found";
+  return script + " failed (exit " +
+         std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) +
+         "; are numpy and matplotlib installed for " + python + "?)";
+}
+
+// drop the tap-0 row (the prepared pile before the first excitation): it is not a tapped state
+void drop_prepared_state(TapSeries& s) {
+  std::size_t k = 0;
+  while (k < s.tap.size() && s.tap[k] == 0.0) ++k;
+  if (k == 0) return;
+  for (auto* v : {&s.tap, &s.t, &s.phi, &s.phi_left, &s.phi_right})
+    if (v->size() >= k) v->erase(v->begin(), v->begin() + static_cast<long>(k));
+}
+
+std::string csv_field(const std::string& s) {
+  if (s.find_first_of(",\"\n") == std::string::npos) return s;
+  std::string o = "\"";
+  for (char c : s) o += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return o + "\"";
+}
+
+}  // namespace
+
+std::vector<FoundTapRun> find_tap_runs(const std::string& dir) {
+  const fs::path d(dir);
+  std::error_code ec;
+  if (!fs::is_directory(d, ec)) throw InputError(dir, "", "not a directory");
+  if (fs::exists(d / "taps.csv", ec)) return {describe_run(d)};
+  // a sweep (or any folder of runs): the subdirectories with taps.csv
+  std::vector<FoundTapRun> runs;
+  for (const auto& e : fs::directory_iterator(d, ec))
+    if (e.is_directory() && fs::exists(e.path() / "taps.csv")) runs.push_back(describe_run(e.path()));
+  if (runs.empty())
+    throw InputError(dir, "", "no tapping runs here: neither DIR/taps.csv nor DIR/*/taps.csv "
+                              "(a run of a negative_g or rotating_g scene writes taps.csv)");
+  std::sort(runs.begin(), runs.end(), [](const FoundTapRun& a, const FoundTapRun& b) {
+    if (a.protocol != b.protocol) return a.protocol < b.protocol;
+    if (a.control != b.control) return a.control < b.control;
+    return a.dir < b.dir;
+  });
+  return runs;
+}
+
+int analyze_command(const AnalyzeOptions& opt) {
+  if (opt.dirs.empty()) throw InputError("", "DIR", "give at least one run or sweep directory");
+  if (opt.dirs.size() > 1 && opt.out.empty())
+    throw InputError("", "--out", "several directories are analysed together into one folder: "
+                                  "give it with --out");
+  const std::string out = opt.out.empty() ? (fs::path(opt.dirs[0]) / "analysis").string() : opt.out;
+
+  // the runs, their scene settings and labels ("<protocol>_<control>", made unique by folder)
+  std::vector<FoundTapRun> found;
+  for (const auto& d : opt.dirs) {
+    auto r = find_tap_runs(d);
+    found.insert(found.end(), r.begin(), r.end());
+  }
+  std::map<std::string, int> uses;
+  auto base_label = [](const FoundTapRun& r) {
+    TapRunInput t;
+    t.protocol = r.protocol;
+    t.control = r.control;
+    return tap_run_label(t);
+  };
+  for (const auto& r : found) ++uses[base_label(r)];
+  const SceneSpec first = parse_scene_file((fs::path(found[0].dir) / "scene.toml").string());
+  TapAnalysisOptions ao;
+  ao.discard = opt.discard >= 0 ? opt.discard : first.output.discard_taps;
+  const double* rect = first.output.test_rect;
+  ao.test_area = (rect[2] - rect[0]) * (rect[3] - rect[1]);
+  ao.reference = opt.reference;
+  ao.reference2 = opt.reference2;
+
+  std::vector<TapRunInput> runs;
+  std::vector<const FoundTapRun*> used;
+  for (const auto& r : found) {
+    const SceneSpec s = parse_scene_file((fs::path(r.dir) / "scene.toml").string());
+    const double* q = s.output.test_rect;
+    if (std::abs((q[2] - q[0]) * (q[3] - q[1]) - ao.test_area) > 1e-12)
+      std::fprintf(stderr, "gransim analyze: warning: %s has a different test rectangle; V_T of "
+                           "%s is used for all\n", r.dir.c_str(), found[0].dir.c_str());
+    std::string label = base_label(r);
+    if (uses[label] > 1) {
+      const fs::path p = fs::weakly_canonical(r.dir);
+      label += "@" + p.parent_path().filename().string() + "/" + p.filename().string();
+    }
+    TapRunInput in = load_tap_run((fs::path(r.dir) / "taps.csv").string(), r.protocol, r.control, label);
+    drop_prepared_state(in.series);
+    const int n = static_cast<int>(in.series.phi.size());
+    if (r.status != "completed")
+      std::fprintf(stderr, "gransim analyze: note: %s is %s; its %d taps so far are used\n",
+                   r.dir.c_str(), r.status.empty() ? "still running or lost (no run.json)" : r.status.c_str(), n);
+    if (n < ao.discard + 20) {
+      std::fprintf(stderr, "gransim analyze: warning: %s skipped: %d taps, needs at least %d "
+                           "(%d discarded + 20)\n", r.dir.c_str(), n, ao.discard + 20, ao.discard);
+      continue;
+    }
+    runs.push_back(std::move(in));
+    used.push_back(&r);
+  }
+  if (runs.empty())
+    throw InputError(opt.dirs[0], "", "no run has enough taps for the statistics (at least " +
+                                          std::to_string(ao.discard + 20) + ")");
+
+  // the statistics and their files
+  const TapAnalysisResult res = run_tap_analysis(runs, ao);
+  write_tap_analysis(res, runs, ao, out);
+  {
+    // runs.csv: where each run came from, for the per-run charts
+    std::ofstream f(out + "/runs.csv");
+    f << "label,dir,protocol,control,status,taps\n";
+    for (std::size_t i = 0; i < runs.size(); ++i)
+      f << csv_field(tap_run_label(runs[i])) << ',' << csv_field(fs::absolute(used[i]->dir).string())
+        << ',' << used[i]->protocol << ',' << used[i]->control << ',' << used[i]->status << ','
+        << runs[i].series.phi.size() << '\n';
+    if (!f) throw InputError(out + "/runs.csv", "", "cannot write");
+  }
+  if (!opt.quiet) {
+    std::printf("%-28s %6s %10s %9s %9s %21s %7s\n", "run", "taps", "phi_mean", "+-(tau)",
+                "sigma", "sigma 95% CI (tau)", "tau");
+    for (const auto& s : res.runs)
+      std::printf("%-28s %6d %10.5f %9.2e %9.2e [%9.2e,%9.2e] %7.2f\n", s.label.c_str(), s.n_used,
+                  s.phi_mean, s.phi_err, s.sigma, s.sigma_ci_tau.lo, s.sigma_ci_tau.hi, s.tau.tau_int);
+    for (const auto& n : res.notes) std::printf("note: %s\n", n.c_str());
+    std::fflush(stdout);  // before the chart scripts write to the same terminal
+  }
+  std::fprintf(stderr, "gransim analyze: %zu runs, analysis in %s\n", runs.size(), out.c_str());
+
+  // the charts (python + matplotlib); without them the CSV and JSON files still stand
+  if (!opt.charts) return kExitOk;
+  const std::string tools = find_tools_dir("charts_tapping.py");
+  if (tools.empty()) {
+    std::fprintf(stderr, "gransim analyze: charts skipped: tools/charts_tapping.py not found next "
+                         "to the executable (set GS_TOOLS_DIR); the CSV and JSON files are in %s\n",
+                 out.c_str());
+    return kExitOk;
+  }
+  const std::string py = python_path();
+  for (const char* script : {"charts_tapping.py", "charts_taprun.py"}) {
+    const std::string path = tools + "/" + script;
+    if (!fs::exists(path)) continue;
+    const std::string err = run_script(py, path, {out});
+    if (!err.empty()) {
+      std::fprintf(stderr, "gransim analyze: charts skipped: %s. The CSV and JSON files are in %s; "
+                           "install python3-matplotlib (Debian) and rerun to draw them\n",
+                   err.c_str(), out.c_str());
+      break;
+    }
+  }
+  return kExitOk;
+}
+
+}  // namespace gs

@@ -1,0 +1,36 @@
+// `gransim analyze`: the tapping study's statistics over run and sweep directories (SPEC 2.6):
+// finds the tapping runs (taps.csv), reads protocol and control value from each run's
+// scene.toml, writes the analysis (gs::analyze_tapping) and draws the charts with
+// tools/charts_tapping.py and tools/charts_taprun.py
+#pragma once
+#include <string>
+#include <vector>
+
+namespace gs {
+
+struct AnalyzeOptions {
+  std::vector<std::string> dirs;  ///< run directories and/or sweep directories
+  std::string out;                ///< analysis folder (default DIR/analysis for one DIR)
+  int discard = -1;               ///< transient taps to drop (−1: the scenes' output.discard_taps)
+  std::string reference;          ///< reference run label (default: the library's choice)
+  std::string reference2;         ///< second reference label
+  bool charts = true;             ///< run the chart scripts
+  bool quiet = false;             ///< no summary table
+};
+
+/// one tapping run found on disk
+struct FoundTapRun {
+  std::string dir;       ///< run directory
+  std::string protocol;  ///< "negative_g" or "rotating_g"
+  double control = 0.0;  ///< g_p (units of g) or f (Hz)
+  std::string status;    ///< run.json status ("" when absent)
+};
+
+/// the tapping runs in a directory: itself when it holds taps.csv, else its subdirectories
+/// that do (sorted by protocol, control, name); throws InputError when there are none
+std::vector<FoundTapRun> find_tap_runs(const std::string& dir);
+
+/// returns the process exit code (0 also when only the charts could not be drawn)
+int analyze_command(const AnalyzeOptions& opt);
+
+}  // namespace gs

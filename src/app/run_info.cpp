@@ -1,0 +1,82 @@
+#include "app/run_info.hpp"
+
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace gs {
+
+namespace fs = std::filesystem;
+
+std::optional<std::string> read_text_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return std::nullopt;
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// the text after `"key": ` at the top level (run.json puts top-level keys at two spaces)
+static std::optional<std::size_t> field_start(const std::string& json, const std::string& key) {
+  const std::string pat = "\n  \"" + key + "\": ";
+  const std::size_t p = json.find(pat);
+  if (p == std::string::npos) return std::nullopt;
+  return p + pat.size();
+}
+
+std::optional<std::string> json_string_field(const std::string& json, const std::string& key) {
+  const auto p = field_start(json, key);
+  if (!p || *p >= json.size() || json[*p] != '"') return std::nullopt;
+  std::string v;
+  for (std::size_t i = *p + 1; i < json.size(); ++i) {
+    if (json[i] == '\\' && i + 1 < json.size()) {
+      v += json[++i];
+      continue;
+    }
+    if (json[i] == '"') return v;
+    v += json[i];
+  }
+  return std::nullopt;
+}
+
+std::optional<double> json_number_field(const std::string& json, const std::string& key) {
+  const auto p = field_start(json, key);
+  if (!p) return std::nullopt;
+  const char* b = json.c_str() + *p;
+  char* e = nullptr;
+  const double v = std::strtod(b, &e);
+  if (e == b) return std::nullopt;
+  return v;
+}
+
+std::string run_status(const std::string& dir) {
+  const auto text = read_text_file(dir + "/run.json");
+  if (!text) return "";
+  return json_string_field(*text, "status").value_or("unknown");
+}
+
+std::string self_executable() {
+  std::error_code ec;
+  std::string p = fs::read_symlink("/proc/self/exe", ec).string();
+  if (ec) return "gransim";
+  // a rebuilt binary replaces the file: the link then reads "<path> (deleted)"
+  const std::string deleted = " (deleted)";
+  if (p.size() > deleted.size() && p.compare(p.size() - deleted.size(), deleted.size(), deleted) == 0)
+    p.resize(p.size() - deleted.size());
+  return p;
+}
+
+std::string find_tools_dir(const std::string& script) {
+  std::error_code ec;
+  if (const char* env = std::getenv("GS_TOOLS_DIR"); env && *env)
+    return fs::exists(fs::path(env) / script, ec) ? std::string(env) : std::string();
+  const fs::path exe_dir = fs::path(self_executable()).parent_path();
+  for (const fs::path& d : {exe_dir / ".." / "tools", exe_dir / "tools"})
+    if (fs::exists(d / script, ec)) return fs::weakly_canonical(d, ec).string();
+  return "";
+}
+
+}  // namespace gs

@@ -1,0 +1,27 @@
+// what a finished (or unfinished) run directory says about itself: its run.json status and
+// fields, read without a JSON library (run.json is written by run_command, one field per line)
+#pragma once
+#include <optional>
+#include <string>
+
+namespace gs {
+
+/// the whole text of a small file; nullopt when it cannot be read
+std::optional<std::string> read_text_file(const std::string& path);
+
+/// the value of a top-level string field "key": "value" of run.json text; nullopt if absent
+std::optional<std::string> json_string_field(const std::string& json, const std::string& key);
+/// the value of a top-level number field "key": 1.5 of run.json text; nullopt if absent
+std::optional<double> json_number_field(const std::string& json, const std::string& key);
+
+/// DIR/run.json's status ("completed", "interrupted", "unstable"); "" when there is no run.json
+std::string run_status(const std::string& dir);
+
+/// the gransim executable of this process (/proc/self/exe)
+std::string self_executable();
+
+/// the folder of helper scripts: $GS_TOOLS_DIR, else <dir of the executable>/../tools, else
+/// <dir of the executable>/tools; "" when none holds `script`
+std::string find_tools_dir(const std::string& script);
+
+}  // namespace gs

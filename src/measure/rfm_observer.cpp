@@ -1,0 +1,326 @@
+// the Random Force Model observer: see rfm_observer.hpp for what it measures and writes
+#include "measure/rfm_observer.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+#include "analysis/rfm_csv.hpp"
+#include "analysis/rfm_freepath.hpp"
+#include "analysis/rfm_tails.hpp"
+#include "core/error.hpp"
+#include "measure/rfm_io.hpp"
+#include "output/run_dir.hpp"
+#include "sim/simulation.hpp"
+
+namespace gs {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// moments with errors from the scatter of `blocks` consecutive block means (snapshots a few
+// collision times apart are correlated; blocks of many snapshots are nearly independent)
+std::vector<double> block_errors(const rfm::MomentSeries& s, int blocks) {
+  const auto& per = s.per_snapshot();
+  std::vector<double> err(static_cast<std::size_t>(s.m_max()), kNaN);
+  const std::size_t len = per.size() / static_cast<std::size_t>(blocks);
+  if (len == 0) return s.error();  // fewer snapshots than blocks: snapshot scatter
+  for (std::size_t k = 0; k < err.size(); ++k) {
+    std::vector<double> series;
+    for (const auto& snap : per) series.push_back(snap[k]);
+    err[k] = rfm::block_average(series, len).error;
+  }
+  return err;
+}
+
+// velocities in the centre-of-mass frame (2D) and their mean
+std::vector<Vec2> com_velocities(const World& w, Vec2& mean) {
+  const std::size_t n = w.size();
+  std::vector<Vec2> v(n);
+  double m = 0.0;
+  mean = {};
+  for (std::size_t i = 0; i < n; ++i) {
+    mean += Vec2{w.s.vx[i], w.s.vy[i]} * w.mass[i];
+    m += w.mass[i];
+  }
+  mean = mean * (1.0 / m);
+  for (std::size_t i = 0; i < n; ++i) v[i] = Vec2{w.s.vx[i], w.s.vy[i]} - mean;
+  return v;
+}
+
+std::string json_number(double v) {
+  if (!std::isfinite(v)) return "null";
+  std::ostringstream s;
+  s.precision(17);
+  s << v;
+  return s.str();
+}
+
+}  // namespace
+
+RfmObserver::RfmObserver(const SceneSpec& scene) : spec_(scene.rfm), scene_(scene) {}
+
+void RfmObserver::start(const Simulation& sim, const std::string& run_dir) {
+  const World& w = sim.world();
+  dir_ = run_dir;
+  n_ = w.size();
+  dim_ = w.box == BoxKind::Ring1D ? 1 : 2;
+  box_ = w.Lx;
+  box_y_ = dim_ == 2 ? w.Ly : 0.0;
+  if (w.box == BoxKind::Walls)
+    throw InputError(scene_.path, "rfm.enabled",
+                     "the RFM measurements need a periodic box or a ring (box.kind = \"periodic\" "
+                     "or \"ring\")");
+  // one disk size: reduced coordinates (T.3.16) and l₀ (T.4.7) assume equal diameters
+  diameter_ = 2.0 * w.max_radius;
+  for (std::size_t i = 0; i < n_; ++i)
+    if (std::abs(2.0 * w.radius[i] - diameter_) > 1e-12 * diameter_)
+      throw InputError(scene_.path, "species",
+                       "the RFM measurements need disks of one size (SPEC 5)");
+  if (dim_ == 1) l_reduced_ = rfm::reduced_length(box_, static_cast<long>(n_), diameter_);
+
+  // the series of every sample, transient included
+  series_ = CsvWriter(dir_ + "/rfm_series.csv",
+                      {"t", "step", "T", "T_x", "T_y", "v_mean_x", "v_mean_y", "contacts", "steady"});
+
+  // structure (2D, square box): S(k) up to |n| ≈ 1.2 L/d (past the first peak), g(R) to L/4
+  structure_ = dim_ == 2 && std::abs(box_ - box_y_) <= 1e-12 * box_;
+  if (structure_) {
+    sk_nmax_ = spec_.sk_nmax > 0 ? spec_.sk_nmax
+                                 : std::clamp(static_cast<int>(1.2 * box_ / diameter_), 4, 96);
+    sk_.emplace(box_, sk_nmax_);
+    gr_.emplace(box_, spec_.gr_rmax > 0 ? spec_.gr_rmax : 0.25 * box_, spec_.gr_bins);
+  }
+  // 1D gaps in units of L′ on log bins (the −ln R view of thesis §3.3.2)
+  if (dim_ == 1) gaps_.emplace(rfm::Binning::log(spec_.gap_min, 1.0, spec_.gap_bins));
+  // free paths on log bins from far below a diameter to the box (1D: to L′)
+  const double lmin = spec_.path_min > 0 ? spec_.path_min : 1e-4 * diameter_;
+  const double lmax = spec_.path_max > 0 ? spec_.path_max : (dim_ == 1 ? l_reduced_ : box_);
+  if (!(lmax > lmin))
+    throw InputError(scene_.path, "rfm.path_max", "free-path range is empty (path_max <= path_min)");
+  paths_ = rfm::free_path_histogram(lmin, lmax, spec_.path_bins);
+
+  last_touch_.assign(n_, std::numeric_limits<std::int64_t>::min() / 2);
+  leave_x_.assign(n_, 0.0);
+  leave_y_.assign(n_, 0.0);
+  in_flight_.assign(n_, 0);
+  steady_ = false;
+  after_step(sim);  // the prepared state is the first sample (step 0)
+}
+
+void RfmObserver::after_step(const Simulation& sim) {
+  const World& w = sim.world();
+  if (!steady_ && w.s.t >= spec_.discard_time - 0.5 * sim.dt()) begin_steady(sim);
+  if (steady_) track_contacts(sim);
+  if (w.s.step % spec_.sample_every == 0) sample(sim);
+}
+
+// the transient is over: fix the velocity histogram range from the current spread
+void RfmObserver::begin_steady(const Simulation& sim) {
+  const World& w = sim.world();
+  steady_ = true;
+  t_steady_ = w.s.t;
+  v_max_ = spec_.v_max;
+  if (v_max_ <= 0) {
+    Vec2 mean;
+    const auto v = com_velocities(w, mean);
+    double s2 = 0.0;
+    for (const Vec2& u : v) s2 += dim_ == 1 ? u.x * u.x : 0.5 * dot(u, u);
+    const double sigma = std::sqrt(s2 / static_cast<double>(v.size()));
+    v_max_ = sigma > 0 ? 12.0 * sigma : 1.0;
+  }
+  vel_ = rfm::velocity_histogram(v_max_, spec_.v_bins);
+  post_ = rfm::velocity_histogram(v_max_, spec_.v_bins);
+}
+
+// contact counts from the contact keys, O(contacts): leaving (count → 0) starts a free path
+// and records the post-collision velocity; touching again (count ≥ 1) ends the path (T.4.18)
+void RfmObserver::track_contacts(const Simulation& sim) {
+  const World& w = sim.world();
+  const std::int64_t step = w.s.step;
+  const auto n = static_cast<std::uint32_t>(n_);
+  touching_now_.clear();
+  auto touch = [&](std::uint32_t i) {
+    if (last_touch_[i] == step) return;
+    if (last_touch_[i] != step - 1 && in_flight_[i]) {
+      const Vec2 p = w.unwrapped(i);
+      const double dx = p.x - leave_x_[i], dy = dim_ == 2 ? p.y - leave_y_[i] : 0.0;
+      paths_.add(std::sqrt(dx * dx + dy * dy));
+      in_flight_[i] = 0;
+    }
+    last_touch_[i] = step;
+    touching_now_.push_back(i);
+  };
+  for (PairKey k : sim.contacts().keys) {
+    touch(key_i(k));
+    if (key_j(k) < n) touch(key_j(k));  // walls (j ≥ N) are not particles
+  }
+  Vec2 mean{};
+  bool have_mean = false;
+  for (std::uint32_t i : touching_prev_) {
+    if (last_touch_[i] == step) continue;
+    // i left its last contact this step
+    const Vec2 p = w.unwrapped(i);
+    leave_x_[i] = p.x;
+    leave_y_[i] = p.y;
+    in_flight_[i] = 1;
+    ++leaves_;
+    if (!have_mean) {  // the centre-of-mass velocity, once per step with leavers
+      double m = 0.0;
+      for (std::size_t q = 0; q < n_; ++q) {
+        mean += Vec2{w.s.vx[q], w.s.vy[q]} * w.mass[q];
+        m += w.mass[q];
+      }
+      mean = mean * (1.0 / m);
+      have_mean = true;
+    }
+    post_.add(w.s.vx[i] - mean.x);
+    if (dim_ == 2) post_.add(w.s.vy[i] - mean.y);
+  }
+  touching_prev_.swap(touching_now_);
+}
+
+// one sample: the series row always; the statistics once steady
+void RfmObserver::sample(const Simulation& sim) {
+  const World& w = sim.world();
+  Vec2 mean;
+  const std::vector<Vec2> v = com_velocities(w, mean);
+  double tx = 0.0, ty = 0.0;
+  for (const Vec2& u : v) {
+    tx += u.x * u.x;
+    ty += u.y * u.y;
+  }
+  tx /= static_cast<double>(n_);
+  ty = dim_ == 2 ? ty / static_cast<double>(n_) : 0.0;
+  const double temp = tx + ty;  // T = (1/N) Σ |v − ⟨v⟩|² (T.2.19)
+  series_.row({w.s.t, static_cast<double>(w.s.step), temp, tx, ty, mean.x, mean.y,
+               static_cast<double>(sim.contacts().keys.size()), steady_ ? 1.0 : 0.0});
+  if (!steady_) return;
+
+  times_.push_back(w.s.t);
+  temps_.push_back(temp);
+  if (dim_ == 2) {
+    moments_.add_speeds(v);
+    comp_moments_.add_components(v);
+    rfm::add_components(vel_, v);
+    if (structure_) {
+      // positions brought into the cell (g(R) uses the minimum image of wrapped points)
+      std::vector<Vec2> r(n_);
+      for (std::size_t i = 0; i < n_; ++i)
+        r[i] = {w.s.x[i] - box_ * std::floor(w.s.x[i] / box_),
+                w.s.y[i] - box_ * std::floor(w.s.y[i] / box_)};
+      sk_->add_snapshot(r);
+      gr_->add_snapshot(r);
+    }
+  } else {
+    std::vector<double> vx(n_);
+    for (std::size_t i = 0; i < n_; ++i) vx[i] = v[i].x;
+    moments_.add_snapshot(vx);
+    rfm::add_values(vel_, vx);
+    // reduced coordinates (T.3.16) in units of L′, particles in ring order
+    std::vector<double> red = rfm::reduced_coordinates(w.s.x, box_, diameter_);
+    for (double& r : red) r /= l_reduced_;
+    gaps_->add_snapshot(red, 1.0);
+  }
+}
+
+void RfmObserver::finish(const Simulation& sim) {
+  series_ = CsvWriter();  // flushed row by row; close
+  namespace fs = std::filesystem;
+  const fs::path d(dir_);
+  // T(t) with block means (T.2.20)
+  if (!temps_.empty()) {
+    const std::size_t len = std::max<std::size_t>(1, temps_.size() / static_cast<std::size_t>(spec_.blocks));
+    const rfm::BlockAverage b = rfm::block_average(temps_, len);
+    rfm::write_temperature_csv(d / "temperature.csv", times_, temps_, &b);
+  } else {
+    rfm::write_temperature_csv(d / "temperature.csv", times_, temps_);
+  }
+  // velocity moments m = 1…12 with block errors
+  rfm::write_moments_csv(d / "moments.csv", moments_.mean(), block_errors(moments_, spec_.blocks));
+  if (dim_ == 2)
+    rfm::write_moments_csv(d / "moments_components.csv", comp_moments_.mean(),
+                           block_errors(comp_moments_, spec_.blocks));
+  // histograms: raw counts for the analysis, and chart-ready densities
+  if (steady_) {
+    rfm::write_histogram_raw(d / "hist_velocity.csv", vel_);
+    rfm::write_histogram_raw(d / "hist_postcollision.csv", post_);
+    rfm::write_velocity_csv(d / "velocity.csv", vel_);
+  }
+  rfm::write_histogram_raw(d / "hist_freepath.csv", paths_);
+  rfm::write_freepath_csv(d / "freepath.csv", paths_);
+  // structure
+  if (structure_ && sk_->snapshots() > 0) {
+    const auto shells = sk_->shells();
+    rfm::write_sk_csv(d / "sk.csv", shells);
+    rfm::write_gr_csv(d / "gr.csv", gr_->bins());
+  }
+  if (gaps_ && gaps_->moments().snapshots() > 0) {
+    rfm::write_gh_csv(d / "gh.csv", *gaps_);
+    rfm::write_moments_csv(d / "gap_moments.csv", gaps_->moments().mean(),
+                           block_errors(gaps_->moments(), spec_.blocks));
+  }
+  write_json(sim);
+}
+
+// rfm.json: the system and a summary, one top-level field per line (app/run_info.hpp reads it)
+void RfmObserver::write_json(const Simulation& sim) const {
+  const World& w = sim.world();
+  const MaterialSpec& mat = w.materials[w.species[0].material];
+  double t_mean = kNaN, t_err = kNaN;
+  if (!temps_.empty()) {
+    const std::size_t len = std::max<std::size_t>(1, temps_.size() / static_cast<std::size_t>(spec_.blocks));
+    const rfm::BlockAverage b = rfm::block_average(temps_, len);
+    t_mean = b.mean;
+    t_err = b.block_means.size() >= 2 ? b.error : kNaN;
+  }
+  const double area = dim_ == 2 ? box_ * box_y_ : 0.0;
+  const double phi = dim_ == 2 ? static_cast<double>(n_) * M_PI * diameter_ * diameter_ / 4.0 / area
+                               : static_cast<double>(n_) * diameter_ / box_;
+  std::vector<std::pair<std::string, double>> f = {
+      {"dimension", dim_},
+      {"particles", static_cast<double>(n_)},
+      {"box", box_},
+      {"box_height", box_y_},
+      {"reduced_length", dim_ == 1 ? l_reduced_ : kNaN},
+      {"diameter", diameter_},
+      {"mass", w.mass.empty() ? kNaN : w.mass[0]},
+      {"phi", phi},
+      {"eps_n", mat.eps_n},
+      {"eps_t", mat.eps_t},
+      {"ks", mat.ks},
+      {"D", w.scene.drive.D},
+      {"dt", sim.dt()},
+      {"sample_every", spec_.sample_every},
+      {"discard_time", spec_.discard_time},
+      {"t_steady", steady_ ? t_steady_ : kNaN},
+      {"t_end", w.s.t},
+      {"samples", static_cast<double>(temps_.size())},
+      {"T_mean", t_mean},
+      {"T_err", t_err},
+      {"v_max", v_max_},
+      {"velocity_samples", vel_.total()},
+      {"leave_events", static_cast<double>(leaves_)},
+      {"free_paths", paths_.total()},
+      {"sk_nmax", sk_nmax_},
+      {"structure", structure_ ? 1.0 : 0.0},
+  };
+  std::ostringstream js;
+  std::string name;
+  for (char c : w.scene.name)
+    if (c != '"' && c != '\\' && static_cast<unsigned char>(c) >= 0x20) name += c;
+  js << "{\n  \"model\": \"rfm\",\n  \"scene\": \"" << name << "\"";
+  for (const auto& [k, v] : f) js << ",\n  \"" << k << "\": " << json_number(v);
+  js << "\n}\n";
+  write_file_atomic(dir_ + "/rfm.json", js.str());
+}
+
+std::unique_ptr<Observer> make_rfm_observer(const SceneSpec& scene) {
+  if (!scene.rfm.enabled) return nullptr;
+  return std::make_unique<RfmObserver>(scene);
+}
+
+}  // namespace gs
