@@ -55,6 +55,8 @@ endif()
 if(TARGET gs_movie)
   target_link_libraries(gs_app PUBLIC gs_movie)
 endif()
+# OpenMP: parallel force loops; results are bitwise independent of the thread count
 if(OpenMP_CXX_FOUND)
+  target_link_libraries(gs_force PUBLIC OpenMP::OpenMP_CXX)
   target_link_libraries(gs_sim PUBLIC OpenMP::OpenMP_CXX)
 endif()

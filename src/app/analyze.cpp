@@ -15,6 +15,7 @@
 #include <set>
 
 #include "analysis/tap_analysis.hpp"
+#include "app/rfm_analyze.hpp"
 #include "app/run_info.hpp"
 #include "core/error.hpp"
 #include "drive/schedule.hpp"
@@ -117,6 +118,9 @@ int analyze_command(const AnalyzeOptions& opt) {
     throw InputError("", "--out", "several directories are analysed together into one folder: "
                                   "give it with --out");
   const std::string out = opt.out.empty() ? (fs::path(opt.dirs[0]) / "analysis").string() : opt.out;
+  // Random Force Model runs (DIR/rfm.json or DIR/*/rfm.json): app/rfm_analyze.cpp
+  if (std::all_of(opt.dirs.begin(), opt.dirs.end(), [](const std::string& d) { return is_rfm_run(d); }))
+    return analyze_rfm_runs(opt.dirs, out, opt.charts, opt.quiet), kExitOk;
 
   // the runs, their scene settings and labels ("<protocol>_<control>", made unique by folder)
   std::vector<FoundTapRun> found;

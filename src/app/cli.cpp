@@ -6,6 +6,7 @@
 
 #include "app/analyze.hpp"
 #include "app/render_cmd.hpp"
+#include "app/rfm_models.hpp"
 #include "app/run.hpp"
 #include "app/sweep.hpp"
 #include "app/version.hpp"
@@ -59,6 +60,9 @@ int run_cli(int argc, char** argv) {
 
   // render and movie (app/render_cmd.cpp)
   auto render_cmds = add_render_commands(app);
+
+  // model: the thesis' auxiliary models, run from their own callbacks (app/rfm_models.cpp)
+  add_model_command(app);
 
   try {
     app.parse(argc, argv);

@@ -272,10 +272,11 @@ int movie_command(const MovieCommandOptions& o) {
     progress.finish("");
   }
   if (!enc.is_open()) throw InputError(o.input, "", "no frames to encode");
+  const std::string codec = enc.codec_name();
   enc.close();
   std::printf("wrote %s: %d frames, %dx%d, %.2f s at %d fps (%s, from %s)\n", out.c_str(),
               enc.frames(), w, h, enc.frames() / static_cast<double>(mo.fps), mo.fps,
-              enc.codec_name().c_str(), from.c_str());
+              codec.c_str(), from.c_str());
   return kExitOk;
 #endif
 }

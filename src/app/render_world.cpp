@@ -134,7 +134,7 @@ FrameSpec frame_spec(const RenderSpec& r) {
     f.extra_label = "contacts";
   } else if (r.color_by == "pressure") {
     f.color_by = ColorBy::extra;
-    f.extra_label = "pressure";
+    f.extra_label = "p";
     f.extra_unit = "N/m";
   } else {
     f.color_by = parse_color_by(r.color_by);

@@ -47,7 +47,7 @@ bool ProtocolClock::after_step(World& w) {
   // end the relaxation: t becomes half a step before the start of the next period
   const double T = drive_period(d);
   const double origin = t - static_cast<double>(p.tap + 1) * T + 0.5 * dt_;
-  saved_ += origin - d.clock_origin;
+  saved_ += d.clock_origin - origin;  // the protocol time t − origin jumps forward by this
   d.clock_origin = origin;
   ++early_ends_;
   rest_since_ = -1.0;

@@ -1,6 +1,7 @@
 // what applies a tapping protocol: the protocol clock. It starts the schedule after the
 // settling time and ends a relaxation early once the pile is at rest (SPEC 2.4) by moving the
-// clock origin forward, so the schedules stay pure functions of (drive, t).
+// clock origin back (the protocol time t − origin jumps to the next excitation), so the
+// schedules stay pure functions of (drive, t).
 #pragma once
 #include <cstdint>
 
@@ -21,8 +22,8 @@ class ProtocolClock {
 
   /// after a step: early rest (off unless drive.early_rest). While relaxing, once the largest
   /// speed stays below drive.rest_speed and the kinetic energy below drive.rest_energy for
-  /// drive.rest_hold, the relaxation ends: the origin moves so that the next step begins the
-  /// next excitation. Returns true when it did so now.
+  /// drive.rest_hold, the relaxation ends: the origin moves back so that the next step begins
+  /// the next excitation (t itself is continuous). Returns true when it did so now.
   bool after_step(World& w);
 
   /// the number of full taps done: after this step the next one would start tap `taps`

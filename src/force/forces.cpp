@@ -75,19 +75,27 @@ ForceStats ContactModel::evaluate(const World& w, const std::vector<PairKey>& ca
   return st;
 }
 
-// Model P (SPEC 2.2): overlap-area normal force with Cundall–Strack friction
+// Model P (SPEC 2.2): overlap-area normal force with Cundall–Strack friction. The pairs are
+// evaluated in parallel into a per-candidate array; forces are then summed serially in key
+// order, so the result is bitwise the same for any number of threads.
 ForceStats ContactModel::evaluate_polygons(const World& w, const std::vector<PairKey>& cand,
                                            ContactSet& cs, ForceBuffer& f, double dt) {
   ForceStats st;
   const std::size_t n = w.size();
   const std::uint32_t N = static_cast<std::uint32_t>(n);
   const std::size_t stride = nsp_ + 1;
+  const std::int64_t ncand = static_cast<std::int64_t>(cand.size());
   // world-frame polygons once per step
   shapes_.resize(n);
-  for (std::size_t i = 0; i < n; ++i) shapes_[i] = w.shape(i);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < static_cast<std::int64_t>(n); ++i) shapes_[i] = w.shape(i);
+  pair_out_.resize(cand.size());
 
-  std::size_t old = 0;  // merge-join cursor into last step's sorted contacts
-  for (PairKey key : cand) {
+#pragma omp parallel for schedule(dynamic, 64)
+  for (std::int64_t k = 0; k < ncand; ++k) {
+    const PairKey key = cand[k];
+    PairResult& out = pair_out_[k];
+    out.touching = false;
     const std::uint32_t i = key_i(key), j = key_j(key);
     const bool wall = j >= N;
     const Vec2 xi{w.s.x[i], w.s.y[i]};
@@ -102,16 +110,16 @@ ForceStats ContactModel::evaluate_polygons(const World& w, const std::vector<Pai
         g = polygon_polygon(bi, BodyView{xj, w.radius[j], &shapes_[j]});
       } else {  // a periodic image: shift a copy of j's polygon
         Poly pj = shapes_[j];
-        for (int k = 0; k < pj.n; ++k) pj.v[k] += xj - Vec2{w.s.x[j], w.s.y[j]};
+        for (int v = 0; v < pj.n; ++v) pj.v[v] += xj - Vec2{w.s.x[j], w.s.y[j]};
         g = polygon_polygon(bi, BodyView{xj, w.radius[j], &pj});
       }
     }
     if (!g.touching) continue;
 
-    // the contact's history, if it touched last step
-    while (old < cs.keys.size() && cs.keys[old] < key) ++old;
+    // the contact's history, if it touched last step (binary search in last step's keys)
     ContactState state;
-    if (old < cs.keys.size() && cs.keys[old] == key) state = cs.state[old];
+    const auto it = std::lower_bound(cs.keys.begin(), cs.keys.end(), key);
+    if (it != cs.keys.end() && *it == key) state = cs.state[it - cs.keys.begin()];
 
     // geometry of the pair (P.29–P.33): l, m⊥, m∥
     const std::size_t si = w.sp[i];
@@ -145,31 +153,40 @@ ForceStats ContactModel::evaluate_polygons(const World& w, const std::vector<Pai
     // tangential force (P.35–P.36); the force on i opposes its sliding: −F∥·t
     const double ft = law::cundall_strack(p, state.spring, vt, fn, m_par, dt);
 
-    // accumulate: j gets +fn·n + ft·t, i the opposite; torques about each centre
-    const Vec2 F = g.n * fn + t * ft;
+    // the same dashpot spread along the contact line: its moment about s damps relative
+    // rotation, ∫ x·(γ√(E m⊥)/l)·ω_rel·x dx = γ√(E m⊥)·L³/(12 l)·ω_rel (only while pressing)
+    double couple = 0.0;
+    if (rocking_ && fn > 0.0) {
+      const double w_rel = w.s.w[i] - (wall ? 0.0 : w.s.w[j]);
+      couple = p.gamma * std::sqrt(p.E * m_perp) * g.chord * g.chord * g.chord / (12.0 * l) * w_rel;
+    }
+    out = {true, g.degenerate, g.s, g.n, xj, fn, ft, couple, g.overlap, h, state};
+  }
+
+  // accumulate in key order: j gets +fn·n + ft·t, i the opposite; torques about each centre
+  for (std::int64_t k = 0; k < ncand; ++k) {
+    const PairResult& r = pair_out_[k];
+    if (!r.touching) continue;
+    const PairKey key = cand[k];
+    const std::uint32_t i = key_i(key), j = key_j(key);
+    const bool wall = j >= N;
+    const Vec2 F = r.n * r.fn + perp(r.n) * r.ft;
+    const Vec2 xi{w.s.x[i], w.s.y[i]};
     f.fx[i] -= F.x;
     f.fy[i] -= F.y;
-    f.tq[i] -= cross(ri_s, F);
+    f.tq[i] -= cross(r.s - xi, F) + r.couple;
     if (!wall) {
       f.fx[j] += F.x;
       f.fy[j] += F.y;
-      f.tq[j] += cross(g.s - xj, F);
-    }
-    // the same dashpot spread along the contact line: its moment about s damps relative
-    // rotation, ∫ x·(γ√(E m⊥)/l)·ω_rel·x dx = γ√(E m⊥)·L³/(12 l)·ω_rel (only while pressing)
-    if (rocking_ && fn > 0.0) {
-      const double w_rel = w.s.w[i] - (wall ? 0.0 : w.s.w[j]);
-      const double couple = p.gamma * std::sqrt(p.E * m_perp) * g.chord * g.chord * g.chord /
-                            (12.0 * l) * w_rel;
-      f.tq[i] -= couple;
-      if (!wall) f.tq[j] += couple;
+      f.tq[j] += cross(r.s - r.xj, F) + r.couple;
     }
     new_keys_.push_back(key);
-    new_state_.push_back(state);
-    new_records_.push_back({key, g.s, g.n, fn, ft, g.overlap});
-    if (g.degenerate) ++st.degenerate;
-    st.max_overlap = std::max(st.max_overlap, h);
-    st.max_overlap_rel = std::max(st.max_overlap_rel, h / (wall ? ri : std::min(ri, w.radius[j])));
+    new_state_.push_back(r.state);
+    new_records_.push_back({key, r.s, r.n, r.fn, r.ft, r.overlap});
+    if (r.degenerate) ++st.degenerate;
+    const double ri = w.radius[i];
+    st.max_overlap = std::max(st.max_overlap, r.h);
+    st.max_overlap_rel = std::max(st.max_overlap_rel, r.h / (wall ? ri : std::min(ri, w.radius[j])));
   }
   return st;
 }

@@ -50,6 +50,15 @@ class ContactModel {
   bool rocking_ = true;
   double min_contact_time_ = 0.0;
   std::vector<Poly> shapes_;  ///< world-frame polygons of this step
+  /// one candidate pair's outcome, computed in parallel and summed in key order
+  struct PairResult {
+    bool touching = false;
+    bool degenerate = false;
+    Vec2 s, n, xj;        ///< contact point, normal, j's (image) centre
+    double fn = 0, ft = 0, couple = 0, overlap = 0, h = 0;
+    ContactState state;
+  };
+  std::vector<PairResult> pair_out_;
   std::vector<PairKey> new_keys_;
   std::vector<ContactState> new_state_;
   std::vector<ContactRecord> new_records_;

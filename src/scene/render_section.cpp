@@ -104,8 +104,8 @@ void read_render(const Ctx& ctx, const TableReader& top, SceneSpec& s) {
                  "force_chains", "gravity_arrow", "test_rect", "clock", "title", "crf", "preset",
                  "renderer", "trajectory_every"});
   RenderSpec& o = s.render;
-  // outputs: a [render] section switches recording on unless it says otherwise
-  o.enabled = r.boolean("enabled", t != nullptr);
+  // outputs: nothing is recorded unless asked (a --set render.* must not start a movie)
+  o.enabled = r.boolean("enabled", false);
   o.frames = r.boolean("frames", o.frames);
   o.movie = r.boolean("movie", o.movie);
   if (o.enabled && !o.frames && !o.movie)

@@ -127,7 +127,7 @@ struct DriveSpec {
   int taps = 0;          ///< number of taps (0 = run for duration)
   /// run-time protocol clock, not a scene key: the schedules run on t − clock_origin and give
   /// plain gravity before it (settling). The run sets it after preparation.settle_time and
-  /// moves it forward when a relaxation ends early (drive/protocol.hpp), s
+  /// moves it back when a relaxation ends early (drive/protocol.hpp), s
   double clock_origin = 0.0;
 };
 
@@ -155,7 +155,7 @@ enum class RenderSchedule : std::uint8_t {
 /// [render]: frames and movies recorded while the scene runs, and the trajectory export
 /// (parsed in scene/render_section.cpp; names checked against render/ by tests/app)
 struct RenderSpec {
-  bool enabled = false;          ///< record frames/movie (default: true when [render] is present)
+  bool enabled = false;          ///< record frames and/or a movie while the scene runs
   bool frames = false;           ///< write DIR/frames/frame_NNNNNN.png
   bool movie = true;             ///< write DIR/movie.mp4 (H.264, in-process)
   RenderSchedule schedule = RenderSchedule::Time;

@@ -134,13 +134,16 @@ TEST(SceneRender, RoundTripThroughTheWrittenScene) {
   expect_same_render(d.render, parse_scene_string(scene_to_toml(d), "rt.toml").render);
 }
 
-TEST(SceneRender, DefaultsAndTheSectionSwitchesRecordingOn) {
+TEST(SceneRender, Defaults) {
   // no section: nothing recorded
   const RenderSpec none = parse_scene_string(kBase, "d.toml").render;
   EXPECT_FALSE(none.enabled);
   EXPECT_EQ(none.trajectory_every, 0);
-  // an empty section: a 720p movie at 30 fps in real time, coloured by speed
-  const RenderSpec r = parse_scene_string(kBase + "[render]\n", "d.toml").render;
+  // an empty section records nothing either (a --set render.* creates one)
+  EXPECT_FALSE(parse_scene_string(kBase + "[render]\n", "d.toml").render.enabled);
+  // enabled: a 720p movie at 30 fps in real time, coloured by speed
+  const RenderSpec r =
+      parse_scene_string(kBase + "[render]\nenabled = true\n", "d.toml").render;
   EXPECT_TRUE(r.enabled);
   EXPECT_TRUE(r.movie);
   EXPECT_FALSE(r.frames);

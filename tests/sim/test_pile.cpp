@@ -5,6 +5,10 @@
 #include <cstdio>
 #include <cstring>
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 #include "measure/packing.hpp"
 #include "test_world.hpp"
 
@@ -62,6 +66,23 @@ TEST(Determinism, SameSceneSameHashEitherBroadPhase) {
   // contacts are sorted by (i, j, image) before forces: the broad phase cannot matter
   EXPECT_EQ(a, c);
 }
+
+#ifdef _OPENMP
+// forces are computed per pair in parallel and summed in key order: the thread count cannot
+// change a single bit of the trajectory
+TEST(Determinism, SameHashForOneAndTwoThreads) {
+  SceneSpec s = build::decagon_pile(60, 0.12, 0.6, 9);
+  auto run = [&](int threads) {
+    const int before = omp_get_max_threads();
+    omp_set_num_threads(threads);
+    testing::TestWorld tw(s);
+    tw.start().run(2000);
+    omp_set_num_threads(before);
+    return state_hash(tw.world());
+  };
+  EXPECT_EQ(run(1), run(2));
+}
+#endif
 
 }  // namespace
 }  // namespace gs
