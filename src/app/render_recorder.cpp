@@ -96,11 +96,20 @@ class FrameRecorder final : public Observer {
   bool due(const Simulation& sim) {
     const World& w = sim.world();
     const double t = w.s.t, half = 0.5 * sim.dt();
+    // the protocol phase: does this step begin an excitation?
+    const DriveSpec& d = w.scene.drive;
+    const DrivePhase now = drive_phase(d, t);
+    const bool begins = is_tapping(d) && !now.settling && now.exciting &&
+                        (prev_.settling || !prev_.exciting || prev_.tap != now.tap);
+    prev_ = now;
     switch (spec_.schedule) {
       case RenderSchedule::Time: {
         // frame k at start + k/(fps·slowmo); several inside one step give one frame
         const double interval = 1.0 / (spec_.fps * spec_.slowmo);
         auto at = [&](long k) { return spec_.start + static_cast<double>(k) * interval; };
+        // a pulse shorter than the frame interval gets a frame of its own (else the movie
+        // might never show it)
+        if (begins && t + half >= spec_.start && excitation_length(d) < interval) return true;
         if (t + half < at(next_k_)) return false;
         while (at(next_k_) <= t + half) ++next_k_;
         return true;
@@ -110,11 +119,6 @@ class FrameRecorder final : public Observer {
       case RenderSchedule::Taps:
       case RenderSchedule::Rest: {
         // the first step of an excitation, and the last step before the next one
-        const DriveSpec& d = w.scene.drive;
-        const DrivePhase now = drive_phase(d, t);
-        const bool begins = !now.settling && now.exciting &&
-                            (prev_.settling || !prev_.exciting || prev_.tap != now.tap);
-        prev_ = now;
         if (t + half < spec_.start) return false;
         const bool rest = excitation_starts_next(d, t, sim.dt());
         return rest || (spec_.schedule == RenderSchedule::Taps && begins);

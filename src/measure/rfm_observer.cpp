@@ -206,7 +206,7 @@ void RfmObserver::sample(const Simulation& sim) {
     moments_.add_speeds(v);
     comp_moments_.add_components(v);
     rfm::add_components(vel_, v);
-    if (structure_) {
+    if (structure_ && (temps_.size() - 1) % static_cast<std::size_t>(spec_.structure_every) == 0) {
       // positions brought into the cell (g(R) uses the minimum image of wrapped points)
       std::vector<Vec2> r(n_);
       for (std::size_t i = 0; i < n_; ++i)
@@ -306,6 +306,7 @@ void RfmObserver::write_json(const Simulation& sim) const {
       {"leave_events", static_cast<double>(leaves_)},
       {"free_paths", paths_.total()},
       {"sk_nmax", sk_nmax_},
+      {"structure_snapshots", sk_ ? static_cast<double>(sk_->snapshots()) : 0.0},
       {"structure", structure_ ? 1.0 : 0.0},
   };
   std::ostringstream js;

@@ -6,7 +6,8 @@
 //     m = 1…12, T.3.11; 2D also moments_components.csv), hist_velocity.csv (one Cartesian
 //     component, x and y pooled, T.A.3), hist_postcollision.csv (velocities of particles just
 //     leaving their last contact), hist_freepath.csv (T.4.18, log bins), and
-//     2D: sk.csv (T.4.2 on the box k-grid, shells of equal |k|), gr.csv (T.4.10);
+//     2D: sk.csv (T.4.2 on the box k-grid, shells of equal |k|), gr.csv (T.4.10), every
+//     rfm.structure_every-th sample;
 //     1D: gh.csv (G_h(R), h = 1, 2, 4, 8 of R/L′, T.3.24), gap_moments.csv (⟨(R/L′)^m⟩, T.3.18);
 //   rfm.json: the system (N, L, L′, d, M, ε, D, Δt, φ) and the run's summary.
 // Contacts are followed every step from sim.contacts().keys at O(contacts) cost: a particle

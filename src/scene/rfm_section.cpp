@@ -13,13 +13,13 @@ void read_rfm(const Ctx& ctx, const TableReader& top, SceneSpec& s) {
   const toml::table* t = sub_table(top, "rfm");
   static const toml::table empty;
   TableReader r(ctx, t ? *t : empty, "rfm",
-                {"enabled", "sample_every", "discard_time", "blocks", "v_max", "v_bins", "sk_nmax",
+                {"enabled", "sample_every", "discard_time", "blocks", "v_max", "v_bins", "structure_every", "sk_nmax",
                  "gr_bins", "gr_rmax", "path_bins", "path_min", "path_max", "gap_bins",
                  "gap_min"});
   RfmSpec& o = s.rfm;
   o.given = t != nullptr;
-  // on by default for the random force; a freely cooling gas can ask for it
-  o.enabled = r.boolean("enabled", s.drive.kind == DriveKind::RandomForce);
+  // on for the random force and whenever the section is there (a freely cooling gas)
+  o.enabled = r.boolean("enabled", o.given || s.drive.kind == DriveKind::RandomForce);
   // sampling: every K steps once the transient is over
   o.sample_every = static_cast<int>(r.integer("sample_every", o.sample_every, 1, INT_MAX));
   o.discard_time = r.number("discard_time", o.discard_time, Range::non_negative());
@@ -28,6 +28,7 @@ void read_rfm(const Ctx& ctx, const TableReader& top, SceneSpec& s) {
   o.v_max = r.number("v_max", o.v_max, Range::non_negative());
   o.v_bins = static_cast<int>(r.integer("v_bins", o.v_bins, 4, 1000000));
   // structure (2D): S(k) cutoff and g(R) bins
+  o.structure_every = static_cast<int>(r.integer("structure_every", o.structure_every, 1, INT_MAX));
   o.sk_nmax = static_cast<int>(r.integer("sk_nmax", o.sk_nmax, 0, 1024));
   o.gr_bins = static_cast<int>(r.integer("gr_bins", o.gr_bins, 1, 1000000));
   o.gr_rmax = r.number("gr_rmax", o.gr_rmax, Range::non_negative());
@@ -53,6 +54,7 @@ std::vector<std::pair<std::string, std::string>> rfm_entries(const RfmSpec& o) {
       {"blocks", std::to_string(o.blocks)},
       {"v_max", format_double(o.v_max)},
       {"v_bins", std::to_string(o.v_bins)},
+      {"structure_every", std::to_string(o.structure_every)},
       {"sk_nmax", std::to_string(o.sk_nmax)},
       {"gr_bins", std::to_string(o.gr_bins)},
       {"gr_rmax", format_double(o.gr_rmax)},

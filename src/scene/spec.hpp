@@ -186,12 +186,13 @@ struct RenderSpec {
 /// sampling interval (parsed in scene/rfm_section.cpp; measure/rfm_observer.hpp; docs/rfm.md)
 struct RfmSpec {
   bool given = false;          ///< the scene has an [rfm] section (not a key)
-  bool enabled = false;        ///< measure (default: true for drive.kind = "random_force")
+  bool enabled = false;        ///< measure (default: true with [rfm] or drive.kind = "random_force")
   int sample_every = 1000;     ///< steps between samples
   double discard_time = 1.0;   ///< transient left out of every statistic, s
   int blocks = 10;             ///< blocks of the T.2.20 averages and of the moment errors
   double v_max = 0.0;          ///< velocity histogram half-range, m/s (0: 12 σ at the first sample)
   int v_bins = 400;            ///< velocity histogram bins (one Cartesian component)
+  int structure_every = 10;    ///< samples between S(k) and g(R) snapshots (the costly ones)
   int sk_nmax = 0;             ///< S(k) cutoff |n| = |k|L/2π (0: 1.2 L/d, at most 96)
   int gr_bins = 200;           ///< g(R) bins on [0, gr_rmax)
   double gr_rmax = 0.0;        ///< g(R) range, m (0: L/4)
