@@ -89,7 +89,8 @@ void BM_Rfm1DRingStep(benchmark::State& st) {
     if (obs) obs->after_step(*sim);
   }
   rate(st, *sim);
-  st.SetLabel(std::string(sim->broadphase().name()) + (st.range(0) ? ", with RFM observer" : ", bare"));
+  st.SetLabel(std::string(sim->broadphase().name()) +
+              (st.range(0) ? ", with RFM observer" : ", bare"));
   if (obs) std::filesystem::remove_all(dir);
 }
 BENCHMARK(BM_Rfm1DRingStep)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond)->MinTime(3.0);

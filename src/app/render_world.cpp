@@ -177,6 +177,14 @@ WorldFrame world_frame(const World& w, const ContactSet* contacts, const FrameIn
   ov.title = r.title;
   ov.time = info.time;
   ov.show_time = r.clock;
+  // strong slow motion: the time in ms (the header's "t = 0.005 s" would barely move), and
+  // the factor
+  if (r.clock && r.schedule == RenderSchedule::Time && r.slowmo >= 20.0) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "t = %.3f ms    slow motion %g×", 1e3 * info.time, r.slowmo);
+    ov.show_time = false;
+    ov.lines.push_back(buf);
+  }
   if (r.clock && info.tap) {
     ov.has_tap = true;
     ov.tap = static_cast<int>(*info.tap);

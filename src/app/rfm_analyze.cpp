@@ -42,7 +42,7 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // one RFM run directory and what its rfm.json says
 struct RfmRun {
   fs::path dir;
-  std::string label;            // unique name of its analysis folder
+  std::string label;  // unique name of its analysis folder
   std::map<std::string, double> info;
   double get(const std::string& k) const {
     auto it = info.find(k);
@@ -56,10 +56,32 @@ RfmRun read_run(const fs::path& dir) {
   r.dir = dir;
   const auto text = read_text_file((dir / "rfm.json").string());
   if (!text) throw InputError((dir / "rfm.json").string(), "", "cannot be read");
-  for (const char* k : {"dimension", "particles", "box", "box_height", "reduced_length", "diameter",
-                        "mass", "phi", "eps_n", "eps_t", "ks", "D", "dt", "sample_every",
-                        "discard_time", "t_steady", "t_end", "samples", "T_mean", "T_err", "v_max",
-                        "velocity_samples", "leave_events", "free_paths", "sk_nmax", "structure"})
+  for (const char* k : {"dimension",
+                        "particles",
+                        "box",
+                        "box_height",
+                        "reduced_length",
+                        "diameter",
+                        "mass",
+                        "phi",
+                        "eps_n",
+                        "eps_t",
+                        "ks",
+                        "D",
+                        "dt",
+                        "sample_every",
+                        "discard_time",
+                        "t_steady",
+                        "t_end",
+                        "samples",
+                        "T_mean",
+                        "T_err",
+                        "v_max",
+                        "velocity_samples",
+                        "leave_events",
+                        "free_paths",
+                        "sk_nmax",
+                        "structure"})
     if (auto v = json_number_field(*text, k)) r.info[k] = *v;
   if (!r.info.count("dimension") || !r.info.count("particles"))
     throw InputError((dir / "rfm.json").string(), "dimension", "not an RFM observer file");
@@ -124,7 +146,8 @@ void analyze_velocities(const fs::path& in, const fs::path& out, RunResult& res)
   // T.5.32 with α free; α = 1 (the thesis' asymptote) when the free fit does not converge
   try {
     rfm::CrossoverFit c = rfm::fit_crossover(h, 1.0, true);
-    if (!std::isfinite(c.alpha) || c.alpha <= 0.0 || c.alpha >= 2.0) c = rfm::fit_crossover(h, 1.0, false);
+    if (!std::isfinite(c.alpha) || c.alpha <= 0.0 || c.alpha >= 2.0)
+      c = rfm::fit_crossover(h, 1.0, false);
     res.cross = c;
   } catch (const std::exception& e) {
     res.notes.push_back(std::string("crossover fit skipped: ") + e.what());
@@ -153,7 +176,8 @@ void analyze_velocities(const fs::path& in, const fs::path& out, RunResult& res)
       res.tail_post = rfm::fit_tail(hp);
     } catch (const InputError&) {
     }
-    rfm::write_velocity_csv(out / "velocity_post.csv", hp, res.tail_post ? &*res.tail_post : nullptr);
+    rfm::write_velocity_csv(out / "velocity_post.csv", hp,
+                            res.tail_post ? &*res.tail_post : nullptr);
   }
 }
 
@@ -192,8 +216,11 @@ void analyze_free_paths(const RfmRun& r, const fs::path& out, RunResult& res) {
   std::error_code ec;
   if (!fs::exists(r.dir / "hist_freepath.csv", ec)) return;
   const rfm::Histogram h = rfm::read_histogram_raw(r.dir / "hist_freepath.csv");
+  // T.4.25 describes flights between collisions; paths shorter than d/10 are mostly re-contacts
+  // within a few overlap depths of soft disks pressed together (they make P_l flat below
+  // ~1e-5 m), so the fit starts at d/10 (docs/rfm.md: D_f moves by ~0.02 between d/30 and d/10)
   try {
-    res.paths = rfm::fit_free_paths(h, 0.0, 10.0);
+    res.paths = rfm::fit_free_paths(h, 0.1 * r.get("diameter"), 10.0);
   } catch (const std::exception& e) {
     res.notes.push_back(std::string("free-path fit skipped: ") + e.what());
   }
@@ -269,8 +296,8 @@ std::vector<ExponentRow> fit_exponents(const std::vector<RunResult>& results, co
     groups[{static_cast<int>(r.run->get("dimension")), r.run->get("eps_n"), r.run->get("eps_t")}]
         .push_back(&r);
   std::vector<ExponentRow> rows;
-  rfm::CsvWriter mv(out / "moments_vs_N.csv",
-                    {"dimension", "eps_n", "eps_t", "N", "m", "v_moment", "v_err", "R_moment", "R_err"});
+  rfm::CsvWriter mv(out / "moments_vs_N.csv", {"dimension", "eps_n", "eps_t", "N", "m", "v_moment",
+                                               "v_err", "R_moment", "R_err"});
   for (const auto& [g, rs] : groups) {
     for (int q = 0; q < 2; ++q) {
       std::vector<double> n;
@@ -287,7 +314,8 @@ std::vector<ExponentRow> fit_exponents(const std::vector<RunResult>& results, co
       std::sort(sorted.begin(), sorted.end());
       const auto sizes = std::unique(sorted.begin(), sorted.end()) - sorted.begin();
       if (sizes < 2) continue;
-      const auto fits = rfm::fit_scaling_exponents(n, m, errors_ok(e) ? e : std::vector<std::vector<double>>{});
+      const auto fits =
+          rfm::fit_scaling_exponents(n, m, errors_ok(e) ? e : std::vector<std::vector<double>>{});
       for (const auto& f : fits) rows.push_back({g, q, f, static_cast<int>(sizes)});
     }
     for (const RunResult* r : rs)
@@ -298,8 +326,9 @@ std::vector<ExponentRow> fit_exponents(const std::vector<RunResult>& results, co
                 at(r->r_errors)});
       }
   }
-  rfm::CsvWriter w(out / "exponents.csv", {"dimension", "eps_n", "eps_t", "quantity", "m", "exponent",
-                                          "exponent_err", "amplitude", "chi2_r", "sizes"},
+  rfm::CsvWriter w(out / "exponents.csv",
+                   {"dimension", "eps_n", "eps_t", "quantity", "m", "exponent", "exponent_err",
+                    "amplitude", "chi2_r", "sizes"},
                    {{"quantity_0", 0.0}, {"quantity_1", 1.0}});
   for (const auto& r : rows)
     w.row({static_cast<double>(r.g.dim), r.g.eps_n, r.g.eps_t, static_cast<double>(r.quantity),
@@ -331,47 +360,56 @@ void write_summary(const std::vector<RunResult>& results, const std::vector<Expo
   for (std::size_t i = 0; i < results.size(); ++i) {
     const RunResult& r = results[i];
     const RfmRun& run = *r.run;
-    js << (i ? ",\n" : "\n") << "    {\"label\": " << jstr(run.label) << ", \"dir\": " << jstr(run.dir.string());
-    for (const char* k : {"dimension", "particles", "phi", "eps_n", "eps_t", "samples", "T_mean", "T_err"})
+    js << (i ? ",\n" : "\n") << "    {\"label\": " << jstr(run.label)
+       << ", \"dir\": " << jstr(run.dir.string());
+    for (const char* k :
+         {"dimension", "particles", "phi", "eps_n", "eps_t", "samples", "T_mean", "T_err"})
       js << ", \"" << k << "\": " << jnum(run.get(k));
     if (r.tail)
-      js << ", \"tail\": {\"alpha_best\": " << jnum(r.tail->best.alpha) << ", \"accepted\": "
-         << (r.tail->any_accepted ? "true" : "false") << ", \"alpha_lo\": "
-         << jnum(r.tail->any_accepted ? r.tail->alpha_lo : kNaN) << ", \"alpha_hi\": "
-         << jnum(r.tail->any_accepted ? r.tail->alpha_hi : kNaN) << ", \"chi2_r\": "
-         << jnum(r.tail->best.chi2_r) << ", \"bins\": " << r.tail->points << ", \"v_lo\": "
-         << jnum(r.tail->v_lo) << ", \"v_hi\": " << jnum(r.tail->v_hi) << "}";
+      js << ", \"tail\": {\"alpha_best\": " << jnum(r.tail->best.alpha)
+         << ", \"accepted\": " << (r.tail->any_accepted ? "true" : "false")
+         << ", \"alpha_lo\": " << jnum(r.tail->any_accepted ? r.tail->alpha_lo : kNaN)
+         << ", \"alpha_hi\": " << jnum(r.tail->any_accepted ? r.tail->alpha_hi : kNaN)
+         << ", \"chi2_r\": " << jnum(r.tail->best.chi2_r) << ", \"bins\": " << r.tail->points
+         << ", \"v_lo\": " << jnum(r.tail->v_lo) << ", \"v_hi\": " << jnum(r.tail->v_hi) << "}";
     if (r.tail_post)
-      js << ", \"tail_post\": {\"alpha_best\": " << jnum(r.tail_post->best.alpha) << ", \"alpha_lo\": "
-         << jnum(r.tail_post->any_accepted ? r.tail_post->alpha_lo : kNaN) << ", \"alpha_hi\": "
-         << jnum(r.tail_post->any_accepted ? r.tail_post->alpha_hi : kNaN) << "}";
+      js << ", \"tail_post\": {\"alpha_best\": " << jnum(r.tail_post->best.alpha)
+         << ", \"alpha_lo\": " << jnum(r.tail_post->any_accepted ? r.tail_post->alpha_lo : kNaN)
+         << ", \"alpha_hi\": " << jnum(r.tail_post->any_accepted ? r.tail_post->alpha_hi : kNaN)
+         << "}";
     if (r.cross)
       js << ", \"crossover\": {\"D\": " << jnum(r.cross->d) << ", \"v_r\": " << jnum(r.cross->v_r)
          << ", \"v_c\": " << jnum(r.cross->v_c) << ", \"alpha\": " << jnum(r.cross->alpha)
-         << ", \"alpha_err\": " << jnum(r.cross->alpha_err) << ", \"chi2_r\": " << jnum(r.cross->chi2_r) << "}";
+         << ", \"alpha_err\": " << jnum(r.cross->alpha_err)
+         << ", \"chi2_r\": " << jnum(r.cross->chi2_r) << "}";
     if (r.df)
-      js << ", \"structure\": {\"D_f\": " << jnum(r.df->d_f) << ", \"D_f_err\": " << jnum(r.df->d_f_err)
-         << ", \"k_D\": " << jnum(r.df->k_d) << ", \"L_eff\": " << jnum(r.df->l_eff) << ", \"k_prime\": "
-         << jnum(r.df->k_hi) << ", \"shells\": " << r.df->points << ", \"chi2_r\": " << jnum(r.df->chi2_r) << "}";
+      js << ", \"structure\": {\"D_f\": " << jnum(r.df->d_f)
+         << ", \"D_f_err\": " << jnum(r.df->d_f_err) << ", \"k_D\": " << jnum(r.df->k_d)
+         << ", \"L_eff\": " << jnum(r.df->l_eff) << ", \"k_prime\": " << jnum(r.df->k_hi)
+         << ", \"shells\": " << r.df->points << ", \"chi2_r\": " << jnum(r.df->chi2_r) << "}";
     if (r.paths)
-      js << ", \"free_paths\": {\"D_f\": " << jnum(r.paths->d_f) << ", \"D_f_err\": " << jnum(r.paths->d_f_err)
-         << ", \"C\": " << jnum(r.paths->c) << ", \"A0\": " << jnum(r.paths->a0) << ", \"chi2_r\": "
-         << jnum(r.paths->chi2_r) << ", \"bins\": " << r.paths->points << "}";
+      js << ", \"free_paths\": {\"D_f\": " << jnum(r.paths->d_f)
+         << ", \"D_f_err\": " << jnum(r.paths->d_f_err) << ", \"C\": " << jnum(r.paths->c)
+         << ", \"A0\": " << jnum(r.paths->a0) << ", \"chi2_r\": " << jnum(r.paths->chi2_r)
+         << ", \"bins\": " << r.paths->points << "}";
     js << ", \"notes\": [";
     for (std::size_t k = 0; k < r.notes.size(); ++k) js << (k ? ", " : "") << jstr(r.notes[k]);
     js << "]}";
   }
   js << "\n  ],\n  \"exponents\": [";
   for (std::size_t i = 0; i < ex.size(); ++i)
-    js << (i ? ",\n" : "\n") << "    {\"dimension\": " << ex[i].g.dim << ", \"eps_n\": " << jnum(ex[i].g.eps_n)
-       << ", \"quantity\": " << (ex[i].quantity == 0 ? "\"xi\"" : "\"zeta\"") << ", \"m\": " << ex[i].fit.m
-       << ", \"exponent\": " << jnum(ex[i].fit.exponent) << ", \"err\": " << jnum(ex[i].fit.exponent_err)
+    js << (i ? ",\n" : "\n") << "    {\"dimension\": " << ex[i].g.dim
+       << ", \"eps_n\": " << jnum(ex[i].g.eps_n)
+       << ", \"quantity\": " << (ex[i].quantity == 0 ? "\"xi\"" : "\"zeta\"")
+       << ", \"m\": " << ex[i].fit.m << ", \"exponent\": " << jnum(ex[i].fit.exponent)
+       << ", \"err\": " << jnum(ex[i].fit.exponent_err)
        << ", \"chi2_r\": " << jnum(ex[i].fit.chi2_r) << ", \"sizes\": " << ex[i].sizes << "}";
   js << "\n  ]\n}\n";
   write_file_atomic((out / "rfm_summary.json").string(), js.str());
 }
 
-// the python interpreter: $GS_PYTHON, else /usr/bin/python3 (Debian's, with matplotlib), else python3
+// the python interpreter: $GS_PYTHON, else /usr/bin/python3 (Debian's, with matplotlib), else
+// python3
 std::string python() {
   if (const char* p = std::getenv("GS_PYTHON"); p && *p) return p;
   std::error_code ec;
@@ -384,7 +422,8 @@ void print_table(const std::vector<RunResult>& results) {
   for (const RunResult& r : results) {
     char tail[40] = "-", df[16] = "-", dp[16] = "-";
     if (r.tail && r.tail->any_accepted)
-      std::snprintf(tail, sizeof tail, "%.2f [%.2f,%.2f]", r.tail->best.alpha, r.tail->alpha_lo, r.tail->alpha_hi);
+      std::snprintf(tail, sizeof tail, "%.2f [%.2f,%.2f]", r.tail->best.alpha, r.tail->alpha_lo,
+                    r.tail->alpha_hi);
     else if (r.tail)
       std::snprintf(tail, sizeof tail, "%.2f (none<1.2)", r.tail->best.alpha);
     if (r.df) std::snprintf(df, sizeof df, "%.3f", r.df->d_f);
@@ -419,12 +458,13 @@ std::string draw_rfm_charts(const std::string& dir) {
   while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
   }
   if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return "";
-  return "charts_rfm.py failed (exit " + std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) +
+  return "charts_rfm.py failed (exit " +
+         std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) +
          "; are numpy and matplotlib installed for " + py + "?)";
 }
 
-void analyze_rfm_runs(const std::vector<std::string>& dirs, const std::string& out_dir,
-                      bool charts, bool quiet) {
+void analyze_rfm_runs(const std::vector<std::string>& dirs, const std::string& out_dir, bool charts,
+                      bool quiet) {
   // the runs and unique labels (the folder name, numbered when repeated)
   std::vector<RfmRun> runs;
   std::map<std::string, int> uses;
@@ -467,7 +507,8 @@ void analyze_rfm_runs(const std::vector<std::string>& dirs, const std::string& o
   for (const RunResult& r : results) {
     const std::string err = draw_rfm_charts((out / r.run->label).string());
     if (!err.empty()) {
-      std::fprintf(stderr, "gransim analyze: charts skipped: %s; the CSV and JSON files are in %s\n",
+      std::fprintf(stderr,
+                   "gransim analyze: charts skipped: %s; the CSV and JSON files are in %s\n",
                    err.c_str(), out.c_str());
       return;
     }

@@ -4,9 +4,10 @@
 //   per run (OUT/<run name>/): temperature.csv, velocity.csv with the tail scan (appendix A:
 //   counts 50…5000, accept α while χ²_r < 1.2) and the crossover fit (T.5.32), tail_scan.csv,
 //   lnln_A0.csv / lnln_P0.csv (§5.3.3), velocity_post.csv (post-collision), moments.csv;
-//   2D: sk.csv with the D_f fit below k′ (k_D / L_Eff rule, T.4.5–4.9), gr.csv, freepath.csv
-//   with the fit of T.4.25; 1D: gh.csv, gap_moments.csv and gh_bisection.csv (G₁ against the
-//   bisection density (−ln R)^(n−1)/(n−1)!, n = round(log₂N), and the uniform-points law).
+//   2D: sk.csv with the D_f fit below k′ (k_D / L_Eff rule, T.4.5–4.9), gr.csv; freepath.csv
+//   with the fit of T.4.25 over l ≥ d/10; 1D: gh.csv, gap_moments.csv and gh_bisection.csv
+//   (G₁ against the bisection density (−ln R)^(n−1)/(n−1)!, n = round(log₂N), and against
+//   the gaps of N uniform points).
 //   across runs (OUT/): exponents.csv (ξ_m from ⟨|v|^m⟩ ∝ N^(−ξ_m), T.3.13; ζ_m from
 //   ⟨R^m⟩ ∝ N^(−ζ_m), T.3.20, for runs of one dimension and restitution at ≥ 2 sizes),
 //   moments_vs_N.csv, and rfm_summary.json with every fit.

@@ -38,18 +38,18 @@ struct BisectionOpt {
 struct WalkOpt {
   models::WalkParams p;
   std::vector<double> radii{1e-3, 8e-3};  ///< disc radii l, m
-  std::string paths;                     ///< a freepath.csv (l, P): the Single Particle Model
-  bool heating = true;                   ///< also free_heating → heating.csv
+  std::string paths;                      ///< a freepath.csv (l, P): the Single Particle Model
+  bool heating = true;                    ///< also free_heating → heating.csv
 };
 struct IntervalOpt {
   models::WalkParams p;
-  double length = 1e-2;                  ///< L, m
+  double length = 1e-2;  ///< L, m
   std::string start = "uniform";
 };
 struct CascadeOpt {
   models::CascadeParams p;
   std::vector<std::string> kinds{"ucp"};
-  double fit_lo = 4.0, fit_hi = 32.0;    ///< D_f fit window in |n| = kL/2π
+  double fit_lo = 4.0, fit_hi = 32.0;  ///< D_f fit window in |n| = kL/2π
 };
 
 std::string num(double v) {
@@ -83,8 +83,8 @@ void run_bisection(const Common& c, BisectionOpt o) {
   o.p.validate();
   const models::BisectionResult r = models::run_bisection(o.p);
   models::write_bisection_csv(out / "bisection.csv", r);
-  std::vector<std::pair<std::string, double>> f{{"levels", o.p.levels},
-                                                {"realisations", static_cast<double>(o.p.realisations)}};
+  std::vector<std::pair<std::string, double>> f{
+      {"levels", o.p.levels}, {"realisations", static_cast<double>(o.p.realisations)}};
   for (std::size_t m = 0; m < r.moments.size(); ++m) {
     f.emplace_back("moment_" + std::to_string(m + 1), r.moments[m]);
     f.emplace_back("moment_" + std::to_string(m + 1) + "_err", r.moment_err[m]);
@@ -125,10 +125,11 @@ void run_walk(const Common& c, WalkOpt o) {
                        {k + "_heating_residual", r.heating_residual},
                        {k + "_heating_residual_err", r.heating_residual_err}});
     if (!c.quiet)
-      std::printf("disc walk l = %g m: <tau> = %.4g s (time scale %.4g s), <v_x^2> = %.4g m2/s2, "
-                  "Gaussian tail c = %.3f (thesis 0.98)\n",
-                  l, r.mean_exit_time, models::walk_time_scale(p, l), r.mean_v2,
-                  models::gaussian_tail_coefficient(r, p, l));
+      std::printf(
+          "disc walk l = %g m: <tau> = %.4g s (time scale %.4g s), <v_x^2> = %.4g m2/s2, "
+          "Gaussian tail c = %.3f (thesis 0.98)\n",
+          l, r.mean_exit_time, models::walk_time_scale(p, l), r.mean_v2,
+          models::gaussian_tail_coefficient(r, p, l));
   }
   // the Single Particle Model with a measured P_l (columns l and P of a freepath.csv)
   if (!o.paths.empty()) {
@@ -151,7 +152,8 @@ void run_walk(const Common& c, WalkOpt o) {
     if (wp.v_max == 0) wp.v_max = 8.0 * models::walk_velocity_scale(wp, lmean);
     const models::WalkResult r = models::disc_walk_spm(wp, tab);
     models::write_walk_csv(out / "walk_spm.csv", r, wp, r.mean_region);
-    f.insert(f.end(), {{"spm_mean_exit_time", r.mean_exit_time}, {"spm_mean_v2", r.mean_v2},
+    f.insert(f.end(), {{"spm_mean_exit_time", r.mean_exit_time},
+                       {"spm_mean_v2", r.mean_v2},
                        {"spm_mean_l", r.mean_region}});
     if (!c.quiet)
       std::printf("single particle model (P_l from %s): <l> = %.4g m, <v_x^2> = %.4g m2/s2\n",
@@ -176,18 +178,26 @@ void run_interval(const Common& c, IntervalOpt o) {
   if (o.p.v_max == 0) o.p.v_max = 5.0 * models::walk_velocity_scale(o.p, o.length);
   o.p.validate();
   models::IntervalStart st;
-  if (o.start == "uniform") st = models::IntervalStart::uniform;
-  else if (o.start == "centre" || o.start == "center") st = models::IntervalStart::centre;
-  else throw InputError("gransim model interval", "--start", "must be uniform or centre (got '" + o.start + "')");
+  if (o.start == "uniform")
+    st = models::IntervalStart::uniform;
+  else if (o.start == "centre" || o.start == "center")
+    st = models::IntervalStart::centre;
+  else
+    throw InputError("gransim model interval", "--start",
+                     "must be uniform or centre (got '" + o.start + "')");
   const models::WalkResult r = models::interval_walk(o.p, o.length, st);
   models::write_interval_csv(out / "interval.csv", r, o.p, o.length);
-  const double theory = models::appendix_b_mean_exit_time_coefficient() * models::walk_time_scale(o.p, o.length);
-  write_model_json(out, "interval", {{"length", o.length}, {"mean_exit_time", r.mean_exit_time},
-                                     {"mean_exit_time_err", r.exit_time_err},
-                                     {"mean_exit_time_theory", theory}});
+  const double theory =
+      models::appendix_b_mean_exit_time_coefficient() * models::walk_time_scale(o.p, o.length);
+  write_model_json(out, "interval",
+                   {{"length", o.length},
+                    {"mean_exit_time", r.mean_exit_time},
+                    {"mean_exit_time_err", r.exit_time_err},
+                    {"mean_exit_time_theory", theory}});
   if (!c.quiet)
-    std::printf("interval L = %g m, %s start: <tau> = %.5g ± %.2g s (appendix B, uniform start: %.5g s)\n",
-                o.length, o.start.c_str(), r.mean_exit_time, r.exit_time_err, theory);
+    std::printf(
+        "interval L = %g m, %s start: <tau> = %.5g ± %.2g s (appendix B, uniform start: %.5g s)\n",
+        o.length, o.start.c_str(), r.mean_exit_time, r.exit_time_err, theory);
   finish(c, out);
 }
 
@@ -208,14 +218,16 @@ void run_cascade(const Common& c, CascadeOpt o) {
     const models::CascadeResult r = models::cascade_structure_factor(p);
     const auto exact = models::cascade_expected_sk(p.kind, p.levels, nmax, p.box);
     const double two_pi_l = 2.0 * std::numbers::pi / p.box;
-    const rfm::DfFit fit = rfm::fit_df(r.shells, two_pi_l * o.fit_lo * (1 - 1e-9), two_pi_l * o.fit_hi * (1 + 1e-9));
+    const rfm::DfFit fit =
+        rfm::fit_df(r.shells, two_pi_l * o.fit_lo * (1 - 1e-9), two_pi_l * o.fit_hi * (1 + 1e-9));
     models::write_cascade_csv(out / ("cascade_" + k + ".csv"), r, exact, p.kind, &fit);
     const double d2 = models::correlation_dimension(p.kind);
     f.insert(f.end(), {{k + "_D_f", fit.d_f}, {k + "_D_f_err", fit.d_f_err}, {k + "_D2", d2}});
     if (!c.quiet)
-      std::printf("cascade %-12s %d levels, %ld realisations: D_f = %.3f ± %.3f (fit |n| in [%g, %g]), "
-                  "correlation dimension D2 = %.4f\n",
-                  k.c_str(), p.levels, p.realisations, fit.d_f, fit.d_f_err, o.fit_lo, o.fit_hi, d2);
+      std::printf(
+          "cascade %-12s %d levels, %ld realisations: D_f = %.3f ± %.3f (fit |n| in [%g, %g]), "
+          "correlation dimension D2 = %.4f\n",
+          k.c_str(), p.levels, p.realisations, fit.d_f, fit.d_f_err, o.fit_lo, o.fit_hi, d2);
   }
   write_model_json(out, "cascade", f);
   finish(c, out);
@@ -240,7 +252,8 @@ void guarded(F&& f) {
 void common_options(CLI::App* s, Common& c) {
   s->add_option("-o,--out", c.out, "output folder for the CSV files and charts")->required();
   s->add_option("--seed", c.seed, "random seed (realisation i uses the stream (seed, i))");
-  s->add_flag("--no-charts", [&c](std::int64_t) { c.charts = false; }, "write CSV/JSON only");
+  s->add_flag(
+      "--no-charts", [&c](std::int64_t) { c.charts = false; }, "write CSV/JSON only");
   s->add_flag("-q,--quiet", c.quiet, "no summary lines");
 }
 
@@ -256,19 +269,22 @@ void add_model_command(CLI::App& app) {
     CascadeOpt k;
   };
   auto all = std::make_shared<All>();
-  auto* model = app.add_subcommand("model", "the thesis' auxiliary models (SPEC 5.4): bisection, walk, "
-                                            "interval, cascade");
+  auto* model = app.add_subcommand("model",
+                                   "the thesis' auxiliary models (SPEC 5.4): bisection, walk, "
+                                   "interval, cascade");
   model->require_subcommand(1);
 
   auto* b = model->add_subcommand("bisection", "uniform multiplicative bisection (T.3.26–3.38)");
   common_options(b, all->c);
   b->add_option("--levels", all->b.p.levels, "n: 2^n segments")->capture_default_str();
-  b->add_option("--realisations", all->b.p.realisations, "independent intervals")->capture_default_str();
+  b->add_option("--realisations", all->b.p.realisations, "independent intervals")
+      ->capture_default_str();
   b->add_option("--bins", all->b.p.bins, "log bins of x")->capture_default_str();
   b->add_option("--x-min", all->b.p.x_min, "lowest bin edge")->capture_default_str();
   b->callback([all] { guarded([&] { run_bisection(all->c, all->b); }); });
 
-  auto* w = model->add_subcommand("walk", "single-particle walks in a disc of radius l (T.5.2–5.3): Q(v, l)");
+  auto* w = model->add_subcommand(
+      "walk", "single-particle walks in a disc of radius l (T.5.2–5.3): Q(v, l)");
   common_options(w, all->c);
   w->add_option("--radius", all->w.radii, "disc radii l, m (repeatable)")->capture_default_str();
   w->add_option("--walks", all->w.p.walks, "absorbed walks per radius")->capture_default_str();
@@ -276,8 +292,10 @@ void add_model_command(CLI::App& app) {
   w->add_option("--noise", all->w.p.noise, "D, N² s")->capture_default_str();
   w->add_option("--mass", all->w.p.mass, "M, kg")->capture_default_str();
   w->add_option("--bins", all->w.p.bins, "velocity bins")->capture_default_str();
-  w->add_option("--paths", all->w.paths, "a freepath.csv (columns l, P): Single Particle Model with l ~ P_l");
-  w->add_flag("--no-heating", [all](std::int64_t) { all->w.heating = false; }, "skip heating.csv");
+  w->add_option("--paths", all->w.paths,
+                "a freepath.csv (columns l, P): Single Particle Model with l ~ P_l");
+  w->add_flag(
+      "--no-heating", [all](std::int64_t) { all->w.heating = false; }, "skip heating.csv");
   w->callback([all] { guarded([&] { run_walk(all->c, all->w); }); });
 
   auto* i = model->add_subcommand("interval", "1D interval with absorbing ends (appendix B)");
@@ -291,7 +309,8 @@ void add_model_command(CLI::App& app) {
   i->add_option("--bins", all->i.p.bins, "velocity bins")->capture_default_str();
   i->callback([all] { guarded([&] { run_interval(all->c, all->i); }); });
 
-  auto* k = model->add_subcommand("cascade", "multiplicative cascades on a 2^n×2^n grid (T.6.1–6.5)");
+  auto* k =
+      model->add_subcommand("cascade", "multiplicative cascades on a 2^n×2^n grid (T.6.1–6.5)");
   common_options(k, all->c);
   k->add_option("--kind", all->k.kinds, "ucp, unoncp, symmetrised, meakin1…4, or all (repeatable)")
       ->capture_default_str();

@@ -103,8 +103,25 @@ struct Job {
   double wall = 0.0;        // s
 };
 
+// the children's environment: ours, plus OMP_NUM_THREADS = cores / parallel runs unless it is
+// set already, so parallel runs do not oversubscribe the cores with force-loop threads
+std::vector<std::string> child_environment(int width) {
+  std::vector<std::string> env;
+  bool has_omp = false;
+  for (char** e = environ; e && *e; ++e) {
+    env.emplace_back(*e);
+    has_omp = has_omp || env.back().rfind("OMP_NUM_THREADS=", 0) == 0;
+  }
+  if (!has_omp) {
+    const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    env.push_back("OMP_NUM_THREADS=" + std::to_string(std::max(1, cores / std::max(1, width))));
+  }
+  return env;
+}
+
 // start `gransim run` for a job: output to DIR/logs/<name>.log
-pid_t spawn_run(const SweepOptions& opt, const Job& j, const std::string& log) {
+pid_t spawn_run(const SweepOptions& opt, const Job& j, const std::string& log,
+                std::vector<std::string>& env) {
   std::vector<std::string> args{self_executable(), "run", opt.scene, "--out", j.dir, "--quiet",
                                 "--force"};
   if (opt.allow_unstable) args.push_back("--allow-unstable");
@@ -118,8 +135,11 @@ pid_t spawn_run(const SweepOptions& opt, const Job& j, const std::string& log) {
   posix_spawn_file_actions_addopen(&fa, 0, "/dev/null", O_RDONLY, 0);
   posix_spawn_file_actions_addopen(&fa, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   posix_spawn_file_actions_adddup2(&fa, 1, 2);
+  std::vector<char*> envp;
+  for (auto& e : env) envp.push_back(e.data());
+  envp.push_back(nullptr);
   pid_t pid = -1;
-  const int rc = posix_spawn(&pid, argv[0], &fa, nullptr, argv.data(), environ);
+  const int rc = posix_spawn(&pid, argv[0], &fa, nullptr, argv.data(), envp.data());
   posix_spawn_file_actions_destroy(&fa);
   if (rc != 0) throw std::runtime_error("cannot start " + args[0] + ": " + std::strerror(rc));
   return pid;
@@ -294,6 +314,7 @@ int sweep_command(const SweepOptions& opt) {
   std::fprintf(stderr, "gransim sweep: %zu runs in %s (%zu already completed), %d at a time\n",
                jobs.size(), out.c_str(), jobs.size() - static_cast<std::size_t>(pending), width);
   write_manifest(opt, out, params, base_hash, jobs, false);
+  std::vector<std::string> env = child_environment(width);
   install_stop_handlers();
   Progress progress("sweep", std::max(total, 1e-9), "s", opt.quiet);
   int running = 0, worst = kExitOk;
@@ -305,7 +326,7 @@ int sweep_command(const SweepOptions& opt) {
     for (Job& j : jobs) {
       if (stopping || running >= width) break;
       if (j.state != "pending") continue;
-      j.pid = spawn_run(opt, j, out + "/logs/" + j.run.name + ".log");
+      j.pid = spawn_run(opt, j, out + "/logs/" + j.run.name + ".log", env);
       j.state = "running";
       j.started = std::chrono::steady_clock::now();
       ++running;

@@ -83,8 +83,8 @@ void RfmObserver::start(const Simulation& sim, const std::string& run_dir) {
   if (dim_ == 1) l_reduced_ = rfm::reduced_length(box_, static_cast<long>(n_), diameter_);
 
   // the series of every sample, transient included
-  series_ = CsvWriter(dir_ + "/rfm_series.csv",
-                      {"t", "step", "T", "T_x", "T_y", "v_mean_x", "v_mean_y", "contacts", "steady"});
+  series_ = CsvWriter(dir_ + "/rfm_series.csv", {"t", "step", "T", "T_x", "T_y", "v_mean_x",
+                                                 "v_mean_y", "contacts", "steady"});
 
   // structure (2D, square box): S(k) up to |n| ≈ 1.2 L/d (past the first peak), g(R) to L/4
   structure_ = dim_ == 2 && std::abs(box_ - box_y_) <= 1e-12 * box_;
@@ -100,7 +100,8 @@ void RfmObserver::start(const Simulation& sim, const std::string& run_dir) {
   const double lmin = spec_.path_min > 0 ? spec_.path_min : 1e-4 * diameter_;
   const double lmax = spec_.path_max > 0 ? spec_.path_max : (dim_ == 1 ? l_reduced_ : box_);
   if (!(lmax > lmin))
-    throw InputError(scene_.path, "rfm.path_max", "free-path range is empty (path_max <= path_min)");
+    throw InputError(scene_.path, "rfm.path_max",
+                     "free-path range is empty (path_max <= path_min)");
   paths_ = rfm::free_path_histogram(lmin, lmax, spec_.path_bins);
 
   last_touch_.assign(n_, std::numeric_limits<std::int64_t>::min() / 2);
@@ -233,7 +234,8 @@ void RfmObserver::finish(const Simulation& sim) {
   const fs::path d(dir_);
   // T(t) with block means (T.2.20)
   if (!temps_.empty()) {
-    const std::size_t len = std::max<std::size_t>(1, temps_.size() / static_cast<std::size_t>(spec_.blocks));
+    const std::size_t len =
+        std::max<std::size_t>(1, temps_.size() / static_cast<std::size_t>(spec_.blocks));
     const rfm::BlockAverage b = rfm::block_average(temps_, len);
     rfm::write_temperature_csv(d / "temperature.csv", times_, temps_, &b);
   } else {
@@ -272,7 +274,8 @@ void RfmObserver::write_json(const Simulation& sim) const {
   const MaterialSpec& mat = w.materials[w.species[0].material];
   double t_mean = kNaN, t_err = kNaN;
   if (!temps_.empty()) {
-    const std::size_t len = std::max<std::size_t>(1, temps_.size() / static_cast<std::size_t>(spec_.blocks));
+    const std::size_t len =
+        std::max<std::size_t>(1, temps_.size() / static_cast<std::size_t>(spec_.blocks));
     const rfm::BlockAverage b = rfm::block_average(temps_, len);
     t_mean = b.mean;
     t_err = b.block_means.size() >= 2 ? b.error : kNaN;

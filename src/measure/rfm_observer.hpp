@@ -40,12 +40,12 @@ class RfmObserver : public Observer {
 
   // what has been measured so far (tests, summaries)
   int dimension() const { return dim_; }
-  long samples() const { return static_cast<long>(temps_.size()); }  ///< steady samples
+  long samples() const { return static_cast<long>(temps_.size()); }   ///< steady samples
   const std::vector<double>& temperatures() const { return temps_; }  ///< T per sample, m²/s²
   const rfm::MomentSeries& moments() const { return moments_; }       ///< ⟨|v|^m⟩ (1D: |v_x|)
-  const rfm::Histogram& velocities() const { return vel_; }          ///< component histogram
-  const rfm::Histogram& post_collision() const { return post_; }     ///< components on leaving
-  const rfm::Histogram& free_paths() const { return paths_; }        ///< free-path lengths, m
+  const rfm::Histogram& velocities() const { return vel_; }           ///< component histogram
+  const rfm::Histogram& post_collision() const { return post_; }      ///< components on leaving
+  const rfm::Histogram& free_paths() const { return paths_; }         ///< free-path lengths, m
   const rfm::GapStatistics* gaps() const { return gaps_ ? &*gaps_ : nullptr; }  ///< 1D, R/L′
   long leave_events() const { return leaves_; }  ///< particles that left their last contact
 

@@ -13,9 +13,9 @@ void read_rfm(const Ctx& ctx, const TableReader& top, SceneSpec& s) {
   const toml::table* t = sub_table(top, "rfm");
   static const toml::table empty;
   TableReader r(ctx, t ? *t : empty, "rfm",
-                {"enabled", "sample_every", "discard_time", "blocks", "v_max", "v_bins", "structure_every", "sk_nmax",
-                 "gr_bins", "gr_rmax", "path_bins", "path_min", "path_max", "gap_bins",
-                 "gap_min"});
+                {"enabled", "sample_every", "discard_time", "blocks", "v_max", "v_bins",
+                 "structure_every", "sk_nmax", "gr_bins", "gr_rmax", "path_bins", "path_min",
+                 "path_max", "gap_bins", "gap_min"});
   RfmSpec& o = s.rfm;
   o.given = t != nullptr;
   // on for the random force and whenever the section is there (a freely cooling gas)

@@ -21,6 +21,32 @@ Simulation::Simulation(World w, BroadPhaseKind bp)
   compute_accelerations(w_.s.step);
   auto ch = channels();
   integ_->init(ch, dt_);
+  // the energy yardstick of the blow-up check: 5% of the start's kinetic + elastic energy, or
+  // of lifting every grain by one radius, whichever is larger
+  energy_ref_ = mechanical_energy();
+  double lift = 0.0;
+  for (std::size_t i = 0; i < w_.size(); ++i) lift += w_.mass[i] * norm(gravity_) * w_.radius[i];
+  energy_slack_ = 0.05 * std::max(w_.kinetic_energy(), lift) + 1e-300;
+}
+
+bool Simulation::conservative_drive() const {
+  return w_.scene.drive.kind == DriveKind::None || w_.scene.drive.kind == DriveKind::Gravity;
+}
+
+double Simulation::mechanical_energy() const {
+  double e = w_.kinetic_energy();
+  // contact elastic energy: exact for the linear spring; the overlap-area law has no closed
+  // form (A(δ) depends on the path), so polygons count it as 0 — a lower bound, which keeps the
+  // check one-sided: kinetic + gravitational energy can never exceed the start's total
+  if (!w_.polygons()) {
+    for (const ContactRecord& c : contacts_.records) {
+      const MaterialSpec& m = w_.materials[w_.species[w_.sp[key_i(c.key)]].material];
+      e += 0.5 * m.ks * c.overlap * c.overlap;
+    }
+  }
+  for (std::size_t i = 0; i < w_.size(); ++i)
+    e -= w_.mass[i] * (gravity_.x * w_.s.x[i] + gravity_.y * w_.s.y[i]);
+  return e;
 }
 
 bool Simulation::driven() const { return w_.scene.drive.kind != DriveKind::None; }
@@ -69,8 +95,9 @@ void Simulation::step() {
   }
 }
 
-// non-finite state or overlaps beyond the scene threshold stop the run with a diagnosis
-void Simulation::health_check() const {
+// non-finite state, overlaps beyond the scene threshold, or energy growing without driving
+// input stop the run with a diagnosis
+void Simulation::health_check() {
   const State& s = w_.s;
   for (std::size_t i = 0; i < w_.size(); ++i) {
     if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i]) || !std::isfinite(s.vx[i]) ||
@@ -90,6 +117,28 @@ void Simulation::health_check() const {
       << " s): grains interpenetrate; the force law is too soft for the driving, or dt = " << dt_
       << " s is too large (contact time " << model_.min_contact_time() << " s)";
     throw HealthError(m.str());
+  }
+  if (conservative_drive()) {
+    const double e = mechanical_energy();
+    if (e > energy_ref_ + energy_slack_) {
+      // find the fastest particle: the likely seat of the instability
+      std::size_t worst = 0;
+      double v2 = -1;
+      for (std::size_t i = 0; i < w_.size(); ++i) {
+        const double q = s.vx[i] * s.vx[i] + s.vy[i] * s.vy[i];
+        if (q > v2) { v2 = q; worst = i; }
+      }
+      std::ostringstream m;
+      m << "mechanical energy grew from " << energy_ref_ << " J to " << e
+        << " J without driving input at step " << s.step << " (t = " << s.t
+        << " s); fastest particle " << worst << " at " << std::sqrt(v2)
+        << " m/s. The integration is unstable: dt = " << dt_ << " s is "
+        << dt_ / model_.min_contact_time() << " contact times; try dt <= "
+        << model_.min_contact_time() / 20 << " s";
+      throw HealthError(m.str());
+    }
+    // dissipation only lowers the yardstick (only where the energy is exact)
+    if (!w_.polygons()) energy_ref_ = std::min(energy_ref_, e);
   }
 }
 

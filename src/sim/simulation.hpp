@@ -38,11 +38,16 @@ class Simulation {
   Vec2 gravity() const { return gravity_; }
   /// does anything drive the system (gravity, pulses, noise)?
   bool driven() const;
+  /// can the mechanical energy only decrease (no drive, or constant gravity)?
+  bool conservative_drive() const;
 
  private:
   /// accelerations at the current state; `index` counts force evaluations (noise stream)
   void compute_accelerations(std::int64_t index);
-  void health_check() const;
+  void health_check();
+  /// kinetic + contact elastic + gravitational energy (J); elastic ½k_sδ² (Model S), not
+  /// counted for Model P (a lower bound)
+  double mechanical_energy() const;
   std::vector<Channel> channels();
 
   World w_;
@@ -55,6 +60,8 @@ class Simulation {
   ForceStats stats_;
   std::vector<PairKey> candidates_;
   Vec2 gravity_;
+  double energy_ref_ = 0.0;    ///< mechanical energy at the start, J (undriven/constant g)
+  double energy_slack_ = 0.0;  ///< growth tolerated before it counts as a blow-up, J
 };
 
 }  // namespace gs

@@ -147,13 +147,16 @@ TEST(RfmAnalyze, WritesThePerRunAnalysisAndExponents) {
 TEST(RfmAnalyze, BinaryAnalyzesAndDrawsCharts) {
   const Runs& r = runs();
   const fs::path out = r.root / "analysis_bin";
-  const std::string cmd = std::string(GS_BINARY) + " analyze " + (r.root / "sizes" / "ring50").string() +
-                          " --out " + out.string() + " -q 2>" + (r.root / "err.txt").string();
-  ASSERT_EQ(std::system(cmd.c_str()), 0) << read_text_file((r.root / "err.txt").string()).value_or("");
+  const std::string cmd = std::string(GS_BINARY) + " analyze " +
+                          (r.root / "sizes" / "ring50").string() + " --out " + out.string() +
+                          " -q 2>" + (r.root / "err.txt").string();
+  ASSERT_EQ(std::system(cmd.c_str()), 0)
+      << read_text_file((r.root / "err.txt").string()).value_or("");
   EXPECT_TRUE(fs::exists(out / "ring50" / "velocity.csv"));
   EXPECT_TRUE(fs::exists(out / "rfm_summary.json"));
   const std::string err = read_text_file((r.root / "err.txt").string()).value_or("");
-  if (err.find("charts skipped") != std::string::npos) GTEST_SKIP() << "no python/matplotlib: " << err;
+  if (err.find("charts skipped") != std::string::npos)
+    GTEST_SKIP() << "no python/matplotlib: " << err;
   EXPECT_TRUE(fs::exists(out / "ring50" / "velocity.png"));
   EXPECT_TRUE(fs::exists(out / "ring50" / "gh.png"));
 }

@@ -38,7 +38,9 @@ int gransim(const std::string& args) {
 
 TEST(RfmModels, Bisection) {
   Dir d("bisection");
-  ASSERT_EQ(gransim("model bisection --levels 6 --realisations 400 --no-charts -q --out " + d.p.string()), 0);
+  ASSERT_EQ(
+      gransim("model bisection --levels 6 --realisations 400 --no-charts -q --out " + d.p.string()),
+      0);
   EXPECT_TRUE(fs::exists(d.p / "bisection.csv"));
   // ⟨x^m⟩ = (1+m)^(−n) (T.3.37) within 4 standard errors
   for (int m = 1; m <= 3; ++m) {
@@ -50,11 +52,14 @@ TEST(RfmModels, Bisection) {
 
 TEST(RfmModels, WalkAndInterval) {
   Dir w("walk");
-  ASSERT_EQ(gransim("model walk --radius 0.001 --walks 300 --no-heating --no-charts -q --out " + w.p.string()), 0);
+  ASSERT_EQ(gransim("model walk --radius 0.001 --walks 300 --no-heating --no-charts -q --out " +
+                    w.p.string()),
+            0);
   EXPECT_TRUE(fs::exists(w.p / "walk_l0.001.csv"));
   EXPECT_GT(w.json("l_0.001_mean_exit_time"), 0.0);
   Dir i("interval");
-  ASSERT_EQ(gransim("model interval --length 0.01 --walks 2000 --no-charts -q --out " + i.p.string()), 0);
+  ASSERT_EQ(
+      gransim("model interval --length 0.01 --walks 2000 --no-charts -q --out " + i.p.string()), 0);
   EXPECT_TRUE(fs::exists(i.p / "interval.csv"));
   // ⟨τ⟩ of uniform release against appendix B (c = 1.0191) within 4 standard errors + 1 %
   const double tau = i.json("mean_exit_time"), th = i.json("mean_exit_time_theory");
@@ -63,8 +68,11 @@ TEST(RfmModels, WalkAndInterval) {
 
 TEST(RfmModels, CascadeAndBadInput) {
   Dir c("cascade");
-  ASSERT_EQ(gransim("model cascade --kind unoncp --levels 6 --realisations 20 --fit-lo 2 --fit-hi 16 "
-                    "--no-charts -q --out " + c.p.string()), 0);
+  ASSERT_EQ(
+      gransim("model cascade --kind unoncp --levels 6 --realisations 20 --fit-lo 2 --fit-hi 16 "
+              "--no-charts -q --out " +
+              c.p.string()),
+      0);
   EXPECT_TRUE(fs::exists(c.p / "cascade_unoncp.csv"));
   EXPECT_NEAR(c.json("unoncp_D2"), std::log2(3.0), 1e-9);
   EXPECT_TRUE(std::isfinite(c.json("unoncp_D_f")));

@@ -80,7 +80,7 @@ Table read_csv(const fs::path& p) {
 }
 
 // 40 decagons (18 big, 22 small) in a 0.1 m box; velocity Verlet at Δt = 1e-4 s (contact time
-// 6.9e-4 s), 0.5 s of settling, 25 taps of T = 0.5 s with 0.01 s pulses: a few seconds per run
+// 6.9e-4 s), 0.5 s of settling, 22 taps of T = 0.5 s with 0.01 s pulses: a few seconds per run
 constexpr const char* kTinyScene = R"(
 [scene]
 name = "tiny_tapping"
@@ -108,7 +108,7 @@ kind = "negative_g"
 g_p = 2.0
 t1 = 0.01
 period = 0.5
-taps = 25
+taps = 22
 [output]
 test_rect = [0.01, 0.01, 0.09, 0.05]
 discard_taps = 2
@@ -143,9 +143,9 @@ void expect_tap_run(const fs::path& run, double g_p) {
                         "z_mean", "z_big", "z_small", "coordination", "S_xx", "S_xy", "S_yx",
                         "S_yy", "relax_end", "early"})
     EXPECT_GE(taps.col(c), 0) << "column " << c;
-  // the prepared pile (tap 0) and 25 taps, each measured just before the next pulse:
+  // the prepared pile (tap 0) and 22 taps, each measured just before the next pulse:
   // t = settle + k·T to the step
-  ASSERT_EQ(taps.rows.size(), 26u);
+  ASSERT_EQ(taps.rows.size(), 23u);
   for (std::size_t k = 0; k < taps.rows.size(); ++k) {
     const auto& r = taps.rows[k];
     EXPECT_EQ(r[taps.col("tap")], static_cast<double>(k));
@@ -160,14 +160,14 @@ void expect_tap_run(const fs::path& run, double g_p) {
   }
   // n(h) on the fixed grid reaches every grain of each species at the top
   const Table seg = read_csv(run / "segregation.csv");
-  ASSERT_EQ(seg.rows.size(), 26u);
+  ASSERT_EQ(seg.rows.size(), 23u);
   EXPECT_EQ(seg.rows.back()[seg.col("big@500")], 18.0);
   EXPECT_EQ(seg.rows.back()[seg.col("small@500")], 22.0);
   const std::string js = slurp(run / "run.json");
   EXPECT_NE(js.find("\"status\": \"completed\""), std::string::npos);
   EXPECT_NE(js.find("\"protocol\": \"negative_g\""), std::string::npos);
   EXPECT_NE(js.find("\"control\": " + std::to_string(static_cast<int>(g_p))), std::string::npos);
-  EXPECT_NE(js.find("\"taps_done\": 25"), std::string::npos);
+  EXPECT_NE(js.find("\"taps_done\": 22"), std::string::npos);
 }
 
 TEST_F(TappingCli, SweepAnalyzeAndContinue) {
@@ -187,7 +187,7 @@ TEST_F(TappingCli, SweepAnalyzeAndContinue) {
   const Table summary = read_csv(an / "summary.csv");
   ASSERT_EQ(summary.rows.size(), 2u) << r.output;
   for (const auto& row : summary.rows) {
-    EXPECT_EQ(row[summary.col("n_used")], 23.0);  // 25 taps, 2 discarded (tap 0 is not a tap)
+    EXPECT_EQ(row[summary.col("n_used")], 20.0);  // 22 taps, 2 discarded (tap 0 is not a tap)
     EXPECT_GT(row[summary.col("phi_mean")], 0.65);
     EXPECT_GT(row[summary.col("sigma")], 0.0);  // the packing changes from tap to tap
   }
@@ -222,7 +222,7 @@ TEST_F(TappingCli, SweepAnalyzeAndContinue) {
   EXPECT_NE(r.output.find("2 already completed"), std::string::npos) << r.output;
   EXPECT_EQ(fs::last_write_time(sw / "g_p=2" / "taps.csv"), stamp);
   EXPECT_EQ(slurp(sw / "g_p=2" / "taps.csv"), taps2);
-  EXPECT_EQ(read_csv(sw / "g_p=6" / "taps.csv").rows.size(), 26u);
+  EXPECT_EQ(read_csv(sw / "g_p=6" / "taps.csv").rows.size(), 23u);
   const std::string manifest = slurp(sw / "sweep.json");
   EXPECT_NE(manifest.find("\"name\": \"g_p=2\", \"dir\": \"g_p=2\", \"overrides\": [\"drive.g_p=2\"], "
                           "\"state\": \"skipped\""), std::string::npos) << manifest;

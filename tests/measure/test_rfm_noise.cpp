@@ -27,16 +27,19 @@ rotation = false
 name = "bead"
 radius = 0.0015
 mass = 3.53e-5
-count = )") + std::to_string(n) + "\n[box]\n" + box + R"(
+count = )") +
+         std::to_string(n) + "\n[box]\n" + box + R"(
 [preparation]
 placement = "uniform"
 seed = 5
 [integrator]
-dt = )" + std::to_string(dt) + R"(
+dt = )" + std::to_string(dt) +
+         R"(
 [drive]
 kind = "random_force"
 D = 1e-8
-com_removal_every = )" + std::to_string(com_every) + "\n";
+com_removal_every = )" +
+         std::to_string(com_every) + "\n";
 }
 
 struct Heating {

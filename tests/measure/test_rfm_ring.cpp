@@ -118,9 +118,10 @@ TEST(RfmRing, ElasticGasHasUniformPointGaps) {
     worst = std::max(worst, std::abs(cum / h1.total() - exact));
   }
   EXPECT_LT(worst, 0.03);
-  std::printf("elastic ring N = 200: <R>N = %.5f, <R^2>/exact = %.4f +- %.4f, <R^3>/exact = %.4f +- "
-              "%.4f, KS distance %.4f\n", mom[0] * n, mom[1] / r2, err[1] / r2, mom[2] / r3,
-              err[2] / r3, worst);
+  std::printf(
+      "elastic ring N = 200: <R>N = %.5f, <R^2>/exact = %.4f +- %.4f, <R^3>/exact = %.4f +- "
+      "%.4f, KS distance %.4f\n",
+      mom[0] * n, mom[1] / r2, err[1] / r2, mom[2] / r3, err[2] / r3, worst);
   // G_h for h = 2: a sum of two gaps, ⟨R_{i,i+2}⟩ = 2L′/N
   double mean2 = 0.0;
   for (const auto& b : g->g(1)) mean2 += b.x * b.p * (b.hi - b.lo);

@@ -35,7 +35,8 @@ TEST(RfmScene, DefaultsFollowTheDrive) {
   const SceneSpec n = parse_scene_string(kBase, "a.toml", {"drive.kind=none"});
   EXPECT_FALSE(n.rfm.enabled);
   EXPECT_EQ(n.resolved.count("rfm.enabled"), 0u);
-  const SceneSpec g = parse_scene_string(std::string(kBase) + "[rfm]\n", "a.toml", {"drive.kind=none"});
+  const SceneSpec g =
+      parse_scene_string(std::string(kBase) + "[rfm]\n", "a.toml", {"drive.kind=none"});
   EXPECT_TRUE(g.rfm.enabled);  // a freely cooling gas that asks for the measurements
 }
 
@@ -81,11 +82,13 @@ TEST(RfmScene, BadValuesNameTheKey) {
     }
     return std::string("no error");
   };
-  EXPECT_NE(error_of("gr_rmax = 0.08\n").find("bad.toml:14: key 'rfm.gr_rmax': must be at most half"),
-            std::string::npos)
+  EXPECT_NE(
+      error_of("gr_rmax = 0.08\n").find("bad.toml:14: key 'rfm.gr_rmax': must be at most half"),
+      std::string::npos)
       << error_of("gr_rmax = 0.08\n");
   EXPECT_NE(error_of("sample_every = 0\n").find("key 'rfm.sample_every'"), std::string::npos);
-  EXPECT_NE(error_of("path_min = 1e-3\npath_max = 1e-4\n").find("key 'rfm.path_max'"), std::string::npos);
+  EXPECT_NE(error_of("path_min = 1e-3\npath_max = 1e-4\n").find("key 'rfm.path_max'"),
+            std::string::npos);
   EXPECT_NE(error_of("sampel_every = 10\n").find("did you mean 'sample_every'"), std::string::npos);
 }
 

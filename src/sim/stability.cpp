@@ -1,0 +1,55 @@
+#include "sim/stability.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "sim/simulation.hpp"
+
+namespace gs {
+
+double stable_omega_dt(IntegratorKind kind, double zeta) {
+  // measured on the damped oscillator (tests/integrate/test_stability.cpp, 0.01 grid)
+  double at0 = 2.0, at25 = 1.23;
+  switch (kind) {
+    case IntegratorKind::Gear6: at0 = 0.47; at25 = 0.28; break;
+    case IntegratorKind::VelocityVerlet:
+    case IntegratorKind::PositionVerlet: at0 = 2.0; at25 = 1.23; break;
+    case IntegratorKind::SemiImplicitEuler: at0 = 1.32; at25 = 1.40; break;
+  }
+  const double z = std::clamp(zeta, 0.0, 0.5);
+  return std::max(0.05, at0 + (at25 - at0) * z / 0.25);
+}
+
+StepAdvice time_step_advice(const Simulation& sim) {
+  const World& w = sim.world();
+  StepAdvice a;
+  const double tc = sim.model().min_contact_time();
+  a.omega = M_PI / tc;  // ω_d of the stiffest contact; ω₀ is within a few % at these dampings
+  a.omega_dt = a.omega * sim.dt();
+  // damping ratio: Model P ζ = γ/2; Model S from ε (T.2.6): ζ = −ln ε/√(π² + ln²ε)
+  double zeta = 0.0;
+  for (const auto& m : w.materials) {
+    if (w.polygons()) {
+      zeta = std::max(zeta, m.gamma / 2);
+    } else if (m.eps_n < 1.0) {
+      const double l = std::log(m.eps_n);
+      zeta = std::max(zeta, -l / std::sqrt(M_PI * M_PI + l * l));
+    }
+  }
+  const IntegratorKind kind = sim.world().scene.integrator.kind;
+  a.limit = stable_omega_dt(kind, zeta);
+  a.suggested_dt = 0.5 * a.limit / a.omega;
+  a.stable = a.omega_dt <= a.limit;
+  if (!a.stable) {
+    std::ostringstream m;
+    m << "dt = " << sim.dt() << " s gives omega*dt = " << a.omega_dt
+      << " for the stiffest contact (contact time " << tc << " s, damping ratio " << zeta
+      << "), beyond the stability limit " << a.limit << " of " << to_string(kind)
+      << "; use dt <= " << a.suggested_dt << " s (half the limit)";
+    a.message = m.str();
+  }
+  return a;
+}
+
+}  // namespace gs

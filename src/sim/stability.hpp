@@ -1,0 +1,28 @@
+// time-step stability: the largest ω·Δt each integrator survives on the damped linear contact
+// (measured by tests/integrate/test_stability.cpp), and the advice derived from it
+#pragma once
+#include <string>
+
+#include "integrate/integrator.hpp"
+
+namespace gs {
+
+class Simulation;
+
+/// largest stable ω·Δt of an integrator on q'' = −ω²q − 2ζωq' (ζ the contact's damping ratio);
+/// linear interpolation between the measured values at ζ = 0 and ζ = 0.25
+double stable_omega_dt(IntegratorKind kind, double zeta);
+
+struct StepAdvice {
+  double omega = 0.0;        ///< angular frequency of the stiffest binary contact, rad/s
+  double omega_dt = 0.0;     ///< ω·Δt of the scene
+  double limit = 0.0;        ///< the integrator's stable ω·Δt
+  double suggested_dt = 0.0; ///< Δt at half the limit, s
+  bool stable = true;        ///< ω·Δt within the limit
+  std::string message;       ///< a sentence for the user when not stable
+};
+
+/// judge the scene's Δt against its stiffest contact and its integrator
+StepAdvice time_step_advice(const Simulation& sim);
+
+}  // namespace gs
