@@ -33,6 +33,9 @@ class Simulation {
   const ContactModel& model() const { return model_; }
   const BroadPhase& broadphase() const { return *broad_; }
   Integrator& integrator() { return *integ_; }
+  const Integrator& integrator() const { return *integ_; }
+  /// checkpoint restore (sim/simulation_restore.cpp): replace the persistent contact set
+  void restore_contacts(ContactSet c);
   double dt() const { return dt_; }
   /// gravity applied during the last step, m/s²
   Vec2 gravity() const { return gravity_; }
