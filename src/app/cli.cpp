@@ -8,6 +8,7 @@
 #include "app/render_cmd.hpp"
 #include "app/rfm_models.hpp"
 #include "app/run.hpp"
+#include "app/study.hpp"
 #include "app/sweep.hpp"
 #include "app/version.hpp"
 #include "core/error.hpp"
@@ -58,6 +59,10 @@ int run_cli(int argc, char** argv) {
   analyze->add_flag("--no-charts", [&](std::int64_t) { ao.charts = false; }, "write CSV/JSON only");
   analyze->add_flag("-q,--quiet", ao.quiet, "no summary table");
 
+  // study: speed against accuracy and the stability map (app/study.cpp)
+  StudyOptions sto;
+  auto* study = add_study_command(app, sto);
+
   // render and movie (app/render_cmd.cpp)
   auto render_cmds = add_render_commands(app);
 
@@ -75,6 +80,7 @@ int run_cli(int argc, char** argv) {
     if (auto code = dispatch_render_commands(*render_cmds)) return *code;
     if (*sweep) return sweep_command(so);
     if (*analyze) return analyze_command(ao);
+    if (*study) return study_command(sto);
   } catch (const InputError& e) {
     std::fprintf(stderr, "gransim: error: %s\n", e.what());
     return kExitBadInput;

@@ -148,7 +148,7 @@ Image draw(FrameMaker& maker, const Snapshot& s) {
 // ---------------------------------------------------------------------------------------------
 // movie sources
 
-std::vector<fs::path> recorded_frames(const fs::path& dir) {
+[[maybe_unused]] std::vector<fs::path> recorded_frames(const fs::path& dir) {
   std::vector<fs::path> out;
   const fs::path fd = dir / "frames";
   if (!fs::is_directory(fd)) return out;
@@ -161,7 +161,7 @@ std::vector<fs::path> recorded_frames(const fs::path& dir) {
 }
 
 // frames in a trajectory, by their comment lines (for the progress display)
-double trajectory_frames(const fs::path& p) {
+[[maybe_unused]] double trajectory_frames(const fs::path& p) {
   std::ifstream in(p);
   double n = 0;
   for (std::string line; std::getline(in, line);) n += line.find("Properties=") != std::string::npos;

@@ -3,8 +3,10 @@
 // exactly those N pairs (N = 2: the two sides of the one pair), each with the periodic image
 // that puts the partner *ahead* of its predecessor: the forward gap x_{i+1} + s·L − x_i lies
 // in [−d, L − d), so a neighbour is found even when it overlaps by up to a whole diameter and
-// never through the rest of the ring. O(N), no sorting, no cells; the force loop keeps only
-// the pairs that actually touch. Positions are unwrapped (World never wraps them every step).
+// never through the rest of the ring. O(N) without sorting or cells: each pair's shift is kept
+// and only recomputed when its gap leaves that window (after World::rewrap moved a particle),
+// so a step costs one multiply-add and two comparisons per particle plus a copy of the keys.
+// The force loop keeps only the pairs that actually touch.
 #include <cmath>
 #include <memory>
 
@@ -18,33 +20,63 @@ class RingNeighbours final : public BroadPhase {
   const char* name() const override { return "ring_neighbours"; }
 
   void update(const World& w, std::vector<PairKey>& out) override {
-    out.clear();
     const std::size_t n = w.size();
-    if (n < 2) return;
+    if (n < 2) {
+      out.clear();
+      return;
+    }
     const double L = w.Lx;
-    // the image s of `ahead` that makes it the forward neighbour of `behind`
-    auto forward_shift = [&](std::size_t behind, std::size_t ahead) {
-      const double gap = w.s.x[ahead] - w.s.x[behind];
-      const double dij = w.radius[behind] + w.radius[ahead];
-      return static_cast<int>(std::ceil((-dij - gap) / L));
-    };
-    out.reserve(n);
-    // ascending keys: (0, 1), the closing pair (0, N−1), then (1, 2) … (N−2, N−1). In the
-    // closing pair 0 is the forward neighbour of N−1 (shift s), so N−1 seen from 0 is at −s
+    // pair k links `behind` = k and `ahead` = k + 1 (the last one: N−1 → 0); its shift is
+    // kept from step to step and recomputed only when the forward gap leaves [−d, L − d)
+    if (shift_.size() != n) {
+      shift_.assign(n, 0);
+      stale_ = true;
+      for (std::size_t k = 0; k < n; ++k) shift_[k] = forward_shift(w, k, (k + 1) % n, L);
+    }
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::size_t a = k + 1 == n ? 0 : k + 1;
+      const double dij = w.radius[k] + w.radius[a];
+      const double gap = w.s.x[a] + shift_[k] * L - w.s.x[k];
+      if (gap < -dij || gap >= L - dij) {
+        shift_[k] = forward_shift(w, k, a, L);
+        stale_ = true;
+      }
+    }
+    if (stale_) build(n);
+    out = keys_;
+  }
+
+ private:
+  // the image s of `ahead` that makes it the forward neighbour of `behind`
+  static int forward_shift(const World& w, std::size_t behind, std::size_t ahead, double L) {
+    const double gap = w.s.x[ahead] - w.s.x[behind];
+    const double dij = w.radius[behind] + w.radius[ahead];
+    return static_cast<int>(std::ceil((-dij - gap) / L));
+  }
+
+  // ascending keys: (0, 1), the closing pair (0, N−1), then (1, 2) … (N−2, N−1). In the
+  // closing pair 0 is the forward neighbour of N−1 (shift s), so N−1 seen from 0 is at −s
+  void build(std::size_t n) {
+    keys_.clear();
     const auto last = static_cast<std::uint32_t>(n - 1);
-    const PairKey first = make_key(0, 1, make_image(forward_shift(0, 1), 0));
-    const PairKey closing = make_key(0, last, make_image(-forward_shift(n - 1, 0), 0));
+    const PairKey first = make_key(0, 1, make_image(shift_[0], 0));
+    const PairKey closing = make_key(0, last, make_image(-shift_[n - 1], 0));
     if (n == 2 && closing < first) {
-      out.push_back(closing);
-      out.push_back(first);
+      keys_.push_back(closing);
+      keys_.push_back(first);
     } else {
-      out.push_back(first);
-      if (closing != first) out.push_back(closing);
+      keys_.push_back(first);
+      if (closing != first) keys_.push_back(closing);
     }
     for (std::size_t i = 1; i + 1 < n; ++i)
-      out.push_back(make_key(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(i + 1),
-                             make_image(forward_shift(i, i + 1), 0)));
+      keys_.push_back(make_key(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(i + 1),
+                               make_image(shift_[i], 0)));
+    stale_ = false;
   }
+
+  std::vector<int> shift_;     ///< image shift of each neighbour pair, box lengths
+  std::vector<PairKey> keys_;  ///< the keys for the current shifts, ascending
+  bool stale_ = true;          ///< keys_ must be rebuilt
 };
 
 }  // namespace

@@ -13,6 +13,10 @@ law::PolyLawParams poly_params(const MaterialSpec& a, const MaterialSpec& b) {
   return {0.5 * (a.E + b.E), 0.5 * (a.gamma + b.gamma), 0.5 * (a.mu + b.mu)};
 }
 
+// below this many items a parallel region costs more than it saves (and on a busy machine
+// far more: waiting threads lose their time slices)
+constexpr std::size_t kParallelMin = 1000;
+
 // position of j's periodic image as seen from i
 Vec2 image_pos(const World& w, std::uint32_t j, std::uint32_t image) {
   return {w.s.x[j] + image_sx(image) * w.Lx, w.s.y[j] + image_sy(image) * w.Ly};
@@ -87,11 +91,11 @@ ForceStats ContactModel::evaluate_polygons(const World& w, const std::vector<Pai
   const std::int64_t ncand = static_cast<std::int64_t>(cand.size());
   // world-frame polygons once per step
   shapes_.resize(n);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kParallelMin)
   for (std::int64_t i = 0; i < static_cast<std::int64_t>(n); ++i) shapes_[i] = w.shape(i);
   pair_out_.resize(cand.size());
 
-#pragma omp parallel for schedule(dynamic, 64)
+#pragma omp parallel for schedule(dynamic, 64) if (cand.size() >= kParallelMin)
   for (std::int64_t k = 0; k < ncand; ++k) {
     const PairKey key = cand[k];
     PairResult& out = pair_out_[k];

@@ -3,6 +3,7 @@
 // Defaults that depend on other keys (model → integrator, box → placement) are resolved here.
 #include "scene/parse.hpp"
 
+#include <algorithm>
 #include <climits>
 #include <cmath>
 #include <filesystem>
@@ -181,6 +182,21 @@ void read_box(const Ctx& ctx, const TableReader& top, SceneSpec& s) {
       if (sp.shape != ShapeKind::Disk)
         r.fail("kind", "a ring (1D RFM, SPEC 5.2) holds disks only; species " + quote(sp.name) +
                            " is a polygon");
+  // at most 10⁶ grain diameters a side: placement lattices and cell grids stay finite
+  double d = 0;
+  for (const auto& sp : s.species) d = std::max(d, 2.0 * sp.radius);
+  constexpr double kMaxDiameters = 1e6;
+  auto bound = [&](std::string_view k, double v) {
+    if (d > 0 && v > kMaxDiameters * d) {
+      std::ostringstream m;
+      m << "is " << v / d << " grain diameters (" << v << " m for grains of diameter " << d
+        << " m); at most 1e6 are supported";
+      r.fail(k, m.str());
+    }
+  };
+  if (b.reduced_length) bound("reduced_length", *b.reduced_length);
+  else bound("width", b.width);
+  if (b.kind != BoxKind::Ring1D) bound("height", b.height);
 }
 
 // ---------------------------------------------------------------------------------------
@@ -421,6 +437,10 @@ SceneSpec parse_scene_string(std::string_view text, const std::string& name_for_
 }
 
 SceneSpec parse_scene_file(const std::string& path, const std::vector<std::string>& overrides) {
+  // a directory opens as a stream on Linux: refuse it by name
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw InputError(path, "", "is a directory, not a scene file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, "", "cannot open the scene file");
   std::ostringstream buf;

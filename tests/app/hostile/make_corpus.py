@@ -1,0 +1,179 @@
+#!/usr/bin/env python3
+"""Regenerate the hostile scene corpus: every file is a small valid scene with one thing broken.
+MANIFEST lists file<TAB>substring the error message must contain (besides the file name)."""
+import os, re
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+
+# a tiny valid scene (10 disks, 1 ms): any file that is accidentally accepted runs fast
+BASE = """[scene]
+name = "hostile"
+duration = 0.001
+
+[model]
+kind = "S"
+
+[[material]]
+name = "glass"
+ks = 5e5
+eps_n = 0.6
+eps_t = 1.0
+
+[[species]]
+name = "bead"
+shape = "disk"
+radius = 0.0015
+mass = 3.53e-5
+count = 10
+
+[box]
+kind = "periodic"
+width = 0.05
+
+[integrator]
+kind = "velocity_verlet"
+dt = 1e-6
+
+[drive]
+kind = "none"
+"""
+
+POLY = """[scene]
+name = "hostile_poly"
+duration = 0.001
+
+[[species]]
+name = "big"
+sides = 10
+radius = 0.009
+count = 10
+
+[box]
+kind = "walls"
+width = 0.2
+height = 0.6
+
+[integrator]
+kind = "velocity_verlet"
+dt = 5e-5
+"""
+
+def sub(text, old, new):
+    assert old in text, old
+    return text.replace(old, new, 1)
+
+CASES = {}  # name -> (bytes, expected substring)
+
+def case(name, text, expect, code=2):
+    CASES[name] = (text.encode() if isinstance(text, str) else text, expect, code)
+
+# syntax
+case("syntax_unclosed_table.toml", sub(BASE, "[box]", "[box"), ":")
+case("syntax_unterminated_string.toml", sub(BASE, 'name = "hostile"', 'name = "hostile'), ":")
+case("syntax_duplicate_key.toml", sub(BASE, "width = 0.05", "width = 0.05\nwidth = 0.06"), "width")
+case("syntax_garbage.toml", "this is not toml at all\n" + BASE, ":1")
+case("syntax_int_overflow.toml", BASE + "\n[preparation]\nseed = 99999999999999999999999\n", ":")
+case("syntax_deep_nesting.toml", "x = " + "[" * 5000 + "]" * 5000 + "\n" + BASE, ":")
+case("syntax_bad_utf8.toml", sub(BASE, 'name = "hostile"', 'name = "host\xff\xfeile"').encode("latin-1"), ":")
+case("empty.toml", "", "species")
+case("binary.toml", bytes((i * 97 + 13) % 256 for i in range(512)), ":")
+case("only_comments.toml", "# nothing here\n# at all\n", "species")
+# wrong types
+case("type_radius_string.toml", sub(BASE, "radius = 0.0015", 'radius = "big"'), "radius")
+case("type_count_float.toml", sub(BASE, "count = 10", "count = 1e3"), "count")
+case("type_kind_number.toml", sub(BASE, 'kind = "periodic"', "kind = 3"), "box.kind")
+case("type_lid_string.toml", sub(BASE, "width = 0.05", 'width = 0.05\nlid = "yes"'), "box.lid")
+case("type_species_not_array.toml", sub(BASE, "[[species]]", "[species]"), "species")
+case("type_test_rect_short.toml", BASE + "\n[output]\ntest_rect = [0.0, 0.0, 1.0]\n", "test_rect")
+case("type_box_is_value.toml", sub(sub(BASE, "[box]\n", ""), 'kind = "periodic"\nwidth = 0.05', 'box = 3'), "box")
+# unknown names
+case("unknown_key.toml", sub(BASE, "radius = 0.0015", "radus = 0.0015"), "radus")
+case("unknown_section.toml", BASE + "\n[frobnicate]\nx = 1\n", "frobnicate")
+case("unknown_integrator.toml", sub(BASE, 'kind = "velocity_verlet"', 'kind = "rk4"'), "integrator.kind")
+case("unknown_material_ref.toml", sub(BASE, 'mass = 3.53e-5', 'mass = 3.53e-5\nmaterial = "steel"'), "material")
+case("unknown_particle_species.toml", sub(BASE, "count = 10", "count = 1") +
+     '\n[[preparation.particle]]\nspecies = "ghost"\nx = 0.01\ny = 0.01\n', "species")
+# missing sections and keys
+case("missing_box.toml", re.sub(r"\[box\]\nkind = \"periodic\"\nwidth = 0.05\n", "", BASE), "box")
+case("missing_species.toml", re.sub(r"\[\[species\]\][^\[]*", "", BASE), "species")
+case("missing_radius.toml", sub(BASE, "radius = 0.0015\n", ""), "radius")
+case("missing_count.toml", sub(BASE, "count = 10\n", ""), "count")
+case("missing_width.toml", sub(BASE, "width = 0.05\n", ""), "width")
+# out-of-range values
+case("value_radius_zero.toml", sub(BASE, "radius = 0.0015", "radius = 0.0"), "radius")
+case("value_radius_negative.toml", sub(BASE, "radius = 0.0015", "radius = -0.0015"), "radius")
+case("value_radius_nan.toml", sub(BASE, "radius = 0.0015", "radius = nan"), "radius")
+case("value_mass_inf.toml", sub(BASE, "mass = 3.53e-5", "mass = inf"), "mass")
+case("value_dt_zero.toml", sub(BASE, "dt = 1e-6", "dt = 0.0"), "dt")
+case("value_dt_negative.toml", sub(BASE, "dt = 1e-6", "dt = -1e-6"), "dt")
+case("value_dt_neg_inf.toml", sub(BASE, "dt = 1e-6", "dt = -inf"), "dt")
+case("value_sides_two.toml", sub(POLY, "sides = 10", "sides = 2"), "sides")
+case("value_sides_huge.toml", sub(POLY, "sides = 10", "sides = 100000"), "sides")
+case("value_eps_n_zero.toml", sub(BASE, "eps_n = 0.6", "eps_n = 0.0"), "eps_n")
+case("value_eps_n_above_one.toml", sub(BASE, "eps_n = 0.6", "eps_n = 1.5"), "eps_n")
+case("value_ks_negative.toml", sub(BASE, "ks = 5e5", "ks = -5e5"), "ks")
+case("value_max_overlap.toml", BASE + "\n[health]\nmax_overlap = 2.0\n", "max_overlap")
+case("value_check_every_zero.toml", BASE + "\n[health]\ncheck_every = 0\n", "check_every")
+case("value_duration_zero.toml", sub(BASE, "duration = 0.001", "duration = 0.0"), "duration")
+case("value_count_negative.toml", sub(BASE, "count = 10", "count = -5"), "count")
+case("value_count_huge.toml", sub(BASE, "count = 10", "count = 9999999999"), "count")
+case("value_count_all_zero.toml", sub(BASE, "count = 10", "count = 0"), "count")
+case("value_width_huge.toml", sub(BASE, "width = 0.05", "width = 1e300"), "width")
+case("value_radius_huge.toml", sub(BASE, "radius = 0.0015", "radius = 1e300"), "radius")
+case("value_gravity_direction_zero.toml", sub(POLY, "dt = 5e-5", "dt = 5e-5\n\n[drive]\nkind = \"gravity\"\ngx = 0.0\ngy = 0.0"), "gx")
+case("value_output_series_zero.toml", BASE + "\n[output]\nseries_every = 0\n", "series_every")
+case("value_test_rect_inverted.toml", BASE + "\n[output]\ntest_rect = [0.4, 0.0, 0.1, 0.4]\n", "test_rect")
+case("value_render_size_zero.toml", BASE + "\n[render]\nsize = [0, 0]\n", "size")
+case("value_gr_rmax_too_big.toml", BASE + "\n[rfm]\ngr_rmax = 1.0\n", "gr_rmax")
+# geometry that cannot be built
+case("too_many_grains_periodic.toml", sub(BASE, "count = 10", "count = 100000"), "fit")
+case("too_many_grains_walls.toml", sub(sub(POLY, "count = 10", "count = 5000"), "height = 0.6",
+     "height = 0.1") + "\n[preparation]\ncolumn_height = 0.05\n", "fit")
+case("particle_outside_box.toml", sub(POLY, "count = 10", "count = 1") +
+     "\n[[preparation.particle]]\nx = 5.0\ny = 0.1\n", "", 0)
+case("value_radius_tiny.toml", sub(BASE, "radius = 0.0015", "radius = 1e-300"), "width")
+# accepted on purpose (exit code in the third column): explicit particles may overlap
+case("particles_overlapping.toml", sub(BASE, "count = 10", "count = 2") +
+     "\n[[preparation.particle]]\nx = 0.01\ny = 0.01\n\n[[preparation.particle]]\nx = 0.0105\ny = 0.01\n", "", 0)
+case("particles_coincident.toml", sub(BASE, "count = 10", "count = 2") +
+     "\n[[preparation.particle]]\nx = 0.01\ny = 0.01\n\n[[preparation.particle]]\nx = 0.01\ny = 0.01\n", "", 0)
+case("particle_nan.toml", sub(BASE, "count = 10", "count = 1") +
+     "\n[[preparation.particle]]\nx = nan\ny = 0.01\n", "x")
+case("particle_count_mismatch.toml", sub(BASE, "count = 10", "count = 3") +
+     "\n[[preparation.particle]]\nx = 0.01\ny = 0.01\n", "count")
+case("duplicate_species_name.toml", BASE.replace("[box]", """[[species]]
+name = "bead"
+shape = "disk"
+radius = 0.001
+mass = 1e-5
+count = 5
+
+[box]"""), "name")
+case("duplicate_material_name.toml", sub(BASE, "[[species]]", '[[material]]\nname = "glass"\n\n[[species]]'), "name")
+case("model_s_polygon.toml", sub(BASE, 'shape = "disk"', 'shape = "polygon"'), "shape")
+case("ring_polygon.toml", sub(sub(POLY, 'kind = "walls"', 'kind = "ring"'), "height = 0.6\n", ""), "ring")
+case("ring_reduced_and_width.toml", sub(sub(BASE, 'kind = "periodic"', 'kind = "ring"'),
+     "width = 0.05", "width = 0.05\nreduced_length = 0.01"), "reduced_length")
+# stability and protocol
+case("dt_too_large.toml", sub(BASE, "dt = 1e-6", "dt = 1e-3"), "dt")
+case("protocol_t1_ge_period.toml", POLY + '\n[drive]\nkind = "negative_g"\nt1 = 3.0\nperiod = 2.0\ntaps = 2\n', "t1")
+case("protocol_taps_with_gravity.toml", POLY + '\n[drive]\nkind = "gravity"\ntaps = 5\n', "taps")
+case("protocol_g_p_negative.toml", POLY + '\n[drive]\nkind = "negative_g"\ng_p = -6.0\ntaps = 1\n', "g_p")
+case("protocol_f_zero.toml", POLY + '\n[drive]\nkind = "rotating_g"\nf = 0.0\ntaps = 1\n', "drive.f")
+case("protocol_random_force_D_zero.toml", sub(BASE, 'kind = "none"', 'kind = "random_force"\nD = 0.0'), "D")
+case("protocol_negative_taps.toml", POLY + '\n[drive]\nkind = "negative_g"\ntaps = -1\n', "taps")
+
+def main():
+    for f in os.listdir(HERE):
+        if f.endswith(".toml"):
+            os.remove(os.path.join(HERE, f))
+    with open(os.path.join(HERE, "MANIFEST"), "w") as m:
+        m.write("# scene file<TAB>substring the error message must contain<TAB>expected exit code (make_corpus.py)\n")
+        for name, (data, expect, code) in sorted(CASES.items()):
+            with open(os.path.join(HERE, name), "wb") as f:
+                f.write(data)
+            m.write(f"{name}\t{expect}\t{code}\n")
+    print(len(CASES), "scene files")
+
+if __name__ == "__main__":
+    main()

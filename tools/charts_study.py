@@ -1,0 +1,166 @@
+#!/usr/bin/env python3
+"""Charts of `gransim study DIR`: error against cost per reference problem (log-log, one curve
+per integrator and switch set, Pareto front marked, statistical-error band where one exists),
+and the stability map (largest stable dt in contact times per integrator and model).
+
+usage: charts_study.py DIR   (reads DIR/study.csv, DIR/stability.csv; writes DIR/*.png)
+"""
+import csv
+import math
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+COLORS = {"gear6": "tab:blue", "velocity_verlet": "tab:orange",
+          "position_verlet": "tab:green", "semi_implicit_euler": "tab:red"}
+STYLES = ["-", "--", ":", "-."]
+MARKERS = ["o", "s", "^", "v", "D"]
+YLABEL = {
+    "restitution_rel_error_vs_exact": "|ε_realised − ε| / ε",
+    "restitution_rel_error_vs_reference": "|ε − ε_ref| / ε_ref (ref: Gear 6, smallest Δt)",
+    "energy_drift_per_s": "|ΔE| / E per simulated second (1/s)",
+    "haff_slope_rel_error_vs_enskog": "|slope / Enskog − 1|",
+    "phi_abs_error_vs_reference": "|φ − φ_ref| (ref: Gear 6, smallest Δt)",
+}
+
+
+def num(s):
+    try:
+        v = float(s)
+    except ValueError:
+        return math.nan
+    return v
+
+
+def read_rows(path):
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def pareto(points):
+    """non-dominated (cost, error) points, sorted by cost: cheaper or more accurate than all"""
+    front, best = [], math.inf
+    for c, e in sorted(points):
+        if e < best:
+            front.append((c, e))
+            best = e
+    return front
+
+
+def error_chart(problem, rows, out):
+    fig, ax = plt.subplots(figsize=(7.5, 5.2))
+    switches = sorted({r["switches"] for r in rows})
+    bps = sorted({r["broad_phase"] for r in rows})
+    pts, stat = [], 0.0
+    curves = {}
+    for r in rows:
+        key = (r["integrator"], r["switches"], r["broad_phase"])
+        curves.setdefault(key, []).append(r)
+    for (integ, sw, bp), rs in sorted(curves.items()):
+        ok = [(num(r["wall_per_sim_s"]), num(r["error"]), num(r["dt_over_tc"])) for r in rs
+              if r["stable"] == "true" and num(r["error"]) > 0 and num(r["wall_per_sim_s"]) > 0]
+        bad = [r for r in rs if r["stable"] != "true"]
+        for r in rs:
+            stat = max(stat, num(r["stat_error"]) if num(r["stat_error"]) > 0 else 0.0)
+        label = integ
+        if len(switches) > 1:
+            label += " " + sw
+        if len(bps) > 1:
+            label += " " + bp
+        ls = STYLES[(switches.index(sw) + 2 * bps.index(bp)) % len(STYLES)]
+        mk = MARKERS[switches.index(sw) % len(MARKERS)]
+        color = COLORS.get(integ, "black")
+        if ok:
+            ok.sort()
+            ax.plot([p[0] for p in ok], [p[1] for p in ok], ls, marker=mk, color=color,
+                    label=label, alpha=0.85)
+            for c, e, d in ok:
+                ax.annotate(f"{d:g}", (c, e), fontsize=6, xytext=(3, 3),
+                            textcoords="offset points", color=color)
+            pts += [(c, e) for c, e, _ in ok]
+        if bad:
+            ax.plot([], [], "x", color=color, label=f"{label}: {len(bad)} unstable")
+    if pts:
+        front = pareto(pts)
+        ax.plot([p[0] for p in front], [p[1] for p in front], "k-", lw=2.5, alpha=0.25,
+                label="Pareto front", zorder=0)
+        ax.plot([p[0] for p in front], [p[1] for p in front], "o", mfc="none", mec="black",
+                ms=11, zorder=0)
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        if stat > 0:
+            lo = min(min(p[1] for p in pts), stat) / 3
+            ax.axhspan(lo, stat, color="grey", alpha=0.18,
+                       label=f"statistical error ({stat:.2g})")
+    else:
+        ax.text(0.5, 0.5, "no stable point with an error", ha="center", transform=ax.transAxes)
+    kind = rows[0]["error_kind"] if rows else ""
+    ax.set_xlabel("cost: wall time per simulated second (s/s)")
+    ax.set_ylabel(YLABEL.get(kind, kind))
+    n = rows[0]["particles"] if rows else "?"
+    ax.set_title(f"{problem} ({n} particles): error against cost; labels = Δt / t_c")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=7, loc="best")
+    fig.tight_layout()
+    fig.savefig(out, dpi=110)
+    plt.close(fig)
+
+
+def stability_chart(rows, out):
+    groups = sorted({(r["problem"], r["switches"]) for r in rows})
+    integs = []
+    for r in rows:
+        if r["integrator"] not in integs:
+            integs.append(r["integrator"])
+    fig, ax = plt.subplots(figsize=(max(7.0, 1.3 * len(groups) + 3), 5.0))
+    width = 0.8 / max(1, len(integs))
+    for k, integ in enumerate(integs):
+        xs, hs, capped = [], [], []
+        for g, (p, sw) in enumerate(groups):
+            for r in rows:
+                if r["problem"] == p and r["switches"] == sw and r["integrator"] == integ:
+                    xs.append(g + (k - (len(integs) - 1) / 2) * width)
+                    hs.append(num(r["max_stable_dt_over_tc"]))
+                    capped.append(num(r["first_unstable_dt_over_tc"]) == 0)
+        bars = ax.bar(xs, hs, width, label=integ, color=COLORS.get(integ, "grey"))
+        for b, h, c in zip(bars, hs, capped):
+            ax.annotate(f"{h:.2g}" + ("+" if c else ""), (b.get_x() + b.get_width() / 2, h),
+                        ha="center", va="bottom", fontsize=7)
+    ax.set_xticks(range(len(groups)))
+    ax.set_xticklabels([f"{p}\n{sw}" for p, sw in groups], fontsize=8)
+    ax.set_ylabel("largest stable Δt / contact time")
+    ax.set_title("stability map (Δt sweep until blow-up; '+' = stable up to the sweep's end)")
+    ax.grid(True, axis="y", alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(out, dpi=110)
+    plt.close(fig)
+
+
+def main():
+    if len(sys.argv) != 2:
+        print(__doc__, file=sys.stderr)
+        return 2
+    d = sys.argv[1]
+    rows = read_rows(os.path.join(d, "study.csv"))
+    problems = []
+    for r in rows:
+        if r["problem"] not in problems:
+            problems.append(r["problem"])
+    for p in problems:
+        error_chart(p, [r for r in rows if r["problem"] == p],
+                    os.path.join(d, f"error_cost_{p}.png"))
+    stab = os.path.join(d, "stability.csv")
+    if os.path.exists(stab):
+        srows = read_rows(stab)
+        if srows:
+            stability_chart(srows, os.path.join(d, "stability_map.png"))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
