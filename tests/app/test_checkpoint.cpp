@@ -69,7 +69,9 @@ void expect_bitwise_continuation(const SceneSpec& s, std::int64_t n, std::int64_
   resumed.run(m);
   EXPECT_EQ(state_hash(resumed.world()), state_hash(straight->world())) << tag;
   EXPECT_EQ(resumed.contacts().keys, straight->contacts().keys) << tag;
-  if (need_contacts) EXPECT_FALSE(straight->contacts().keys.empty()) << tag << ": the test should have contacts";
+  if (need_contacts) {
+    EXPECT_FALSE(straight->contacts().keys.empty()) << tag << ": the test should have contacts";
+  }
   fs::remove(p);
 }
 

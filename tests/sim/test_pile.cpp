@@ -10,6 +10,8 @@
 #endif
 
 #include "measure/packing.hpp"
+#include "scene/parse.hpp"
+#include "sim/state_file.hpp"
 #include "test_world.hpp"
 
 namespace gs {
@@ -71,14 +73,18 @@ TEST(Determinism, SameSceneSameHashEitherBroadPhase) {
 // forces are computed per pair in parallel and summed in key order: the thread count cannot
 // change a single bit of the trajectory
 TEST(Determinism, SameHashForOneAndTwoThreads) {
-  SceneSpec s = build::decagon_pile(60, 0.12, 0.6, 9);
+  // the settled paper pile: ~3500 candidate pairs, well above the parallel threshold
+  const std::string src = GS_SOURCE_DIR;
+  SceneSpec s = parse_scene_file(src + "/scenes/paper_pile.toml");
   auto run = [&](int threads) {
     const int before = omp_get_max_threads();
     omp_set_num_threads(threads);
-    testing::TestWorld tw(s);
-    tw.start().run(2000);
+    World w = make_world(s);
+    read_state_file(w, src + "/bench/data/paper_pile_settled.csv");
+    Simulation sim(std::move(w));
+    sim.run(100);
     omp_set_num_threads(before);
-    return state_hash(tw.world());
+    return state_hash(sim.world());
   };
   EXPECT_EQ(run(1), run(2));
 }

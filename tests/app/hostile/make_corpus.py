@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Regenerate the hostile scene corpus: every file is a small valid scene with one thing broken.
 MANIFEST lists file<TAB>substring the error message must contain (besides the file name)."""
-import os, re
+import os, re, struct
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
@@ -163,7 +163,67 @@ case("protocol_f_zero.toml", POLY + '\n[drive]\nkind = "rotating_g"\nf = 0.0\nta
 case("protocol_random_force_D_zero.toml", sub(BASE, 'kind = "none"', 'kind = "random_force"\nD = 0.0'), "D")
 case("protocol_negative_taps.toml", POLY + '\n[drive]\nkind = "negative_g"\ntaps = -1\n', "taps")
 
+# ---- checkpoints: mutations of a valid seed (fuzz/corpus/checkpoint/pile.gsck) ----
+SEED = os.path.join(HERE, "..", "..", "..", "fuzz", "corpus", "checkpoint", "pile.gsck")
+CKPT = {}  # name -> (bytes, expected substring, stage: "read" or "restore")
+
+def fnv(b):
+    h = 1469598103934665603
+    for c in b:
+        h = ((h ^ c) * 1099511628211) & 0xFFFFFFFFFFFFFFFF
+    return h
+
+def reseal(b):
+    """fix size and checksum after editing the payload"""
+    p = bytes(b[32:])
+    return bytes(b[:16]) + struct.pack("<QQ", len(p), fnv(p)) + p
+
+def make_checkpoints():
+    good = open(SEED, "rb").read()
+    scene_len = struct.unpack_from("<Q", good, 32)[0]
+    scene = good[40:40 + scene_len]
+    after = 40 + scene_len           # clock origin, t, step, n
+    n = struct.unpack_from("<Q", good, after + 24)[0]
+    sp_at = after + 32
+    def ck(name, data, expect, stage="read"):
+        CKPT[name] = (data, expect, stage)
+    ck("ckpt_empty.gsck", b"", "32-byte header")
+    ck("ckpt_text.gsck", b"this is a scene, not a checkpoint\n" * 3, "bad magic")
+    ck("ckpt_binary_noise.gsck", bytes((i * 131 + 7) % 256 for i in range(4096)), "bad magic")
+    ck("ckpt_header_only.gsck", good[:32], "payload size")
+    ck("ckpt_truncated_half.gsck", good[:len(good) // 2], "payload size")
+    ck("ckpt_truncated_last_byte.gsck", good[:-1], "payload size")
+    ck("ckpt_trailing_garbage.gsck", good + b"\0\0\0\0", "payload size")
+    b = bytearray(good); b[len(good) // 2] ^= 0x01
+    ck("ckpt_bit_flip.gsck", bytes(b), "checksum mismatch")
+    b = bytearray(good); struct.pack_into("<I", b, 8, 99)
+    ck("ckpt_wrong_version.gsck", bytes(b), "version 99")
+    b = bytearray(good); struct.pack_into(">I", b, 12, 0x01020304)
+    ck("ckpt_big_endian.gsck", bytes(b), "big-endian")
+    b = bytearray(good); struct.pack_into("<I", b, 12, 0xdeadbeef)
+    ck("ckpt_bad_endian_marker.gsck", bytes(b), "endianness marker")
+    b = bytearray(good); struct.pack_into("<Q", b, 16, 1 << 62)
+    ck("ckpt_huge_size.gsck", bytes(b), "payload size")
+    # resealed payload edits: the checksum is right, the contents are not
+    b = bytearray(good); struct.pack_into("<Q", b, 32, 1 << 60)
+    ck("ckpt_huge_scene_length.gsck", reseal(b), "truncated checkpoint")
+    b = bytearray(good); struct.pack_into("<Q", b, after + 24, 1 << 40)
+    ck("ckpt_huge_particle_count.gsck", reseal(b), "truncated checkpoint")
+    ck("ckpt_payload_cut.gsck", reseal(bytearray(good[:after + 40])), "truncated checkpoint")
+    b = bytearray(good); struct.pack_into("<i", b, sp_at, 77)
+    ck("ckpt_bad_species.gsck", reseal(b), "unknown species", "restore")
+    b = bytearray(good); struct.pack_into("<d", b, sp_at + 4 * n + 4 * 8 * n, float("nan"))
+    ck("ckpt_nan_position.gsck", reseal(b), "non-finite", "restore")
+    bad_scene = scene.replace(b"radius = ", b"radius = -", 1)
+    ck("ckpt_bad_embedded_scene.gsck", reseal(bytearray(good[:32] + struct.pack("<Q", len(bad_scene))
+       + bad_scene + good[after:])), "radius", "restore")
+    other = scene.replace(b'kind = "gear6"', b'kind = "position_verlet"', 1)
+    assert other != scene
+    ck("ckpt_wrong_integrator.gsck", reseal(bytearray(good[:32] + struct.pack("<Q", len(other))
+       + other + good[after:])), "integrator", "restore")
+
 def main():
+    make_checkpoints()
     for f in os.listdir(HERE):
         if f.endswith(".toml"):
             os.remove(os.path.join(HERE, f))
@@ -173,7 +233,16 @@ def main():
             with open(os.path.join(HERE, name), "wb") as f:
                 f.write(data)
             m.write(f"{name}\t{expect}\t{code}\n")
-    print(len(CASES), "scene files")
+    for f in os.listdir(HERE):
+        if f.endswith(".gsck"):
+            os.remove(os.path.join(HERE, f))
+    with open(os.path.join(HERE, "MANIFEST_CHECKPOINTS"), "w") as m:
+        m.write("# checkpoint<TAB>substring of the error<TAB>stage that refuses it (read|restore)\n")
+        for name, (data, expect, stage) in sorted(CKPT.items()):
+            with open(os.path.join(HERE, name), "wb") as f:
+                f.write(data)
+            m.write(f"{name}\t{expect}\t{stage}\n")
+    print(len(CASES), "scene files,", len(CKPT), "checkpoints")
 
 if __name__ == "__main__":
     main()
