@@ -11,7 +11,7 @@ gs_module(force DEPS gs_contact)
 gs_module(drive DEPS gs_world)
 gs_module(sim DEPS gs_force gs_integrate gs_drive gs_output)
 # measure: read-only observers
-gs_module(measure DEPS gs_sim)
+gs_module(measure DEPS gs_sim gs_analysis)
 gs_module(analysis DEPS gs_core)
 if(FFTW3_FOUND)
   target_link_libraries(gs_analysis PUBLIC PkgConfig::FFTW3)

@@ -131,7 +131,8 @@ def stability_chart(rows, out):
             ax.annotate(f"{h:.2g}" + ("+" if c else ""), (b.get_x() + b.get_width() / 2, h),
                         ha="center", va="bottom", fontsize=7)
     ax.set_xticks(range(len(groups)))
-    ax.set_xticklabels([f"{p}\n{sw}" for p, sw in groups], fontsize=8)
+    ax.set_xticklabels([p + "\n" + sw.replace(" ", "\n").replace("finite_difference", "fd")
+                        for p, sw in groups], fontsize=7)
     ax.set_ylabel("largest stable Δt / contact time")
     ax.set_title("stability map (Δt sweep until blow-up; '+' = stable up to the sweep's end)")
     ax.grid(True, axis="y", alpha=0.3)

@@ -48,7 +48,8 @@ int run_cli(int argc, char** argv) {
 
   // analyze: the tapping statistics and charts of runs and sweeps
   AnalyzeOptions ao;
-  auto* analyze = app.add_subcommand("analyze", "tapping statistics and charts of runs and sweeps");
+  auto* analyze = app.add_subcommand(
+      "analyze", "statistics and charts of runs and sweeps (tapping study or Random Force Model)");
   analyze->add_option("dirs", ao.dirs, "run or sweep directories")->required();
   analyze->add_option("-o,--out", ao.out, "analysis folder (default DIR/analysis; needed for several DIRs)");
   analyze->add_option("--discard", ao.discard, "transient taps to drop (default: output.discard_taps)")

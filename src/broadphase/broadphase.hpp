@@ -43,6 +43,8 @@ class BroadPhase {
 std::unique_ptr<BroadPhase> make_broadphase(BroadPhaseKind kind, const World& w);
 std::unique_ptr<BroadPhase> make_cell_grid();
 std::unique_ptr<BroadPhase> make_box2d_tree();
+/// 1D ring: only the (i, i+1) neighbour pairs in ring order
+std::unique_ptr<BroadPhase> make_ring_neighbours();
 
 /// does a circle (c, r) overlap an axis-aligned box [lo, hi]?
 inline bool circle_box_overlap(Vec2 c, double r, Vec2 lo, Vec2 hi) {

@@ -146,6 +146,8 @@ class CellGrid final : public BroadPhase {
 std::unique_ptr<BroadPhase> make_cell_grid() { return std::make_unique<CellGrid>(); }
 
 std::unique_ptr<BroadPhase> make_broadphase(BroadPhaseKind kind, const World& w) {
+  // the 1D ring: neighbour contacts only, order preserved (SPEC 5.2)
+  if (kind == BroadPhaseKind::Auto && w.box == BoxKind::Ring1D) return make_ring_neighbours();
   if (kind == BroadPhaseKind::Auto)
     kind = w.box == BoxKind::Walls ? BroadPhaseKind::Box2DTree : BroadPhaseKind::CellGrid;
   if (kind == BroadPhaseKind::Box2DTree && w.box != BoxKind::Walls)

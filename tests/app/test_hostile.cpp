@@ -169,7 +169,9 @@ TEST(Hostile, BadCheckpointsAreInputErrors) {
     } catch (const InputError& err) {
       const std::string m = err.what();
       EXPECT_NE(m.find(path), std::string::npos) << e.file << ": " << m;
-      if (e.third == "read") EXPECT_NE(m.find("byte offset"), std::string::npos) << m;
+      if (e.third == "read") {
+        EXPECT_NE(m.find("byte offset"), std::string::npos) << m;
+      }
       EXPECT_NE(m.find(e.expect), std::string::npos) << e.file << ": expected '" << e.expect
                                                      << "' in " << m;
     }

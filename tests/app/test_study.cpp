@@ -122,6 +122,7 @@ TEST(Study, QuickMatrixWritesOneRowPerCombinationAndCharts) {
   } else {
     GTEST_LOG_(INFO) << "matplotlib missing: chart check skipped";
   }
+  if (!HasFailure()) fs::remove_all(out.parent_path());
 }
 
 // Gear 6 at one contact time per step: the health check stops the run, the study records it
@@ -146,6 +147,7 @@ TEST(Study, UnstableStepIsRecordedWithTheHealthMessage) {
   EXPECT_EQ(rows[1][stable], "true");
   EXPECT_EQ(rows[2][stable], "false");
   EXPECT_NE(rows[2][note].find("dt = "), std::string::npos) << rows[2][note];
+  if (!HasFailure()) fs::remove_all(dir);
 }
 
 TEST(Study, BadStudyFileNamesFileLineAndKey) {
@@ -170,6 +172,7 @@ TEST(Study, BadStudyFileNamesFileLineAndKey) {
   r = sh(gransim("study " + f.string() + " --out " + (dir / "o").string()));
   EXPECT_EQ(r.code, 2) << r.output;
   EXPECT_NE(r.output.find("matrix"), std::string::npos) << r.output;
+  fs::remove_all(dir);
 }
 
 }  // namespace
