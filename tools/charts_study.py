@@ -52,7 +52,9 @@ def pareto(points):
 
 
 def error_chart(problem, rows, out):
-    fig, ax = plt.subplots(figsize=(7.5, 5.2))
+    many = len({(r["integrator"], r["switches"], r["broad_phase"]) for r in rows}) > 8
+    fig, ax = plt.subplots(figsize=(12.5, 6.0) if many else (7.5, 5.2))
+    unstable = {}
     switches = sorted({r["switches"] for r in rows})
     bps = sorted({r["broad_phase"] for r in rows})
     pts, stat = [], 0.0
@@ -83,7 +85,9 @@ def error_chart(problem, rows, out):
                             textcoords="offset points", color=color)
             pts += [(c, e) for c, e, _ in ok]
         if bad:
-            ax.plot([], [], "x", color=color, label=f"{label}: {len(bad)} unstable")
+            unstable[integ] = unstable.get(integ, 0) + len(bad)
+    for integ, n_bad in sorted(unstable.items()):
+        ax.plot([], [], "x", color=COLORS.get(integ, "black"), label=f"{integ}: {n_bad} unstable")
     if pts:
         front = pareto(pts)
         ax.plot([p[0] for p in front], [p[1] for p in front], "k-", lw=2.5, alpha=0.25,
@@ -104,7 +108,10 @@ def error_chart(problem, rows, out):
     n = rows[0]["particles"] if rows else "?"
     ax.set_title(f"{problem} ({n} particles): error against cost; labels = Δt / t_c")
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=7, loc="best")
+    if many:
+        ax.legend(fontsize=6, loc="upper left", bbox_to_anchor=(1.01, 1.0))
+    else:
+        ax.legend(fontsize=7, loc="best")
     fig.tight_layout()
     fig.savefig(out, dpi=110)
     plt.close(fig)
