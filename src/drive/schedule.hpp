@@ -73,12 +73,14 @@ inline bool excitation_starts_next(const DriveSpec& d, double t, double dt) {
 /// gravitational acceleration at time t, m/s²:
 /// negative g (P.37): g·e_y·(g_p if t̃ < t1 else −1);
 /// rotating g (P.38, window t̃ < 2π/ω per SPEC 9.3): g·(sin ωt̃, −cos ωt̃), else (0, −g);
-/// before the protocol clock starts (settling): (0, −g) for every kind but constant gravity
+/// before the protocol clock starts (settling): (0, −g) for the tapping protocols; none and
+/// random force have no gravity
 inline Vec2 gravity_at(const DriveSpec& d, double t) {
   if (d.kind == DriveKind::Gravity) {
     const double n = std::hypot(d.gx, d.gy);
     return n > 0 ? Vec2{d.g * d.gx / n, d.g * d.gy / n} : Vec2{};
   }
+  if (!is_tapping(d)) return {};  // none, random force: no gravity at all
   if (protocol_time(d, t) < 0.0) return {0.0, -d.g};
   switch (d.kind) {
     case DriveKind::NegativeG: {

@@ -397,6 +397,11 @@ SceneSpec parse_scene_string(std::string_view text, const std::string& name_for_
   Ctx ctx{name_for_messages};
   // syntax first: toml++ reports line and column
   toml::table root;
+  // bytes toml++ 3.3.0 cannot survive: non-ASCII outside strings and comments
+  if (const auto [l, c] = scene_detail::non_ascii_outside_strings(text); l != 0)
+    throw InputError(name_for_messages + ":" + std::to_string(l) + ":" + std::to_string(c), "",
+                     "TOML syntax error: a non-ASCII character outside a string or comment "
+                     "(keys and values must be ASCII; write e.g. eps_n, not ε_n)");
   try {
     root = toml::parse(text, name_for_messages);
   } catch (const toml::parse_error& e) {

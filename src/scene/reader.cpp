@@ -360,6 +360,42 @@ std::optional<std::vector<Segment>> split_key(std::string_view key) {
 }
 }  // namespace
 
+std::pair<int, int> non_ascii_outside_strings(std::string_view t) {
+  int line = 1, col = 0;
+  std::size_t i = 0;
+  auto starts = [&](std::string_view w) { return t.substr(i, w.size()) == w; };
+  auto advance = [&](std::size_t k) {
+    for (std::size_t e = std::min(t.size(), i + k); i < e; ++i) {
+      if (t[i] == '\n') {
+        ++line;
+        col = 0;
+      } else {
+        ++col;
+      }
+    }
+  };
+  while (i < t.size()) {
+    const unsigned char c = static_cast<unsigned char>(t[i]);
+    if (c >= 0x80) return {line, col + 1};
+    if (c == '#') {  // comment: to the end of the line
+      while (i < t.size() && t[i] != '\n') advance(1);
+    } else if (starts("\"\"\"") || starts("'''")) {  // multi-line strings
+      const std::string_view close = t.substr(i, 3);
+      advance(3);
+      while (i < t.size() && !starts(close)) advance(t[i] == '\\' && close[0] == '"' ? 2 : 1);
+      advance(3);
+    } else if (c == '"' || c == '\'') {  // one-line strings (basic strings have escapes)
+      const char q = static_cast<char>(c);
+      advance(1);
+      while (i < t.size() && t[i] != q && t[i] != '\n') advance(t[i] == '\\' && q == '"' ? 2 : 1);
+      advance(1);
+    } else {
+      advance(1);
+    }
+  }
+  return {0, 0};
+}
+
 void apply_override(const Ctx& ctx, toml::table& root, const std::string& text) {
   std::string where = ctx.file + ": " + std::string(kOverrideTag) + text;
   auto eq = text.find('=');
@@ -374,6 +410,9 @@ void apply_override(const Ctx& ctx, toml::table& root, const std::string& text) 
   std::string source = std::string(kOverrideTag) + text;
   toml::table parsed;
   try {
+    // non-ASCII outside quotes is never valid TOML here: take it as a bare-word string
+    if (non_ascii_outside_strings("v = " + value).first != 0)
+      throw toml::parse_error("non-ASCII character", toml::source_region{});
     parsed = toml::parse("v = " + value, source);
   } catch (const toml::parse_error& e) {
     if (!value.empty() && std::string_view("[{\"'").find(value[0]) != std::string_view::npos)

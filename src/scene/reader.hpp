@@ -111,4 +111,9 @@ std::vector<const toml::table*> table_array(const TableReader& parent, std::stri
 /// word taken as a string); nodes created here carry the override text as their source path
 void apply_override(const Ctx& ctx, toml::table& root, const std::string& text);
 
+/// the first byte ≥ 0x80 outside TOML strings and comments as {line, column} (1-based), or
+/// {0, 0} if none. toml++ 3.3.0 reaches undefined behaviour on such bytes (upstream issue 295),
+/// so the parser refuses them before toml++ sees the text.
+std::pair<int, int> non_ascii_outside_strings(std::string_view text);
+
 }  // namespace gs::scene_detail

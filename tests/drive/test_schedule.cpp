@@ -225,3 +225,20 @@ TEST(ProtocolClock, DoneAfterTheLastTapIsMeasured) {
 
 }  // namespace
 }  // namespace gs
+
+namespace gs {
+namespace {
+// drives without gravity never get any, not even during the first half step
+TEST(GravitySchedule, NoGravityForNoneAndRandomForce) {
+  for (DriveKind k : {DriveKind::None, DriveKind::RandomForce}) {
+    DriveSpec d;
+    d.kind = k;
+    d.clock_origin = 0.5;
+    for (double t : {0.0, 0.25, 0.5, 1.0}) {
+      EXPECT_EQ(gravity_at(d, t).x, 0.0);
+      EXPECT_EQ(gravity_at(d, t).y, 0.0);
+    }
+  }
+}
+}  // namespace
+}  // namespace gs

@@ -201,3 +201,27 @@ TEST(SceneErrors, BadOverrides) {
 
 }  // namespace
 }  // namespace gs
+
+namespace gs {
+namespace {
+// toml++ 3.3.0 reaches undefined behaviour on non-ASCII bytes outside strings (upstream issue
+// 295): they are refused first, with line and column; inside strings and comments they are fine
+TEST(SceneErrors, NonAsciiOutsideStringsIsRefusedWithItsPosition) {
+  const std::string bad = "[scene]\nname = \"x\"\n[[material]]\nname = \"m\"\n\xce\xb5_n = 0.6\n";
+  try {
+    parse_scene_string(bad, "greek.toml");
+    FAIL() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("greek.toml:5:1"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("non-ASCII"), std::string::npos) << e.what();
+  }
+  // the same bytes inside a string and a comment are harmless
+  const std::string ok_text =
+      "# \xce\xb5 in a comment\n[scene]\nname = \"\xce\xb5\"\ndescription = '''\xce\xb5'''\n"
+      "[box]\nwidth = 0.2\n[[species]]\nname = \"g\"\nradius = 0.009\ncount = 5\n";
+  EXPECT_NO_THROW(parse_scene_string(ok_text, "ok.toml"));
+  // an override value with such bytes becomes a plain string, never reaches toml++ bare
+  EXPECT_THROW(parse_scene_string(ok_text, "ok.toml", {"drive.kind=\xce\xb5"}), InputError);
+}
+}  // namespace
+}  // namespace gs
