@@ -34,7 +34,8 @@ namespace {
 FoundTapRun describe_run(const fs::path& dir) {
   const std::string scene_path = (dir / "scene.toml").string();
   if (!fs::exists(scene_path))
-    throw InputError(dir.string(), "", "has taps.csv but no scene.toml (not a gransim run directory?)");
+    throw InputError(dir.string(), "",
+                     "has taps.csv but no scene.toml (not a gransim run directory?)");
   const SceneSpec s = parse_scene_file(scene_path);
   if (!is_tapping(s.drive))
     throw InputError(scene_path, "drive.kind", "not a tapping protocol (negative_g, rotating_g)");
@@ -69,8 +70,7 @@ std::string run_script(const std::string& python, const std::string& script,
   }
   if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return "";
   if (WIFEXITED(status) && WEXITSTATUS(status) == 127) return python + " was not found";
-  return script + " failed (exit " +
-         std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) +
+  return script + " failed (exit " + std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) +
          "; are numpy and matplotlib installed for " + python + "?)";
 }
 
@@ -100,10 +100,12 @@ std::vector<FoundTapRun> find_tap_runs(const std::string& dir) {
   // a sweep (or any folder of runs): the subdirectories with taps.csv
   std::vector<FoundTapRun> runs;
   for (const auto& e : fs::directory_iterator(d, ec))
-    if (e.is_directory() && fs::exists(e.path() / "taps.csv")) runs.push_back(describe_run(e.path()));
+    if (e.is_directory() && fs::exists(e.path() / "taps.csv"))
+      runs.push_back(describe_run(e.path()));
   if (runs.empty())
-    throw InputError(dir, "", "no tapping runs here: neither DIR/taps.csv nor DIR/*/taps.csv "
-                              "(a run of a negative_g or rotating_g scene writes taps.csv)");
+    throw InputError(dir, "",
+                     "no tapping runs here: neither DIR/taps.csv nor DIR/*/taps.csv "
+                     "(a run of a negative_g or rotating_g scene writes taps.csv)");
   std::sort(runs.begin(), runs.end(), [](const FoundTapRun& a, const FoundTapRun& b) {
     if (a.protocol != b.protocol) return a.protocol < b.protocol;
     if (a.control != b.control) return a.control < b.control;
@@ -115,11 +117,13 @@ std::vector<FoundTapRun> find_tap_runs(const std::string& dir) {
 int analyze_command(const AnalyzeOptions& opt) {
   if (opt.dirs.empty()) throw InputError("", "DIR", "give at least one run or sweep directory");
   if (opt.dirs.size() > 1 && opt.out.empty())
-    throw InputError("", "--out", "several directories are analysed together into one folder: "
-                                  "give it with --out");
+    throw InputError("", "--out",
+                     "several directories are analysed together into one folder: "
+                     "give it with --out");
   const std::string out = opt.out.empty() ? (fs::path(opt.dirs[0]) / "analysis").string() : opt.out;
   // Random Force Model runs (DIR/rfm.json or DIR/*/rfm.json): app/rfm_analyze.cpp
-  if (std::all_of(opt.dirs.begin(), opt.dirs.end(), [](const std::string& d) { return is_rfm_run(d); }))
+  if (std::all_of(opt.dirs.begin(), opt.dirs.end(),
+                  [](const std::string& d) { return is_rfm_run(d); }))
     return analyze_rfm_runs(opt.dirs, out, opt.charts, opt.quiet), kExitOk;
 
   // the runs, their scene settings and labels ("<protocol>_<control>", made unique by folder)
@@ -150,30 +154,37 @@ int analyze_command(const AnalyzeOptions& opt) {
     const SceneSpec s = parse_scene_file((fs::path(r.dir) / "scene.toml").string());
     const double* q = s.output.test_rect;
     if (std::abs((q[2] - q[0]) * (q[3] - q[1]) - ao.test_area) > 1e-12)
-      std::fprintf(stderr, "gransim analyze: warning: %s has a different test rectangle; V_T of "
-                           "%s is used for all\n", r.dir.c_str(), found[0].dir.c_str());
+      std::fprintf(stderr,
+                   "gransim analyze: warning: %s has a different test rectangle; V_T of "
+                   "%s is used for all\n",
+                   r.dir.c_str(), found[0].dir.c_str());
     std::string label = base_label(r);
     if (uses[label] > 1) {
       const fs::path p = fs::weakly_canonical(r.dir);
       label += "@" + p.parent_path().filename().string() + "/" + p.filename().string();
     }
-    TapRunInput in = load_tap_run((fs::path(r.dir) / "taps.csv").string(), r.protocol, r.control, label);
+    TapRunInput in =
+        load_tap_run((fs::path(r.dir) / "taps.csv").string(), r.protocol, r.control, label);
     drop_prepared_state(in.series);
     const int n = static_cast<int>(in.series.phi.size());
     if (r.status != "completed")
       std::fprintf(stderr, "gransim analyze: note: %s is %s; its %d taps so far are used\n",
-                   r.dir.c_str(), r.status.empty() ? "still running or lost (no run.json)" : r.status.c_str(), n);
+                   r.dir.c_str(),
+                   r.status.empty() ? "still running or lost (no run.json)" : r.status.c_str(), n);
     if (n < ao.discard + 20) {
-      std::fprintf(stderr, "gransim analyze: warning: %s skipped: %d taps, needs at least %d "
-                           "(%d discarded + 20)\n", r.dir.c_str(), n, ao.discard + 20, ao.discard);
+      std::fprintf(stderr,
+                   "gransim analyze: warning: %s skipped: %d taps, needs at least %d "
+                   "(%d discarded + 20)\n",
+                   r.dir.c_str(), n, ao.discard + 20, ao.discard);
       continue;
     }
     runs.push_back(std::move(in));
     used.push_back(&r);
   }
   if (runs.empty())
-    throw InputError(opt.dirs[0], "", "no run has enough taps for the statistics (at least " +
-                                          std::to_string(ao.discard + 20) + ")");
+    throw InputError(opt.dirs[0], "",
+                     "no run has enough taps for the statistics (at least " +
+                         std::to_string(ao.discard + 20) + ")");
 
   // the statistics and their files
   const TapAnalysisResult res = run_tap_analysis(runs, ao);
@@ -183,17 +194,18 @@ int analyze_command(const AnalyzeOptions& opt) {
     std::ofstream f(out + "/runs.csv");
     f << "label,dir,protocol,control,status,taps\n";
     for (std::size_t i = 0; i < runs.size(); ++i)
-      f << csv_field(tap_run_label(runs[i])) << ',' << csv_field(fs::absolute(used[i]->dir).string())
-        << ',' << used[i]->protocol << ',' << used[i]->control << ',' << used[i]->status << ','
-        << runs[i].series.phi.size() << '\n';
+      f << csv_field(tap_run_label(runs[i])) << ','
+        << csv_field(fs::absolute(used[i]->dir).string()) << ',' << used[i]->protocol << ','
+        << used[i]->control << ',' << used[i]->status << ',' << runs[i].series.phi.size() << '\n';
     if (!f) throw InputError(out + "/runs.csv", "", "cannot write");
   }
   if (!opt.quiet) {
-    std::printf("%-28s %6s %10s %9s %9s %21s %7s\n", "run", "taps", "phi_mean", "+-(tau)",
-                "sigma", "sigma 95% CI (tau)", "tau");
+    std::printf("%-28s %6s %10s %9s %9s %21s %7s\n", "run", "taps", "phi_mean", "+-(tau)", "sigma",
+                "sigma 95% CI (tau)", "tau");
     for (const auto& s : res.runs)
       std::printf("%-28s %6d %10.5f %9.2e %9.2e [%9.2e,%9.2e] %7.2f\n", s.label.c_str(), s.n_used,
-                  s.phi_mean, s.phi_err, s.sigma, s.sigma_ci_tau.lo, s.sigma_ci_tau.hi, s.tau.tau_int);
+                  s.phi_mean, s.phi_err, s.sigma, s.sigma_ci_tau.lo, s.sigma_ci_tau.hi,
+                  s.tau.tau_int);
     for (const auto& n : res.notes) std::printf("note: %s\n", n.c_str());
     std::fflush(stdout);  // before the chart scripts write to the same terminal
   }
@@ -203,8 +215,9 @@ int analyze_command(const AnalyzeOptions& opt) {
   if (!opt.charts) return kExitOk;
   const std::string tools = find_tools_dir("charts_tapping.py");
   if (tools.empty()) {
-    std::fprintf(stderr, "gransim analyze: charts skipped: tools/charts_tapping.py not found next "
-                         "to the executable (set GS_TOOLS_DIR); the CSV and JSON files are in %s\n",
+    std::fprintf(stderr,
+                 "gransim analyze: charts skipped: tools/charts_tapping.py not found next "
+                 "to the executable (set GS_TOOLS_DIR); the CSV and JSON files are in %s\n",
                  out.c_str());
     return kExitOk;
   }
@@ -214,8 +227,9 @@ int analyze_command(const AnalyzeOptions& opt) {
     if (!fs::exists(path)) continue;
     const std::string err = run_script(py, path, {out});
     if (!err.empty()) {
-      std::fprintf(stderr, "gransim analyze: charts skipped: %s. The CSV and JSON files are in %s; "
-                           "install python3-matplotlib (Debian) and rerun to draw them\n",
+      std::fprintf(stderr,
+                   "gransim analyze: charts skipped: %s. The CSV and JSON files are in %s; "
+                   "install python3-matplotlib (Debian) and rerun to draw them\n",
                    err.c_str(), out.c_str());
       break;
     }

@@ -80,9 +80,8 @@ int run_command(const RunOptions& opt) {
   write_file_atomic(out + "/scene.toml", scene_to_toml(scene));
 
   // series: one flushed row every output.series_every steps
-  CsvWriter series(out + "/series.csv",
-                   {"t", "step", "kinetic_energy", "contacts", "max_overlap", "max_overlap_rel",
-                    "max_speed", "gx", "gy", "degenerate"});
+  CsvWriter series(out + "/series.csv", {"t", "step", "kinetic_energy", "contacts", "max_overlap",
+                                         "max_overlap_rel", "max_speed", "gx", "gy", "degenerate"});
   auto write_row = [&] {
     const World& w = sim.world();
     double vmax2 = 0;
@@ -90,9 +89,8 @@ int run_command(const RunOptions& opt) {
       vmax2 = std::max(vmax2, w.s.vx[i] * w.s.vx[i] + w.s.vy[i] * w.s.vy[i]);
     const ForceStats& f = sim.last_forces();
     series.row({w.s.t, static_cast<double>(w.s.step), w.kinetic_energy(),
-                static_cast<double>(f.contacts), f.max_overlap, f.max_overlap_rel,
-                std::sqrt(vmax2), sim.gravity().x, sim.gravity().y,
-                static_cast<double>(sim.contacts().degenerate)});
+                static_cast<double>(f.contacts), f.max_overlap, f.max_overlap_rel, std::sqrt(vmax2),
+                sim.gravity().x, sim.gravity().y, static_cast<double>(sim.contacts().degenerate)});
   };
 
   // how long: taps of a tapping protocol (the clock says when the last one is measured), or
@@ -109,7 +107,8 @@ int run_command(const RunOptions& opt) {
     return is_tapping(scene.drive) && !p.settling ? p.tap : 0;
   };
   const std::size_t n = sim.world().size();
-  std::fprintf(stderr, "gransim %s: %s, %zu particles, %lld steps of %g s (%s, %s), contact time %.3g s\n",
+  std::fprintf(stderr,
+               "gransim %s: %s, %zu particles, %lld steps of %g s (%s, %s), contact time %.3g s\n",
                program_version().data(), scene.name.c_str(), n, static_cast<long long>(nsteps), dt,
                std::string(to_string(scene.integrator.kind)).c_str(), sim.broadphase().name(), tc);
   if (is_tapping(scene.drive))
@@ -126,7 +125,8 @@ int run_command(const RunOptions& opt) {
   int code = kExitOk;
   std::string failure;
   // wall time when the protocol clock started (after settling), for the time per tap
-  double wall_settled = drive_phase(sim.world().scene.drive, sim.world().s.t + dt).settling ? -1.0 : 0.0;
+  double wall_settled =
+      drive_phase(sim.world().scene.drive, sim.world().s.t + dt).settling ? -1.0 : 0.0;
   try {
     for (std::int64_t k = 0; !finished(); ++k) {
       sim.step();
@@ -136,10 +136,10 @@ int run_command(const RunOptions& opt) {
       for (auto& o : observers) o->after_step(sim);
       if (sim.world().s.step % scene.output.series_every == 0) write_row();
       if ((k & 63) == 0) {
-        progress.update(clock.progress(sim.world()),
-                        by_taps ? "tap " + std::to_string(taps_done()) + "/" +
-                                      std::to_string(scene.drive.taps)
-                                : std::string());
+        progress.update(
+            clock.progress(sim.world()),
+            by_taps ? "tap " + std::to_string(taps_done()) + "/" + std::to_string(scene.drive.taps)
+                    : std::string());
         if (stop_requested()) {
           code = kExitInterrupted;
           break;
@@ -160,7 +160,11 @@ int run_command(const RunOptions& opt) {
   std::ostringstream js;
   js << "{\n  \"program\": \"gransim\",\n  \"version\": \"" << program_version() << "\",\n"
      << "  \"scene_file\": \"" << json_escape(scene.path) << "\",\n"
-     << "  \"status\": \"" << (code == kExitOk ? "completed" : code == kExitUnstable ? "unstable" : "interrupted") << "\",\n"
+     << "  \"status\": \""
+     << (code == kExitOk         ? "completed"
+         : code == kExitUnstable ? "unstable"
+                                 : "interrupted")
+     << "\",\n"
      << "  \"particles\": " << n << ",\n  \"steps\": " << sim.world().s.step << ",\n"
      << "  \"simulated_time_s\": " << sim.world().s.t << ",\n  \"wall_time_s\": " << wall << ",\n"
      << "  \"particle_steps_per_s\": " << rate << ",\n"
@@ -181,14 +185,16 @@ int run_command(const RunOptions& opt) {
        << "  \"time_saved_s\": " << clock.time_saved() << ",\n"
        << "  \"wall_time_settling_s\": " << std::max(wall_settled, 0.0) << ",\n"
        << "  \"wall_time_per_tap_s\": "
-       << (taps_done() > 0 ? (wall - std::max(wall_settled, 0.0)) / static_cast<double>(taps_done()) : 0.0)
+       << (taps_done() > 0 ? (wall - std::max(wall_settled, 0.0)) / static_cast<double>(taps_done())
+                           : 0.0)
        << ",\n";
   }
   if (!failure.empty()) js << "  \"failure\": \"" << json_escape(failure) << "\",\n";
   js << "  \"scene\": {";
   bool first = true;
   for (const auto& [k, v] : scene.resolved) {
-    js << (first ? "\n" : ",\n") << "    \"" << json_escape(k) << "\": \"" << json_escape(v) << "\"";
+    js << (first ? "\n" : ",\n") << "    \"" << json_escape(k) << "\": \"" << json_escape(v)
+       << "\"";
     first = false;
   }
   js << "\n  }\n}\n";
@@ -199,7 +205,8 @@ int run_command(const RunOptions& opt) {
   if (code == kExitOk) {
     progress.finish(summary);
   } else if (code == kExitUnstable) {
-    std::fprintf(stderr, "\ngransim: run stopped by a health check: %s\n(output so far kept in %s)\n",
+    std::fprintf(stderr,
+                 "\ngransim: run stopped by a health check: %s\n(output so far kept in %s)\n",
                  failure.c_str(), out.c_str());
   } else {
     std::fprintf(stderr, "\ngransim: interrupted at t = %g s; state and series kept in %s\n",

@@ -64,7 +64,8 @@ std::string self_executable() {
   if (ec) return "gransim";
   // a rebuilt binary replaces the file: the link then reads "<path> (deleted)"
   const std::string deleted = " (deleted)";
-  if (p.size() > deleted.size() && p.compare(p.size() - deleted.size(), deleted.size(), deleted) == 0)
+  if (p.size() > deleted.size() &&
+      p.compare(p.size() - deleted.size(), deleted.size(), deleted) == 0)
     p.resize(p.size() - deleted.size());
   return p;
 }

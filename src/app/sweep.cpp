@@ -7,9 +7,9 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstring>
 #include <csignal>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -70,9 +70,14 @@ std::string text_hash(const std::string& s) {
   return buf;
 }
 
-// the simulated time of a run's last series.csv row, s (0 when none yet)
-double last_series_time(const std::string& dir) {
-  std::ifstream in(dir + "/series.csv", std::ios::binary | std::ios::ate);
+// the simulated time of a run's last series.csv row, s (0 when none yet, or when the file is
+// older than `since`: a redone run's previous output before the child clears it)
+double last_series_time(const std::string& dir, fs::file_time_type since) {
+  std::error_code ec;
+  const std::string path = dir + "/series.csv";
+  const auto stamp = fs::last_write_time(path, ec);
+  if (ec || stamp < since) return 0.0;
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
   if (!in) return 0.0;
   const std::streamoff size = in.tellg();
   const std::streamoff from = std::max<std::streamoff>(0, size - 512);
@@ -94,13 +99,14 @@ double last_series_time(const std::string& dir) {
 struct Job {
   SweepRun run;
   std::string dir;
-  double nominal = 0.0;     // simulated time it needs, s
-  std::string expected;     // the scene.toml the run writes (scene_to_toml)
+  double nominal = 0.0;           // simulated time it needs, s
+  std::string expected;           // the scene.toml the run writes (scene_to_toml)
   std::string state = "pending";  // pending, skipped, running, completed, failed
   int exit_code = -1;
   pid_t pid = -1;
   std::chrono::steady_clock::time_point started;
-  double wall = 0.0;        // s
+  fs::file_time_type spawned;  // for telling its own series.csv from an older one
+  double wall = 0.0;           // s
 };
 
 // the children's environment: ours, plus OMP_NUM_THREADS = cores / parallel runs unless it is
@@ -122,8 +128,8 @@ std::vector<std::string> child_environment(int width) {
 // start `gransim run` for a job: output to DIR/logs/<name>.log
 pid_t spawn_run(const SweepOptions& opt, const Job& j, const std::string& log,
                 std::vector<std::string>& env) {
-  std::vector<std::string> args{self_executable(), "run", opt.scene, "--out", j.dir, "--quiet",
-                                "--force"};
+  std::vector<std::string> args{self_executable(), "run",    opt.scene, "--out", j.dir,
+                                "--quiet",         "--force"};
   if (opt.allow_unstable) args.push_back("--allow-unstable");
   for (const auto& s : opt.sets) args.insert(args.end(), {"--set", s});
   for (const auto& s : j.run.overrides) args.insert(args.end(), {"--set", s});
@@ -159,7 +165,8 @@ void write_manifest(const SweepOptions& opt, const std::string& out,
     js << (i ? ", " : "") << '"' << json_escape(opt.sets[i]) << '"';
   js << "],\n  \"params\": [";
   for (std::size_t i = 0; i < params.size(); ++i) {
-    js << (i ? ",\n" : "\n") << "    {\"key\": \"" << json_escape(params[i].key) << "\", \"values\": [";
+    js << (i ? ",\n" : "\n") << "    {\"key\": \"" << json_escape(params[i].key)
+       << "\", \"values\": [";
     for (std::size_t k = 0; k < params[i].values.size(); ++k)
       js << (k ? ", " : "") << '"' << json_escape(params[i].values[k]) << '"';
     js << "]}";
@@ -193,8 +200,7 @@ SweepParam parse_sweep_param(const std::string& text) {
   std::string item;
   while (std::getline(ss, item, ',')) {
     item = trim(item);
-    if (item.empty())
-      throw InputError(where, p.key, "empty value in the list '" + list + "'");
+    if (item.empty()) throw InputError(where, p.key, "empty value in the list '" + list + "'");
     if (item.find('/') != std::string::npos)
       throw InputError(where, p.key, "value '" + item + "' cannot name a directory (contains '/')");
     p.values.push_back(item);
@@ -231,7 +237,8 @@ std::vector<SweepRun> sweep_runs(const std::vector<SweepParam>& params) {
 int sweep_command(const SweepOptions& opt) {
   // the parameters, then every combination parsed up front: a bad key or value stops the
   // sweep before anything runs (exit 2, the message names the --param)
-  if (opt.params.empty()) throw InputError("", "--param", "a sweep needs at least one --param KEY=V1,V2,…");
+  if (opt.params.empty())
+    throw InputError("", "--param", "a sweep needs at least one --param KEY=V1,V2,…");
   std::vector<SweepParam> params;
   std::set<std::string> keys;
   for (const auto& t : opt.params) {
@@ -272,9 +279,10 @@ int sweep_command(const SweepOptions& opt) {
   if (const auto old = read_text_file(out + "/sweep.json")) {
     const auto h = json_string_field(*old, "base_scene_hash");
     if (h && *h != base_hash)
-      throw InputError(out, "", "this sweep directory holds a sweep of a different scene or --set "
-                                "overrides (base scene hash " + *h + ", now " + base_hash +
-                                "); use another --out");
+      throw InputError(out, "",
+                       "this sweep directory holds a sweep of a different scene or --set "
+                       "overrides (base scene hash " +
+                           *h + ", now " + base_hash + "); use another --out");
   }
 
   // which runs are done: completed with the same scene → skipped; unfinished → --force
@@ -287,8 +295,9 @@ int sweep_command(const SweepOptions& opt) {
     if (st == "completed") {
       const auto have = read_text_file(j.dir + "/scene.toml");
       if (!have || *have != j.expected)
-        throw InputError(j.dir, "", "a completed run of a different scene is in the way (its "
-                                    "scene.toml differs from this sweep's); use another --out");
+        throw InputError(j.dir, "",
+                         "a completed run of a different scene is in the way (its "
+                         "scene.toml differs from this sweep's); use another --out");
       j.state = "skipped";
       j.exit_code = 0;
     } else if (!opt.force) {
@@ -320,8 +329,20 @@ int sweep_command(const SweepOptions& opt) {
   int running = 0, worst = kExitOk;
   bool stopping = false;
   double done_work = 0.0;
-  auto rank = [](int c) { return c == kExitInterrupted ? 4 : c == kExitUnstable ? 3 : c == kExitOk ? 0 : c == kExitBadInput ? 1 : 2; };
+  auto rank = [](int c) {
+    return c == kExitInterrupted ? 4
+           : c == kExitUnstable  ? 3
+           : c == kExitOk        ? 0
+           : c == kExitBadInput  ? 1
+                                 : 2;
+  };
   for (;;) {
+    // a signal: stop the children cleanly (they write their state) and start nothing new
+    if (stop_requested() && !stopping) {
+      stopping = true;
+      for (const Job& j : jobs)
+        if (j.state == "running") kill(j.pid, SIGTERM);
+    }
     // start what fits
     for (Job& j : jobs) {
       if (stopping || running >= width) break;
@@ -329,6 +350,7 @@ int sweep_command(const SweepOptions& opt) {
       j.pid = spawn_run(opt, j, out + "/logs/" + j.run.name + ".log", env);
       j.state = "running";
       j.started = std::chrono::steady_clock::now();
+      j.spawned = fs::file_time_type::clock::now();
       ++running;
     }
     if (running == 0) break;
@@ -338,31 +360,34 @@ int sweep_command(const SweepOptions& opt) {
     if (pid > 0) {
       for (Job& j : jobs) {
         if (j.pid != pid || j.state != "running") continue;
-        j.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - j.started).count();
-        j.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : kExitFailure;
+        j.wall =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - j.started).count();
+        // killed by a stop signal before its handlers were installed: interrupted; a crash: failure
+        const bool stopped =
+            WIFSIGNALED(status) && (WTERMSIG(status) == SIGINT || WTERMSIG(status) == SIGTERM ||
+                                    WTERMSIG(status) == SIGKILL || WTERMSIG(status) == SIGHUP);
+        j.exit_code = WIFEXITED(status) ? WEXITSTATUS(status)
+                      : stopped         ? kExitInterrupted
+                                        : kExitFailure;
         j.state = j.exit_code == kExitOk ? "completed" : "failed";
         done_work += j.nominal;
         --running;
         if (rank(j.exit_code) > rank(worst)) worst = j.exit_code;
         if (!opt.quiet || j.exit_code != kExitOk)
-          std::fprintf(stderr, "%s%s: %s (exit %d, %s)%s\n", opt.quiet ? "" : "\n", j.run.name.c_str(),
-                       j.state.c_str(), j.exit_code, format_duration(j.wall).c_str(),
-                       j.exit_code == kExitOk ? "" : (", log " + out + "/logs/" + j.run.name + ".log").c_str());
+          std::fprintf(
+              stderr, "%s%s: %s (exit %d, %s)%s\n", opt.quiet ? "" : "\n", j.run.name.c_str(),
+              j.state.c_str(), j.exit_code, format_duration(j.wall).c_str(),
+              j.exit_code == kExitOk ? ""
+                                     : (", log " + out + "/logs/" + j.run.name + ".log").c_str());
         write_manifest(opt, out, params, base_hash, jobs, false);
       }
       continue;
-    }
-    // a signal: stop the children cleanly (they write their state) and start nothing new
-    if (stop_requested() && !stopping) {
-      stopping = true;
-      for (const Job& j : jobs)
-        if (j.state == "running") kill(j.pid, SIGTERM);
     }
     double now = done_work;
     int active = 0;
     for (const Job& j : jobs)
       if (j.state == "running") {
-        now += std::min(last_series_time(j.dir), j.nominal);
+        now += std::min(last_series_time(j.dir, j.spawned), j.nominal);
         ++active;
       }
     int finished = 0;

@@ -8,20 +8,20 @@
 namespace gs {
 
 struct SweepOptions {
-  std::string scene;                 ///< scene file
-  std::vector<std::string> params;   ///< "drive.g_p=4,6,8" (several: every combination)
-  std::vector<std::string> sets;     ///< --set overrides shared by every run
-  std::string out;                   ///< sweep directory (default runs/<scene name>-<keys>)
-  int jobs = 0;                      ///< runs at a time (0: the number of cores)
-  bool force = false;                ///< redo unfinished run directories
-  bool quiet = false;                ///< no progress display
-  bool allow_unstable = false;       ///< passed on to every run
+  std::string scene;                ///< scene file
+  std::vector<std::string> params;  ///< "drive.g_p=4,6,8" (several: every combination)
+  std::vector<std::string> sets;    ///< --set overrides shared by every run
+  std::string out;                  ///< sweep directory (default runs/<scene name>-<keys>)
+  int jobs = 0;                     ///< runs at a time (0: the number of cores)
+  bool force = false;               ///< redo unfinished run directories
+  bool quiet = false;               ///< no progress display
+  bool allow_unstable = false;      ///< passed on to every run
 };
 
 /// one swept key and its values, parsed from "key=v1,v2,…"
 struct SweepParam {
-  std::string key;                   ///< dotted scene key
-  std::vector<std::string> values;   ///< TOML value texts
+  std::string key;                  ///< dotted scene key
+  std::vector<std::string> values;  ///< TOML value texts
 };
 
 /// parse --param text; throws InputError naming the argument

@@ -44,10 +44,10 @@ class ProtocolClock {
  private:
   bool at_rest(const World& w) const;
 
-  DriveSpec drive_;         ///< the scene's drive (clock origin 0)
-  double settle_ = 0.0;     ///< settling time before the protocol, s
-  double duration_ = 0.0;   ///< scene.duration (used when drive.taps = 0), s
-  double dt_ = 0.0;         ///< time step, s
+  DriveSpec drive_;           ///< the scene's drive (clock origin 0)
+  double settle_ = 0.0;       ///< settling time before the protocol, s
+  double duration_ = 0.0;     ///< scene.duration (used when drive.taps = 0), s
+  double dt_ = 0.0;           ///< time step, s
   double rest_since_ = -1.0;  ///< time from which the pile has been at rest, s (−1: not)
   long rest_tap_ = -1;        ///< the tap whose relaxation rest_since_ belongs to
   std::int64_t early_ends_ = 0;

@@ -12,15 +12,15 @@ namespace gs {
 
 /// one pile at rest, measured
 struct TapMeasurement {
-  double phi = 0.0;              ///< volume fraction of the test rectangle, dimensionless
-  double phi_left = 0.0;         ///< φ of its left half
-  double phi_right = 0.0;        ///< φ of its right half
-  double kinetic_energy = 0.0;   ///< translation + rotation, J (proof of rest)
-  double max_speed = 0.0;        ///< largest grain speed, m/s (proof of rest)
-  double z_mean = 0.0;           ///< mean height of the grain centres, m
-  std::vector<double> z_species; ///< mean height of each species' centres, m
-  double coordination = 0.0;     ///< grain–grain contacts per grain
-  std::array<double, 4> S{};     ///< force-moment tensor S_xx, S_xy, S_yx, S_yy (P.41), N·m
+  double phi = 0.0;               ///< volume fraction of the test rectangle, dimensionless
+  double phi_left = 0.0;          ///< φ of its left half
+  double phi_right = 0.0;         ///< φ of its right half
+  double kinetic_energy = 0.0;    ///< translation + rotation, J (proof of rest)
+  double max_speed = 0.0;         ///< largest grain speed, m/s (proof of rest)
+  double z_mean = 0.0;            ///< mean height of the grain centres, m
+  std::vector<double> z_species;  ///< mean height of each species' centres, m
+  double coordination = 0.0;      ///< grain–grain contacts per grain
+  std::array<double, 4> S{};      ///< force-moment tensor S_xx, S_xy, S_yx, S_yy (P.41), N·m
 };
 
 /// measure the pile in the test rectangle rect = {x0, y0, x1, y1} (m); halves split at the

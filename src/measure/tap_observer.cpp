@@ -10,7 +10,7 @@ TapObserver::TapObserver(const SceneSpec& scene, double segregation_dh)
     : scene_(scene), dh_(segregation_dh) {}
 
 std::vector<std::string> TapObserver::columns(const SceneSpec& scene) {
-  std::vector<std::string> c{"tap", "t", "phi", "phi_left", "phi_right", "kinetic_energy",
+  std::vector<std::string> c{"tap",       "t",     "phi", "phi_left", "phi_right", "kinetic_energy",
                              "max_speed", "z_mean"};
   for (const SpeciesSpec& s : scene.species) c.push_back("z_" + s.name);
   for (const char* k : {"coordination", "S_xx", "S_xy", "S_yx", "S_yy", "relax_end", "early"})
@@ -61,11 +61,11 @@ void TapObserver::measure(const Simulation& sim) {
   double relax_end = now.settling ? scene_.prep.settle_time : drive_period(d);
   if (early_) relax_end = relax_end_;
   const TapMeasurement m = measure_tap(w, sim.contacts(), scene_.output.test_rect);
-  std::vector<double> row{tap, w.s.t, m.phi, m.phi_left, m.phi_right, m.kinetic_energy,
+  std::vector<double> row{tap,         w.s.t,   m.phi, m.phi_left, m.phi_right, m.kinetic_energy,
                           m.max_speed, m.z_mean};
   row.insert(row.end(), m.z_species.begin(), m.z_species.end());
-  row.insert(row.end(), {m.coordination, m.S[0], m.S[1], m.S[2], m.S[3], relax_end,
-                         early_ ? 1.0 : 0.0});
+  row.insert(row.end(),
+             {m.coordination, m.S[0], m.S[1], m.S[2], m.S[3], relax_end, early_ ? 1.0 : 0.0});
   taps_.row(row);
   std::vector<double> seg{tap, w.s.t};
   for (double n : cumulative_counts(w, grid_)) seg.push_back(n);

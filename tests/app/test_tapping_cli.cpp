@@ -139,9 +139,9 @@ bool python_charts_available() {
 void expect_tap_run(const fs::path& run, double g_p) {
   SCOPED_TRACE(run.string());
   const Table taps = read_csv(run / "taps.csv");
-  for (const char* c : {"tap", "t", "phi", "phi_left", "phi_right", "kinetic_energy", "max_speed",
-                        "z_mean", "z_big", "z_small", "coordination", "S_xx", "S_xy", "S_yx",
-                        "S_yy", "relax_end", "early"})
+  for (const char* c :
+       {"tap", "t", "phi", "phi_left", "phi_right", "kinetic_energy", "max_speed", "z_mean",
+        "z_big", "z_small", "coordination", "S_xx", "S_xy", "S_yx", "S_yy", "relax_end", "early"})
     EXPECT_GE(taps.col(c), 0) << "column " << c;
   // the prepared pile (tap 0) and 22 taps, each measured just before the next pulse:
   // t = settle + k·T to the step
@@ -194,9 +194,9 @@ TEST_F(TappingCli, SweepAnalyzeAndContinue) {
   for (const char* f : {"series.csv", "kde.csv", "analysis.json", "runs.csv"})
     EXPECT_TRUE(fs::exists(an / f)) << f;
   if (python_charts_available()) {
-    for (const char* png : {"fig4_series.png", "fig5_mean_sigma_negative_g.png",
-                            "fig7a_kde_negative_g.png", "taprun_rest.png",
-                            "taprun_segregation.png", "fig12_stress_phi.png"}) {
+    for (const char* png :
+         {"fig4_series.png", "fig5_mean_sigma_negative_g.png", "fig7a_kde_negative_g.png",
+          "taprun_rest.png", "taprun_segregation.png", "fig12_stress_phi.png"}) {
       ASSERT_TRUE(fs::exists(an / png)) << png << "\n" << r.output;
       EXPECT_GT(fs::file_size(an / png), 10000u) << png;  // a drawn chart, not an empty canvas
       EXPECT_EQ(slurp(an / png).substr(1, 3), "PNG") << png;
@@ -224,8 +224,11 @@ TEST_F(TappingCli, SweepAnalyzeAndContinue) {
   EXPECT_EQ(slurp(sw / "g_p=2" / "taps.csv"), taps2);
   EXPECT_EQ(read_csv(sw / "g_p=6" / "taps.csv").rows.size(), 23u);
   const std::string manifest = slurp(sw / "sweep.json");
-  EXPECT_NE(manifest.find("\"name\": \"g_p=2\", \"dir\": \"g_p=2\", \"overrides\": [\"drive.g_p=2\"], "
-                          "\"state\": \"skipped\""), std::string::npos) << manifest;
+  EXPECT_NE(
+      manifest.find("\"name\": \"g_p=2\", \"dir\": \"g_p=2\", \"overrides\": [\"drive.g_p=2\"], "
+                    "\"state\": \"skipped\""),
+      std::string::npos)
+      << manifest;
   EXPECT_NE(manifest.find("\"state\": \"completed\""), std::string::npos) << manifest;
 
   // the same directory with another base scene is refused before anything runs
@@ -240,12 +243,10 @@ TEST_F(TappingCli, BadParamExitsTwoWithAClearMessage) {
   struct Case {
     std::string param, expect;
   };
-  for (const Case& c : {Case{"drive.g_p", "expected KEY=V1,V2"},
-                        Case{"drive.g_pp=4,8", "drive.g_pp"},
-                        Case{"drive.g_p=-1,8", "must be > 0"},
-                        Case{"drive.g_p=4,,8", "empty value"},
-                        Case{"drive.g_p=4,4", "appears twice"},
-                        Case{"=4,8", "key before '=' is empty"}}) {
+  for (const Case& c :
+       {Case{"drive.g_p", "expected KEY=V1,V2"}, Case{"drive.g_pp=4,8", "drive.g_pp"},
+        Case{"drive.g_p=-1,8", "must be > 0"}, Case{"drive.g_p=4,,8", "empty value"},
+        Case{"drive.g_p=4,4", "appears twice"}, Case{"=4,8", "key before '=' is empty"}}) {
     const Result r = sh(gransim("sweep " + scene_ + " --param '" + c.param + "'" + out));
     EXPECT_EQ(r.code, 2) << c.param << "\n" << r.output;
     EXPECT_NE(r.output.find(c.expect), std::string::npos) << c.param << "\n" << r.output;

@@ -40,15 +40,15 @@ void expect_g(Vec2 g, double gx, double gy) {
 TEST(NegativeG, HandValuesAtThePhaseBoundaries) {
   const DriveSpec d = negative_g(6.0, 0.1, 3.0);
   const double eps = 1e-9;
-  expect_g(gravity_at(d, 0.0), 0.0, 6.0 * kG);         // the pulse starts at t̃ = 0
+  expect_g(gravity_at(d, 0.0), 0.0, 6.0 * kG);  // the pulse starts at t̃ = 0
   expect_g(gravity_at(d, 0.05), 0.0, 58.86);
   expect_g(gravity_at(d, 0.1 - eps), 0.0, 58.86);
-  expect_g(gravity_at(d, 0.1 + eps), 0.0, -kG);        // relaxation
+  expect_g(gravity_at(d, 0.1 + eps), 0.0, -kG);  // relaxation
   expect_g(gravity_at(d, 2.9), 0.0, -kG);
   expect_g(gravity_at(d, 3.0 - eps), 0.0, -kG);
-  expect_g(gravity_at(d, 3.0 + eps), 0.0, 58.86);      // the next period
+  expect_g(gravity_at(d, 3.0 + eps), 0.0, 58.86);  // the next period
   expect_g(gravity_at(d, 3.1 + eps), 0.0, -kG);
-  expect_g(gravity_at(d, 3000.05), 0.0, 58.86);        // tap 1000
+  expect_g(gravity_at(d, 3000.05), 0.0, 58.86);  // tap 1000
   const DrivePhase p = drive_phase(d, 7.25);
   EXPECT_EQ(p.tap, 2);
   EXPECT_NEAR(p.t_in, 1.25, 1e-12);
@@ -64,19 +64,20 @@ TEST(RotatingG, HandValuesOverOneTurn) {
   const DriveSpec d = rotating_g(0.5, 3.0);
   EXPECT_DOUBLE_EQ(drive_period(d), 5.0);
   EXPECT_DOUBLE_EQ(excitation_length(d), 2.0);
-  expect_g(gravity_at(d, 0.0), 0.0, -kG);     // ωt̃ = 0: down
-  expect_g(gravity_at(d, 0.5), kG, 0.0);      // ωt̃ = π/2: (sin, −cos) = (1, 0)
-  expect_g(gravity_at(d, 1.0), 0.0, kG);      // π: up (the printed window ω/2π = 0.5 s
-                                              // would already have stopped the turn)
-  expect_g(gravity_at(d, 1.5), -kG, 0.0);     // 3π/2
-  const Vec2 g = gravity_at(d, 0.25);         // π/4
+  expect_g(gravity_at(d, 0.0), 0.0, -kG);  // ωt̃ = 0: down
+  expect_g(gravity_at(d, 0.5), kG, 0.0);   // ωt̃ = π/2: (sin, −cos) = (1, 0)
+  expect_g(gravity_at(d, 1.0), 0.0, kG);   // π: up (the printed window ω/2π = 0.5 s
+                                           // would already have stopped the turn)
+  expect_g(gravity_at(d, 1.5), -kG, 0.0);  // 3π/2
+  const Vec2 g = gravity_at(d, 0.25);      // π/4
   EXPECT_NEAR(g.x, kG * std::sqrt(0.5), 1e-12);
   EXPECT_NEAR(g.y, -kG * std::sqrt(0.5), 1e-12);
   expect_g(gravity_at(d, 2.0 + 1e-9), 0.0, -kG);  // relaxation
   expect_g(gravity_at(d, 4.99), 0.0, -kG);
-  expect_g(gravity_at(d, 5.5), kG, 0.0);          // the next turn, tap 1
+  expect_g(gravity_at(d, 5.5), kG, 0.0);  // the next turn, tap 1
   // |g| is 9.81 all along the turn
-  for (double t = 0.0; t < 2.0; t += 0.0137) EXPECT_NEAR(std::hypot(gravity_at(d, t).x, gravity_at(d, t).y), kG, 1e-12);
+  for (double t = 0.0; t < 2.0; t += 0.0137)
+    EXPECT_NEAR(std::hypot(gravity_at(d, t).x, gravity_at(d, t).y), kG, 1e-12);
 }
 
 // before the clock origin the pile settles under plain gravity; the protocol runs on t − origin
@@ -84,14 +85,14 @@ TEST(Schedule, SettlingBeforeTheProtocolClock) {
   DriveSpec d = negative_g(6.0, 0.1, 3.0);
   d.clock_origin = 2.0;
   EXPECT_TRUE(drive_phase(d, 1.999).settling);
-  expect_g(gravity_at(d, 0.05), 0.0, -kG);   // would be a pulse without the settling time
+  expect_g(gravity_at(d, 0.05), 0.0, -kG);  // would be a pulse without the settling time
   expect_g(gravity_at(d, 1.999), 0.0, -kG);
   expect_g(gravity_at(d, 2.05), 0.0, 58.86);
   expect_g(gravity_at(d, 2.15), 0.0, -kG);
   EXPECT_EQ(drive_phase(d, 5.05).tap, 1);
   DriveSpec r = rotating_g(1.0, 3.0);
   r.clock_origin = 1.0;
-  expect_g(gravity_at(r, 0.25), 0.0, -kG);   // settling, not a quarter turn
+  expect_g(gravity_at(r, 0.25), 0.0, -kG);  // settling, not a quarter turn
   expect_g(gravity_at(r, 1.25), kG, 0.0);
   // constant gravity ignores the clock; its direction is (gx, gy) normalised
   DriveSpec c;

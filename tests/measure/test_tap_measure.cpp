@@ -104,9 +104,10 @@ TEST(TapMeasure, ForceMomentOfAGrainRestingOnTheFloor) {
   const double rect[4] = {0.0, 0.0, 0.1, 0.1};
   const TapMeasurement m = measure_tap(v, sim.contacts(), rect);
   const double mg = v.mass[0] * 9.81, y = v.s.y[0];
-  std::printf("[ measured ] resting decagon: y = %.6f m (apothem %.6f), S = [%.3e %.3e; %.3e %.3e] N m,"
-              " -m g y = %.6e, KE %.1e J\n", y, apothem, m.S[0], m.S[1], m.S[2], m.S[3], -mg * y,
-              m.kinetic_energy);
+  std::printf(
+      "[ measured ] resting decagon: y = %.6f m (apothem %.6f), S = [%.3e %.3e; %.3e %.3e] N m,"
+      " -m g y = %.6e, KE %.1e J\n",
+      y, apothem, m.S[0], m.S[1], m.S[2], m.S[3], -mg * y, m.kinetic_energy);
   ASSERT_LT(m.max_speed, 1e-6);  // at rest
   // the overlap sinks the grain a little into the floor (a few µm)
   EXPECT_LT(y, apothem);
