@@ -191,10 +191,12 @@ def chart_q(q, summary, ref, out, p):
         log("skip Q chart for %s: no runs besides the reference" % p)
         return
     fig, ax = plt.subplots(figsize=(7, 4.5))
+    drawn = 0
     for r in rows:
         pts = [x for x in q if x["reference"] == ref and x["label"] == r["label"]]
         if not pts:
             continue
+        drawn += 1
         x = np.array([num(v["inv_phi"]) for v in pts])
         y = np.array([num(v["q"]) for v in pts])
         e = np.array([num(v["q_err"]) for v in pts])
@@ -202,6 +204,10 @@ def chart_q(q, summary, ref, out, p):
         h = ax.errorbar(x, y, yerr=e, fmt="o", ms=3, capsize=2, label=label_of(r))
         if np.all(np.isfinite(fit)):
             ax.plot(x, fit, "-", color=h[0].get_color(), lw=1)
+    if not drawn:
+        plt.close(fig)
+        log("skip Q chart for %s: no run overlaps the reference %s enough" % (p, ref))
+        return
     ax.set_xlabel(r"inverse volume fraction $1/\phi$")
     ax.set_ylabel(r"$Q = \ln(P_1/P_0)$")
     ax.set_title("%s: overlapping histograms against %s (lines: binomial fits)" %
