@@ -225,6 +225,12 @@ def chart_two_refs(beta, summary, analysis, out, p):
     if not rows:
         log("skip two-reference chart for %s: no runs" % p)
         return
+    # only worth drawing when some run besides the references themselves has a β
+    others = [b for b in beta if b["reference"] in (ref, ref2) and b["protocol"] == p
+              and b["valid"] == "1" and b["label"] != b["reference"]]
+    if not others:
+        log("skip two-reference chart for %s: no run overlaps either reference enough" % p)
+        return
     fig, ax = plt.subplots(figsize=(7, 4))
     off = num(analysis.get("reference_offset", {}).get("dbeta"))
     for k, (rl, mk) in enumerate(((ref, "s"), (ref2, "o"))):
