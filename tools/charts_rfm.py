@@ -18,13 +18,23 @@ metadata lines, one header line, numeric rows) from a directory and draws one PN
   heating.csv      <v_x^2>(t) and <x^2>(t) of free particles      -> heating.png
   interval.csv     arrival velocities at x = L against B.32       -> interval.png
   cascade_*.csv    cascade S(k), exact expectation, fit, D2       -> cascade_*.png
+and, drawn by charts_rfm_compare.py:
+  gh_bisection.csv, gh.csv  1D G_h(R) against the bisection (T.3.25, T.3.36) -> gh_bisection.png
+  velocity.csv + velocity_post.csv (or hist_velocity.csv + hist_postcollision.csv)
+                   post-collision against overall P(v), log-linear -> postcollision.png
+  moments_vs_N.csv, exponents.csv  <|v|^m>, <R^m> against N, xi_m, zeta_m -> moments_vs_N.png
 
-Usage: charts_rfm.py CSV_DIR [--out PNG_DIR]
+Usage: charts_rfm.py CSV_DIR [--out PNG_DIR] [--bisection BISECTION_CSV] [--no-parent]
+`gransim analyze` calls this once per run folder OUT/<run>; the across-run chart
+moments_vs_N.png of OUT itself is drawn when CSV_DIR is OUT, and also (unless --no-parent)
+from the last run folder listed in OUT/rfm_summary.json. --bisection adds the G_1, G_2 of a
+`gransim model bisection` output to gh_bisection.png (default: CSV_DIR/bisection.csv if present).
 Missing files are skipped with a note. Needs numpy and matplotlib (Debian: python3-matplotlib;
 on machines where `python3` is another interpreter, run it with /usr/bin/python3).
 """
 import argparse
 import glob
+import json
 import math
 import os
 import sys
@@ -91,10 +101,12 @@ def velocity(src, out):
                 elinewidth=0.6, label="P(v), Poisson errors (T.A.5)")
     if "alpha_best" in m:
         lo, hi = m.get("alpha_lo", float("nan")), m.get("alpha_hi", float("nan"))
+        acc = (f"accepted [{lo:.2f}, {hi:.2f}]" if not math.isnan(lo)
+               else f"none accepted (χ²_r = {m.get('tail_chi2_r', float('nan')):.2g} > 1.2)")
         for side in (c["v"] < 0, c["v"] > 0):  # the fit window on each side
             ax.plot(c["v"][side], c["P_tail"][side], "-", color="C1", lw=2.5, alpha=0.8,
                     label=f"A exp(−B|v|^α) on the fit window: best α = {m['alpha_best']:.2f}, "
-                          f"accepted [{lo:.2f}, {hi:.2f}]" if side[-1] else None)
+                          f"{acc}" if side[-1] else None)
     if "cross_D" in m:
         ax.plot(c["v"], c["P_cross"], "-", color="C0", lw=1.2,
                 label=f"crossover T.5.32: v_r = {m['cross_v_r']:.3g}, v_c = {m['cross_v_c']:.3g}, α = {m['cross_alpha']:.2g}")
@@ -120,9 +132,11 @@ def tail_scan(src, out):
                    label=f"accepted α ∈ [{m['alpha_lo']:.2f}, {m['alpha_hi']:.2f}]")
     ax.axvline(m["alpha_best"], color="C0", lw=0.8, label=f"best α = {m['alpha_best']:.2f}")
     ax.set_yscale("log")
-    ax.set_xlabel("α")
+    ax.set_ylim(min(0.5, 0.8 * np.nanmin(c["chi2_r"])), None)
+    ax.set_xlabel("α (dimensionless)")
     ax.set_ylabel("χ²_r of ln P against |v|^α")
-    ax.set_title("stretched-exponential tail scan")
+    acc = "none accepted" if math.isnan(m.get("alpha_lo", float("nan"))) else "accepted range shaded"
+    ax.set_title(f"stretched-exponential tail scan ({acc})")
     ax.legend(fontsize=8)
     save(fig, out, "tail_scan.png")
 
@@ -133,15 +147,22 @@ def lnln(srcs, out):
         m, c = read_csv(src)
         label = "A = A₀ (asymptotic)" if "A0" in os.path.basename(src) else "A = P(0)"
         ax.errorbar(c["ln_v"], c["y"], yerr=c["y_err"], fmt=".", ms=3, color=col, elinewidth=0.5,
-                    label=f"{label} = {m['A']:.3g}")
+                    label=f"{label} = {m['A']:.3g} s/m")
         tail = c["ln_v"] > 0.8
         if tail.sum() >= 3:
             p = np.polyfit(c["ln_v"][tail], c["y"][tail], 1)
             xs = np.linspace(0.0, c["ln_v"].max() + 0.4, 10)
             ax.plot(xs, np.polyval(p, xs), "--", color=col, lw=1.2,
                     label=f"line fitted on ln(v/v_rms) > 0.8: slope {p[0]:.2f}")
-    ax.set_xlabel("ln(|v| / v_rms)")
-    ax.set_ylabel("ln(−ln(P/A))")
+    ys = []
+    for src in srcs:  # the y range of the points with usable errors (a lone bin can reach −20)
+        _, c = read_csv(src)
+        good = np.isfinite(c["y"]) & (c["y_err"] < 0.5)
+        ys.extend(c["y"][good])
+    if ys:
+        ax.set_ylim(min(ys) - 0.5, max(ys) + 0.8)
+    ax.set_xlabel("ln(|v| / v_rms) (dimensionless)")
+    ax.set_ylabel("ln(−ln(P/A)) (dimensionless)")
     ax.set_title("ln–ln tail plot: slope = α of a stretched exponential")
     ax.legend(fontsize=8)
     save(fig, out, "lnln.png")
@@ -156,14 +177,18 @@ def structure_factor(src, out):
         sel = (c["k"] >= m["k_lo"]) & (c["k"] <= m["k_hi"])
         ks = np.linspace(c["k"][sel].min(), c["k"][sel].max(), 20)
         ax.plot(ks, m["A"] * ks ** (-m["D_f"]), color="C3", lw=2,
-                label=f"A k^(−D_f), D_f = {m['D_f']:.3f} ± {m['D_f_err']:.3f}")
+                label=f"A k^(−D_f), D_f = {m['D_f']:.3f} ± {m['D_f_err']:.3f}"
+                      + (f", χ²_r = {m['chi2_r']:.2g}" if "chi2_r" in m else "")
+                      + f", {int(sel.sum())} shells")
+        ax.axvspan(c["k"][sel].min() / 1.15, m["k_hi"], color="C3", alpha=0.08,
+                   label=f"fit window k ≤ k′ = {m['k_hi']:.3g} 1/m (T.4.9)")
     if m.get("k_D", 0) > 0:
-        ax.axvline(m["k_D"], color="C0", ls=":", label=f"k_D = {m['k_D']:.3g} (L_Eff = {m['L_eff']:.3g})")
+        ax.axvline(m["k_D"], color="C0", ls=":", label=f"k_D = {m['k_D']:.3g} 1/m (L_Eff = {m['L_eff']:.3g} m)")
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel("k (1/m)")
-    ax.set_ylabel("S(k)")
-    ax.set_title("structure factor (T.4.2)")
+    ax.set_ylabel("S(k) (dimensionless)")
+    ax.set_title("structure factor S(k) (T.4.2), power-law fit below k′")
     ax.legend(fontsize=8)
     save(fig, out, "sk.png")
 
@@ -171,10 +196,11 @@ def structure_factor(src, out):
 def pair_correlation(src, out):
     _, c = read_csv(src)
     fig, ax = plt.subplots(figsize=(6.5, 4))
-    ax.errorbar(c["R"], c["g"], yerr=c["g_err"], fmt=".-", ms=3, lw=0.6, color="k", elinewidth=0.5)
+    ax.errorbar(c["R"], c["g"], yerr=c["g_err"], fmt=".-", ms=3, lw=0.6, color="k", elinewidth=0.5,
+                label="g(R), minimum image")
     ax.axhline(1.0, color="C3", ls="--", label="ideal gas")
     ax.set_xlabel("R (m)")
-    ax.set_ylabel("g(R)")
+    ax.set_ylabel("g(R) (dimensionless)")
     ax.set_title("pair correlation (T.4.10)")
     ax.legend()
     save(fig, out, "gr.png")
@@ -190,11 +216,11 @@ def gap_distributions(src, out):
         axs[1].plot(-np.log(c["R"][ok]), c["G" + h][ok], ".-", ms=3, lw=0.7, label=f"h = {h}")
     axs[0].set_xscale("log")
     axs[0].set_xlabel("R (units of L′)")
-    axs[1].set_xlabel("−ln R")
+    axs[1].set_xlabel("−ln R (R in units of L′)")
     axs[1].set_xscale("log")
     for ax in axs:
         ax.set_yscale("log")
-        ax.set_ylabel("G_h(R)")
+        ax.set_ylabel("G_h(R) (1/L′)")
         ax.legend(fontsize=8)
     axs[0].set_title("h-th neighbour distributions (T.3.24)")
     axs[1].set_title("the same against −ln R (thesis Fig. 3.12)")
@@ -208,13 +234,27 @@ def free_paths(src, out):
     ax.errorbar(c["l"][ok], c["P"][ok], yerr=c["P_err"][ok], fmt=".", ms=3, color="k",
                 elinewidth=0.5, label="P_l(l), log bins")
     if "D_f" in m:
-        ax.plot(c["l"][ok], c["P_fit"][ok], color="C3",
-                label=f"T.4.25: D_f = {m['D_f']:.3f} ± {m['D_f_err']:.3f}, C = {m['C']:.3g}")
+        # `gransim analyze` fits on l >= d/10 (docs/rfm.md); the rest of the curve is extrapolated
+        l_min = 0.0
+        try:
+            with open(os.path.join(os.path.dirname(src), "rfm.json")) as f:
+                l_min = 0.1 * float(json.load(f)["diameter"])
+        except (OSError, ValueError, KeyError, TypeError):
+            pass
+        fit = ok & (c["l"] >= l_min)
+        chi = f", χ²_r = {m['chi2_r']:.2g}" if "chi2_r" in m else ""
+        ax.plot(c["l"][fit], c["P_fit"][fit], color="C3", lw=1.8,
+                label=f"T.4.25 fit: D_f = {m['D_f']:.3f} ± {m['D_f_err']:.3f}, C = {m['C']:.3g}{chi}")
+        if l_min > 0 and (ok & ~fit).any():
+            below = ok & (c["l"] <= c["l"][fit].min())
+            ax.plot(c["l"][below], c["P_fit"][below], "--", color="C3", lw=1,
+                    label="the same extrapolated below the fit range")
+            ax.axvline(l_min, color="0.5", ls=":", lw=1, label=f"fit from l = d/10 = {l_min:.2g} m")
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel("l (m)")
     ax.set_ylabel("P_l (1/m)")
-    ax.set_title("free-path distribution")
+    ax.set_title("free-path distribution P_l(l) with the fit of T.4.25")
     ax.legend(fontsize=8)
     save(fig, out, "freepath.png")
 
@@ -312,10 +352,53 @@ def cascade(src, out):
     save(fig, out, name + ".png")
 
 
+def last_run_of_parent(csv_dir):
+    """the analysis folder above CSV_DIR when CSV_DIR is the last run its rfm_summary.json
+    lists (so the across-run charts are drawn once, after every run's files exist)"""
+    here = os.path.abspath(csv_dir)
+    parent = os.path.dirname(here)
+    summary = os.path.join(parent, "rfm_summary.json")
+    if not (os.path.exists(summary) and os.path.exists(os.path.join(parent, "moments_vs_N.csv"))):
+        return None
+    try:
+        with open(summary) as f:
+            runs = json.load(f)["runs"]
+        return parent if runs and runs[-1]["label"] == os.path.basename(here) else None
+    except (OSError, ValueError, KeyError, TypeError):
+        return parent
+
+
+def compare_charts(csv_dir, out, bisection_csv, parent_too):
+    """the charts of charts_rfm_compare.py; a failure of one is reported, never fatal"""
+    sys.modules.setdefault("charts_rfm", sys.modules[__name__])
+    import charts_rfm_compare as cmp
+    jobs = []
+    if os.path.exists(os.path.join(csv_dir, "gh_bisection.csv")) or os.path.exists(os.path.join(csv_dir, "gh.csv")):
+        jobs.append(("gh_bisection", lambda: cmp.gh_bisection(csv_dir, out, bisection_csv)))
+    else:
+        print("skipped (missing):", os.path.join(csv_dir, "gh_bisection.csv"))
+    jobs.append(("postcollision", lambda: cmp.postcollision(csv_dir, out)))
+    if os.path.exists(os.path.join(csv_dir, "moments_vs_N.csv")):
+        jobs.append(("moments_vs_N", lambda: cmp.moments_vs_n(csv_dir, out)))
+    parent = last_run_of_parent(csv_dir) if parent_too else None
+    if parent:
+        jobs.append(("moments_vs_N of " + parent, lambda: cmp.moments_vs_n(parent, parent)))
+    for name, job in jobs:
+        try:
+            job()
+        except Exception as e:  # a chart of odd data is skipped, the others still drawn
+            plt.close("all")
+            print(f"skipped ({type(e).__name__}: {e}): {name}")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("csv_dir")
     ap.add_argument("--out", default=None, help="where the PNGs go (default: CSV_DIR)")
+    ap.add_argument("--bisection", default=None,
+                    help="bisection.csv of `gransim model bisection` to overlay on gh_bisection.png")
+    ap.add_argument("--no-parent", action="store_true",
+                    help="do not draw the across-run charts of the folder above CSV_DIR")
     a = ap.parse_args()
     out = a.out or a.csv_dir
     os.makedirs(out, exist_ok=True)
@@ -337,6 +420,8 @@ def main():
         walks(wk, out)
     for f in sorted(glob.glob(p("cascade_*.csv"))):
         cascade(f, out)
+    bis = a.bisection or (p("bisection.csv") if os.path.exists(p("bisection.csv")) else None)
+    compare_charts(a.csv_dir, out, bis, not a.no_parent and a.out is None)
 
 
 if __name__ == "__main__":

@@ -11,6 +11,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libpng-dev libfftw3-dev libfreetype-dev fonts-dejavu-core
   libosmesa6-dev libavcodec-dev libavformat-dev libswscale-dev libavutil-dev
+  libopenmpi-dev openmpi-bin
   python3 python3-numpy python3-matplotlib
 )
 

@@ -39,6 +39,16 @@ class GapStatistics {
   /// ⟨R^m⟩ of the nearest-neighbour gaps R_{i,i+1}, per snapshot and averaged (T.3.18)
   const MomentSeries& moments() const { return moments_; }
 
+  /// checkpoint: histograms and moments
+  void save(ByteWriter& out) const {
+    for (const Histogram& h : hist_) h.save(out);
+    moments_.save(out);
+  }
+  void load(ByteReader& in) {
+    for (Histogram& h : hist_) h.load(in);
+    moments_.load(in);
+  }
+
  private:
   Binning bins_;
   std::vector<int> orders_;

@@ -9,6 +9,7 @@
 #include <span>
 #include <vector>
 
+#include "core/bytes.hpp"
 #include "core/vec.hpp"
 
 namespace gs::rfm {
@@ -31,6 +32,18 @@ class PairCorrelation2D {
   void add_snapshot(std::span<const Vec2> r);
   std::vector<GrBin> bins() const;
   long snapshots() const { return snapshots_; }
+
+  /// checkpoint: the pair counts
+  void save(ByteWriter& out) const {
+    out.vec(pairs_);
+    out.f64(ideal_density_);
+    out.i64(snapshots_);
+  }
+  void load(ByteReader& in) {
+    in.vec_sized(pairs_, pairs_.size(), "g(R) pair counts");
+    ideal_density_ = in.f64("g(R) density");
+    snapshots_ = static_cast<long>(in.i64("g(R) snapshots"));
+  }
 
  private:
   void count_brute(std::span<const Vec2> r);

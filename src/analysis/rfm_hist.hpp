@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/bytes.hpp"
 #include "core/error.hpp"
 
 namespace gs::rfm {
@@ -110,6 +111,20 @@ class Histogram {
       b.p_err = s * std::sqrt(b.count) / norm;
     }
     return out;
+  }
+
+  /// checkpoint: the counts (the binning comes from the scene and must match)
+  void save(ByteWriter& out) const {
+    out.vec(counts_);
+    out.f64(total_);
+    out.f64(under_);
+    out.f64(over_);
+  }
+  void load(ByteReader& in) {
+    in.vec_sized(counts_, counts_.size(), "histogram counts");
+    total_ = in.f64("histogram total");
+    under_ = in.f64("histogram underflow");
+    over_ = in.f64("histogram overflow");
   }
 
  private:

@@ -199,4 +199,19 @@ void write_moments_csv(const std::filesystem::path& path, std::span<const double
     w.row({static_cast<double>(k + 1), mean[k], k < err.size() ? err[k] : 0.0});
 }
 
+void MomentSeries::save(ByteWriter& out) const {
+  out.u64(per_snapshot_.size());
+  for (const auto& snap : per_snapshot_) out.vec(snap);
+  out.vec(weights_);
+}
+
+void MomentSeries::load(ByteReader& in) {
+  per_snapshot_.resize(in.count(8, "moment snapshots"));
+  for (auto& snap : per_snapshot_)
+    in.vec_sized(snap, static_cast<std::size_t>(m_max_), "moment snapshot");
+  in.vec(weights_, "moment weights");
+  if (weights_.size() != per_snapshot_.size())
+    in.fail(in.pos, "moment weights do not match the snapshots");
+}
+
 }  // namespace gs::rfm

@@ -8,6 +8,7 @@
 #include <span>
 #include <vector>
 
+#include "core/bytes.hpp"
 #include "core/vec.hpp"
 
 namespace gs::rfm {
@@ -35,6 +36,10 @@ class MomentSeries {
   std::vector<double> error() const;
   /// the moments of each snapshot, [snapshot][m−1]
   const std::vector<std::vector<double>>& per_snapshot() const { return per_snapshot_; }
+
+  /// checkpoint: every snapshot so far
+  void save(ByteWriter& out) const;
+  void load(ByteReader& in);
 
  private:
   int m_max_;

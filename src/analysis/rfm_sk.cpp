@@ -248,4 +248,36 @@ void write_sk_csv(const std::filesystem::path& path, std::span<const SkShell> sh
     w.row({s.k, s.n, s.s, s.s_err, static_cast<double>(s.modes)});
 }
 
+
+void ShellAccumulator::save(ByteWriter& out) const {
+  out.vec(sum_);
+  out.vec(sum2_);
+  out.vec(ksum_);
+  out.vec(count_);
+  out.vec(modes_);
+}
+
+void ShellAccumulator::load(ByteReader& in) {
+  const std::size_t n = sum_.size();
+  in.vec_sized(sum_, n, "S(k) shell sums");
+  in.vec_sized(sum2_, n, "S(k) shell sums");
+  in.vec_sized(ksum_, n, "S(k) shell sums");
+  const std::size_t c = count_.size(), m = modes_.size();
+  in.vec(count_, "S(k) shell counts");
+  in.vec(modes_, "S(k) shell modes");
+  if (count_.size() != c || modes_.size() != m) in.fail(in.pos, "S(k) shells do not match the scene");
+}
+
+void StructureFactor2D::save(ByteWriter& out) const {
+  out.vec(mode_sum_);
+  shells_.save(out);
+  out.i64(snapshots_);
+}
+
+void StructureFactor2D::load(ByteReader& in) {
+  in.vec_sized(mode_sum_, mode_sum_.size(), "S(k) mode sums");
+  shells_.load(in);
+  snapshots_ = static_cast<long>(in.i64("S(k) snapshots"));
+}
+
 }  // namespace gs::rfm

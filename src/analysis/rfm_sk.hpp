@@ -14,6 +14,7 @@
 #include <span>
 #include <vector>
 
+#include "core/bytes.hpp"
 #include "core/vec.hpp"
 
 namespace gs::rfm {
@@ -54,6 +55,10 @@ class ShellAccumulator {
   int n_max() const { return n_max_; }
   double box() const { return box_; }
 
+  /// checkpoint: the sums (the shell layout comes from box and n_max)
+  void save(ByteWriter& out) const;
+  void load(ByteReader& in);
+
  private:
   int key(int nx, int ny) const;
   double box_;
@@ -75,6 +80,10 @@ class StructureFactor2D {
   /// S of every half-plane mode averaged over snapshots
   std::vector<SkMode> modes() const;
   long snapshots() const { return snapshots_; }
+
+  /// checkpoint: the sums over snapshots
+  void save(ByteWriter& out) const;
+  void load(ByteReader& in);
 
  private:
   double box_;

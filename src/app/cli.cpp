@@ -31,6 +31,13 @@ int run_cli(int argc, char** argv) {
   run->add_flag("-q,--quiet", ro.quiet, "no progress display");
   run->add_flag("--allow-unstable", ro.allow_unstable, "skip the up-front time-step check");
 
+  // resume: continue an interrupted run from its newest checkpoint
+  ResumeOptions rso;
+  auto* resume = app.add_subcommand(
+      "resume", "continue an interrupted run from its newest valid checkpoint (bitwise)");
+  resume->add_option("dir", rso.dir, "run directory (holds checkpoint-*.gsck)")->required();
+  resume->add_flag("-q,--quiet", rso.quiet, "no progress display");
+
   // sweep: one run directory per value of the swept keys, as child processes
   SweepOptions so;
   auto* sweep = app.add_subcommand("sweep", "run a scene at several values of scene keys, in parallel");
@@ -40,8 +47,13 @@ int run_cli(int argc, char** argv) {
       ->required();
   sweep->add_option("-o,--out", so.out, "sweep directory (default runs/<name>-sweep-<keys>)");
   sweep->add_option("--set", so.sets, "override a scene key in every run (repeatable)");
-  sweep->add_option("-j,--jobs", so.jobs, "runs at a time (default: the number of cores)")
+  sweep->add_option("-j,--jobs", so.jobs,
+                    "runs at a time (default: the number of cores; under mpirun: 1 per rank)")
       ->check(CLI::NonNegativeNumber);
+  sweep->add_option("--replicas", so.replicas,
+                    "runs per value; replica r > 0 gets a seed hashed from the scene's and r, "
+                    "in <name>_rep=<r> (default 1)")
+      ->check(CLI::PositiveNumber);
   sweep->add_flag("--force", so.force, "redo unfinished runs (completed runs are always kept)");
   sweep->add_flag("-q,--quiet", so.quiet, "no progress display");
   sweep->add_flag("--allow-unstable", so.allow_unstable, "skip the up-front time-step check");
@@ -78,6 +90,7 @@ int run_cli(int argc, char** argv) {
   }
   try {
     if (*run) return run_command(ro);
+    if (*resume) return resume_command(rso);
     if (auto code = dispatch_render_commands(*render_cmds)) return *code;
     if (*sweep) return sweep_command(so);
     if (*analyze) return analyze_command(ao);

@@ -56,22 +56,10 @@ class FrameRecorder final : public Observer {
  public:
   explicit FrameRecorder(const SceneSpec& scene) : spec_(scene.render), where_(scene.path) {}
 
+  const char* name() const override { return "frames"; }
+
   void start(const Simulation& sim, const std::string& dir) override {
-    maker_ = std::make_unique<FrameMaker>(spec_, where_);
-    if (spec_.frames) {
-      frames_dir_ = (fs::path(dir) / "frames").string();
-      fs::create_directories(frames_dir_);
-    }
-#if defined(GS_HAVE_FFMPEG)
-    if (spec_.movie) {
-      MovieOptions o;
-      o.fps = spec_.fps;
-      o.crf = spec_.crf;
-      o.preset = spec_.preset;
-      movie_ = std::make_unique<MovieEncoder>();
-      movie_->open((fs::path(dir) / "movie.mp4").string(), spec_.width, spec_.height, o);
-    }
-#endif
+    open_outputs(dir, "movie.mp4");
     index_ = CsvWriter((fs::path(dir) / kFrameIndexFile).string(),
                        {"frame", "t", "step", "tap", "gx", "gy"});
     // the initial state is frame 0 of the time and step schedules
@@ -91,7 +79,43 @@ class FrameRecorder final : public Observer {
 #endif
   }
 
+  void save(ByteWriter& out) const override {
+    out.i64(count_);
+    out.i64(next_k_);
+  }
+
+  // frames continue their numbering; an MP4 cannot be reopened for appending, so the movie
+  // after a resume is a new file, movie_from_<frame>.mp4 (join with ffmpeg's concat demuxer)
+  void resume(const Simulation& sim, const std::string& dir, ByteReader& in) override {
+    count_ = static_cast<int>(in.i64("frames: count"));
+    next_k_ = static_cast<long>(in.i64("frames: next frame time"));
+    open_outputs(dir, "movie_from_" + std::to_string(count_) + ".mp4");
+    index_ = CsvWriter::append((fs::path(dir) / kFrameIndexFile).string(), 6);
+    const World& w = sim.world();
+    prev_ = drive_phase(w.scene.drive, w.s.t);
+  }
+
  private:
+  void open_outputs(const std::string& dir, const std::string& movie_name) {
+    maker_ = std::make_unique<FrameMaker>(spec_, where_);
+    if (spec_.frames) {
+      frames_dir_ = (fs::path(dir) / "frames").string();
+      fs::create_directories(frames_dir_);
+    }
+#if defined(GS_HAVE_FFMPEG)
+    if (spec_.movie) {
+      MovieOptions o;
+      o.fps = spec_.fps;
+      o.crf = spec_.crf;
+      o.preset = spec_.preset;
+      movie_ = std::make_unique<MovieEncoder>();
+      movie_->open((fs::path(dir) / movie_name).string(), spec_.width, spec_.height, o);
+    }
+#else
+    (void)movie_name;
+#endif
+  }
+
   // is a frame due after this step?
   bool due(const Simulation& sim) {
     const World& w = sim.world();
@@ -160,6 +184,13 @@ class FrameRecorder final : public Observer {
 class TrajectoryWriter final : public Observer {
  public:
   explicit TrajectoryWriter(int every) : every_(every) {}
+  const char* name() const override { return "trajectory"; }
+  void save(ByteWriter&) const override {}  // frames are on disk; the run truncates the file
+  void resume(const Simulation&, const std::string& dir, ByteReader&) override {
+    path_ = (fs::path(dir) / "trajectory.xyz").string();
+    out_.open(path_, std::ios::app);
+    if (!out_) throw InputError(path_, "", "cannot append to the trajectory");
+  }
 
   void start(const Simulation& sim, const std::string& dir) override {
     path_ = (fs::path(dir) / "trajectory.xyz").string();

@@ -17,6 +17,15 @@ struct RunOptions {
 /// returns the process exit code (ExitCode)
 int run_command(const RunOptions& opt);
 
+struct ResumeOptions {
+  std::string dir;     ///< run directory with checkpoint-*.gsck
+  bool quiet = false;  ///< no progress display
+};
+
+/// continue a run from its newest valid checkpoint: outputs are truncated to the checkpoint
+/// and the run goes on exactly as it would have without the interruption
+int resume_command(const ResumeOptions& opt);
+
 /// set by SIGINT/SIGTERM; long loops poll it and stop cleanly
 bool stop_requested();
 void install_stop_handlers();

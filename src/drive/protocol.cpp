@@ -66,6 +66,20 @@ double ProtocolClock::nominal_duration() const {
   return settle_ + duration_;
 }
 
+void ProtocolClock::save(ByteWriter& out) const {
+  out.f64(rest_since_);
+  out.i64(rest_tap_);
+  out.i64(early_ends_);
+  out.f64(saved_);
+}
+
+void ProtocolClock::load(ByteReader& in) {
+  rest_since_ = in.f64("clock: rest since");
+  rest_tap_ = static_cast<long>(in.i64("clock: rest tap"));
+  early_ends_ = in.i64("clock: early ends");
+  saved_ = in.f64("clock: time saved");
+}
+
 double ProtocolClock::progress(const World& w) const { return w.s.t + saved_; }
 
 }  // namespace gs

@@ -5,6 +5,7 @@
 #pragma once
 #include <cstdint>
 
+#include "core/bytes.hpp"
 #include "drive/schedule.hpp"
 #include "world/world.hpp"
 
@@ -40,6 +41,10 @@ class ProtocolClock {
   std::int64_t early_ends() const { return early_ends_; }
   /// simulated time saved by early ends so far, s
   double time_saved() const { return saved_; }
+
+  /// checkpoint: the early-rest state (the clock origin itself lives in the World's scene)
+  void save(ByteWriter& out) const;
+  void load(ByteReader& in);
 
  private:
   bool at_rest(const World& w) const;

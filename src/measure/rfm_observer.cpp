@@ -64,6 +64,14 @@ std::string json_number(double v) {
 RfmObserver::RfmObserver(const SceneSpec& scene) : spec_(scene.rfm), scene_(scene) {}
 
 void RfmObserver::start(const Simulation& sim, const std::string& run_dir) {
+  setup(sim, run_dir);
+  // the series of every sample, transient included
+  series_ = CsvWriter(dir_ + "/rfm_series.csv", {"t", "step", "T", "T_x", "T_y", "v_mean_x",
+                                                 "v_mean_y", "contacts", "steady"});
+  after_step(sim);  // the prepared state is the first sample (step 0)
+}
+
+void RfmObserver::setup(const Simulation& sim, const std::string& run_dir) {
   const World& w = sim.world();
   dir_ = run_dir;
   n_ = w.size();
@@ -81,10 +89,6 @@ void RfmObserver::start(const Simulation& sim, const std::string& run_dir) {
       throw InputError(scene_.path, "species",
                        "the RFM measurements need disks of one size (SPEC 5)");
   if (dim_ == 1) l_reduced_ = rfm::reduced_length(box_, static_cast<long>(n_), diameter_);
-
-  // the series of every sample, transient included
-  series_ = CsvWriter(dir_ + "/rfm_series.csv", {"t", "step", "T", "T_x", "T_y", "v_mean_x",
-                                                 "v_mean_y", "contacts", "steady"});
 
   // structure (2D, square box): S(k) up to |n| ≈ 1.2 L/d (past the first peak), g(R) to L/4
   structure_ = dim_ == 2 && std::abs(box_ - box_y_) <= 1e-12 * box_;
@@ -109,7 +113,74 @@ void RfmObserver::start(const Simulation& sim, const std::string& run_dir) {
   leave_y_.assign(n_, 0.0);
   in_flight_.assign(n_, 0);
   steady_ = false;
-  after_step(sim);  // the prepared state is the first sample (step 0)
+}
+
+void RfmObserver::save(ByteWriter& out) const {
+  out.u8(steady_ ? 1 : 0);
+  out.f64(t_steady_);
+  out.f64(v_max_);
+  out.vec(times_);
+  out.vec(temps_);
+  moments_.save(out);
+  comp_moments_.save(out);
+  if (steady_) {
+    vel_.save(out);
+    post_.save(out);
+  }
+  paths_.save(out);
+  if (sk_) sk_->save(out);
+  if (gr_) gr_->save(out);
+  if (gaps_) gaps_->save(out);
+  // contact bookkeeping
+  std::vector<long> touch(last_touch_.begin(), last_touch_.end());
+  std::vector<long> prev(touching_prev_.begin(), touching_prev_.end());
+  std::vector<long> flight(in_flight_.begin(), in_flight_.end());
+  out.vec(touch);
+  out.vec(prev);
+  out.vec(leave_x_);
+  out.vec(leave_y_);
+  out.vec(flight);
+  out.i64(leaves_);
+}
+
+void RfmObserver::resume(const Simulation& sim, const std::string& run_dir, ByteReader& in) {
+  setup(sim, run_dir);
+  series_ = CsvWriter::append(dir_ + "/rfm_series.csv", 9);
+  steady_ = in.u8("rfm: steady flag") != 0;
+  t_steady_ = in.f64("rfm: steady start");
+  v_max_ = in.f64("rfm: velocity range");
+  in.vec(times_, "rfm: sample times");
+  in.vec(temps_, "rfm: temperatures");
+  if (times_.size() != temps_.size()) in.fail(in.pos, "rfm: sample times and temperatures differ");
+  moments_.load(in);
+  comp_moments_.load(in);
+  if (steady_) {
+    make_velocity_histograms();
+    vel_.load(in);
+    post_.load(in);
+  }
+  paths_.load(in);
+  if (sk_) sk_->load(in);
+  if (gr_) gr_->load(in);
+  if (gaps_) gaps_->load(in);
+  std::vector<long> touch, prev, flight;
+  in.vec(touch, "rfm: contact bookkeeping");
+  in.vec(prev, "rfm: contact bookkeeping");
+  in.vec_sized(leave_x_, n_, "rfm: free-path starts");
+  in.vec_sized(leave_y_, n_, "rfm: free-path starts");
+  in.vec(flight, "rfm: contact bookkeeping");
+  if (touch.size() != n_ || flight.size() != n_)
+    in.fail(in.pos, "rfm: contact bookkeeping does not match the particle count");
+  for (std::size_t i = 0; i < n_; ++i) {
+    last_touch_[i] = touch[i];
+    in_flight_[i] = static_cast<char>(flight[i] != 0);
+  }
+  touching_prev_.clear();
+  for (long i : prev) {
+    if (i < 0 || static_cast<std::size_t>(i) >= n_) in.fail(in.pos, "rfm: bad particle index");
+    touching_prev_.push_back(static_cast<std::uint32_t>(i));
+  }
+  leaves_ = static_cast<long>(in.i64("rfm: leave events"));
 }
 
 void RfmObserver::after_step(const Simulation& sim) {
@@ -133,6 +204,10 @@ void RfmObserver::begin_steady(const Simulation& sim) {
     const double sigma = std::sqrt(s2 / static_cast<double>(v.size()));
     v_max_ = sigma > 0 ? 12.0 * sigma : 1.0;
   }
+  make_velocity_histograms();
+}
+
+void RfmObserver::make_velocity_histograms() {
   vel_ = rfm::velocity_histogram(v_max_, spec_.v_bins);
   post_ = rfm::velocity_histogram(v_max_, spec_.v_bins);
 }

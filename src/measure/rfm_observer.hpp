@@ -37,6 +37,9 @@ class RfmObserver : public Observer {
   void start(const Simulation& sim, const std::string& run_dir) override;
   void after_step(const Simulation& sim) override;
   void finish(const Simulation& sim) override;
+  const char* name() const override { return "rfm"; }
+  void save(ByteWriter& out) const override;
+  void resume(const Simulation& sim, const std::string& run_dir, ByteReader& in) override;
 
   // what has been measured so far (tests, summaries)
   int dimension() const { return dim_; }
@@ -50,7 +53,10 @@ class RfmObserver : public Observer {
   long leave_events() const { return leaves_; }  ///< particles that left their last contact
 
  private:
+  /// everything start() and resume() share: the system, the accumulators' layouts
+  void setup(const Simulation& sim, const std::string& run_dir);
   void begin_steady(const Simulation& sim);
+  void make_velocity_histograms();
   void track_contacts(const Simulation& sim);
   void sample(const Simulation& sim);
   void write_json(const Simulation& sim) const;

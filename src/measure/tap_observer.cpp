@@ -31,6 +31,24 @@ void TapObserver::start(const Simulation& sim, const std::string& run_dir) {
   if (excitation_starts_next(w.scene.drive, w.s.t, sim.dt())) measure(sim);
 }
 
+void TapObserver::save(ByteWriter& out) const {
+  out.f64(origin_seen_);
+  out.u8(early_ ? 1 : 0);
+  out.f64(relax_end_);
+  out.i64(rows_);
+}
+
+void TapObserver::resume(const Simulation& sim, const std::string& run_dir, ByteReader& in) {
+  const World& w = sim.world();
+  grid_ = height_grid(w.Ly, dh_);
+  taps_ = CsvWriter::append(run_dir + "/taps.csv", columns(scene_).size());
+  seg_ = CsvWriter::append(run_dir + "/segregation.csv", 2 + cumulative_count_names(w, grid_).size());
+  origin_seen_ = in.f64("taps: clock origin");
+  early_ = in.u8("taps: early flag") != 0;
+  relax_end_ = in.f64("taps: relaxation end");
+  rows_ = static_cast<long>(in.i64("taps: rows"));
+}
+
 void TapObserver::after_step(const Simulation& sim) {
   const World& w = sim.world();
   const DriveSpec& d = w.scene.drive;

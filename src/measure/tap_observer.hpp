@@ -16,6 +16,9 @@ class TapObserver : public Observer {
   void start(const Simulation& sim, const std::string& run_dir) override;
   void after_step(const Simulation& sim) override;
   void finish(const Simulation& sim) override;
+  const char* name() const override { return "taps"; }
+  void save(ByteWriter& out) const override;
+  void resume(const Simulation& sim, const std::string& run_dir, ByteReader& in) override;
   /// rows written so far (taps measured, the prepared state as tap 0 included)
   long rows() const { return rows_; }
 

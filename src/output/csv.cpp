@@ -19,6 +19,15 @@ CsvWriter::CsvWriter(const std::string& path, const std::vector<std::string>& co
     throw InputError(path, "", std::string("write failed: ") + std::strerror(errno));
 }
 
+CsvWriter CsvWriter::append(const std::string& path, std::size_t columns) {
+  CsvWriter w;
+  w.f_ = std::fopen(path.c_str(), "a");
+  if (!w.f_) throw InputError(path, "", std::string("cannot append: ") + std::strerror(errno));
+  w.path_ = path;
+  w.ncol_ = columns;
+  return w;
+}
+
 CsvWriter& CsvWriter::operator=(CsvWriter&& o) noexcept {
   if (this != &o) {
     if (f_) std::fclose(f_);

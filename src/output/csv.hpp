@@ -11,6 +11,8 @@ class CsvWriter {
   CsvWriter() = default;
   /// open for writing (truncate) and write the header; throws InputError naming the path
   CsvWriter(const std::string& path, const std::vector<std::string>& columns);
+  /// reopen an existing series to append rows (a resumed run; its header is already there)
+  static CsvWriter append(const std::string& path, std::size_t columns);
   CsvWriter(CsvWriter&& o) noexcept : f_(o.f_), path_(std::move(o.path_)), ncol_(o.ncol_) { o.f_ = nullptr; }
   CsvWriter& operator=(CsvWriter&& o) noexcept;
   ~CsvWriter();

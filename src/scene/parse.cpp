@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include "scene/reader.hpp"
@@ -342,11 +343,17 @@ void read_health(const Ctx& ctx, const TableReader& top, SceneSpec& s) {
 
 void read_output(const Ctx& ctx, const TableReader& top, SceneSpec& s) {
   TableReader r(ctx, table_or_empty(sub_table(top, "output")), "output",
-                {"series_every", "final_state", "test_rect", "discard_taps"});
+                {"series_every", "final_state", "test_rect", "discard_taps",
+                 "checkpoint_minutes", "checkpoint_taps", "checkpoint_steps"});
   OutputSpec& o = s.output;
   o.series_every = static_cast<int>(r.integer("series_every", o.series_every, 1, kIntMax));
   o.final_state = r.boolean("final_state", o.final_state);
   o.discard_taps = static_cast<int>(r.integer("discard_taps", o.discard_taps, 0, kIntMax));
+  o.checkpoint_minutes =
+      r.number("checkpoint_minutes", o.checkpoint_minutes, {0.0, 1e7, false, false});
+  o.checkpoint_taps = static_cast<int>(r.integer("checkpoint_taps", o.checkpoint_taps, 0, kIntMax));
+  o.checkpoint_steps = r.integer("checkpoint_steps", o.checkpoint_steps, 0,
+                                 std::numeric_limits<std::int64_t>::max());
   // test_rect = [x0, y0, x1, y1] with x1 > x0 and y1 > y0
   if (const toml::node* n = r.get("test_rect")) {
     const toml::array* a = n->as_array();

@@ -142,6 +142,11 @@ struct OutputSpec {
   bool final_state = true;
   double test_rect[4] = {0.04, 0.04, 0.44, 0.44};  ///< x0, y0, x1, y1 of the φ window, m
   int discard_taps = 10;
+  // checkpoints (docs/robustness.md): DIR/checkpoint-<step>.gsck, the newest two kept, written
+  // on every trigger that is on (0 = off) and when the run stops
+  double checkpoint_minutes = 10.0;  ///< wall-clock minutes between checkpoints
+  int checkpoint_taps = 0;           ///< taps between checkpoints (tapping scenes)
+  std::int64_t checkpoint_steps = 0; ///< steps between checkpoints
 };
 
 /// when the frame recorder takes a picture ([render] schedule)

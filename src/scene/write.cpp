@@ -149,6 +149,9 @@ std::vector<Block> emit(const SceneSpec& s) {
   for (int i = 0; i < 4; ++i) rect += format_double(r[i]) + (i < 3 ? ", " : "]");
   o.kv.emplace_back("test_rect", rect);
   o.integer("discard_taps", s.output.discard_taps);
+  o.num("checkpoint_minutes", s.output.checkpoint_minutes);
+  o.integer("checkpoint_taps", s.output.checkpoint_taps);
+  o.integer("checkpoint_steps", s.output.checkpoint_steps);
   // [render]: scene/render_section.cpp
   out.push_back(Block{"[render]", "render", scene_detail::render_entries(s.render)});
   // [rfm]: scene/rfm_section.cpp (random-force scenes, or when the file had one)

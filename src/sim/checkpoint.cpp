@@ -4,51 +4,19 @@
 #include <cstring>
 #include <sstream>
 
+#include "core/bytes.hpp"
 #include "core/error.hpp"
 #include "output/run_dir.hpp"
 #include "scene/parse.hpp"
 #include "world/prepare.hpp"
 
 namespace gs {
-namespace {
-
-// ---- little-endian writer ----
-
-struct Writer {
-  std::string out;
-  void u8(std::uint8_t v) { out.push_back(static_cast<char>(v)); }
-  void u32(std::uint32_t v) {
-    for (int k = 0; k < 4; ++k) u8(static_cast<std::uint8_t>(v >> (8 * k)));
-  }
-  void u64(std::uint64_t v) {
-    for (int k = 0; k < 8; ++k) u8(static_cast<std::uint8_t>(v >> (8 * k)));
-  }
-  void i32(std::int32_t v) { u32(static_cast<std::uint32_t>(v)); }
-  void i64(std::int64_t v) { u64(static_cast<std::uint64_t>(v)); }
-  void f64(double v) {
-    std::uint64_t b;
-    std::memcpy(&b, &v, 8);
-    u64(b);
-  }
-  void str(std::string_view s) {
-    u64(s.size());
-    out.append(s.data(), s.size());
-  }
-  void f64s(const std::vector<double>& v) {
-    for (double x : v) f64(x);
-  }
-  void i32s(const std::vector<int>& v) {
-    for (int x : v) i32(x);
-  }
-};
-
-}  // namespace
 
 // payload in the order of docs/robustness.md, then the header in front
 std::string encode_checkpoint(const Simulation& sim, const CheckpointExtras& extras) {
   const World& w = sim.world();
   const State& s = w.s;
-  Writer p;
+  ByteWriter p;
   p.str(scene_to_toml(w.scene));
   p.f64(w.scene.drive.clock_origin);
   p.f64(s.t);
@@ -83,7 +51,7 @@ std::string encode_checkpoint(const Simulation& sim, const CheckpointExtras& ext
     p.str(k);
     p.str(v);
   }
-  Writer h;
+  ByteWriter h;
   h.out.append(kCheckpointMagic, 8);
   h.u32(kCheckpointVersion);
   h.u32(kCheckpointEndian);

@@ -6,79 +6,12 @@
 #include <fstream>
 #include <iterator>
 
+#include "core/bytes.hpp"
 #include "core/error.hpp"
 #include "sim/checkpoint.hpp"
 
 namespace gs {
 namespace {
-
-// ---- little-endian reader: every problem names the file and the byte offset ----
-
-struct Reader {
-  std::string_view in;
-  std::size_t pos = 0;
-  const std::string& name;
-
-  [[noreturn]] void fail(std::size_t at, const std::string& what) const {
-    throw InputError(name + ": byte offset " + std::to_string(at), "", what);
-  }
-  void need(std::size_t n, const char* what) const {
-    if (in.size() - pos < n)
-      fail(pos, std::string("truncated checkpoint: ") + what + " needs " + std::to_string(n) +
-                    " bytes, " + std::to_string(in.size() - pos) + " left");
-  }
-  std::uint8_t u8(const char* what) {
-    need(1, what);
-    return static_cast<std::uint8_t>(in[pos++]);
-  }
-  std::uint32_t u32(const char* what) {
-    need(4, what);
-    std::uint32_t v = 0;
-    for (int k = 0; k < 4; ++k) v |= std::uint32_t(static_cast<std::uint8_t>(in[pos + k])) << (8 * k);
-    pos += 4;
-    return v;
-  }
-  std::uint64_t u64(const char* what) {
-    need(8, what);
-    std::uint64_t v = 0;
-    for (int k = 0; k < 8; ++k) v |= std::uint64_t(static_cast<std::uint8_t>(in[pos + k])) << (8 * k);
-    pos += 8;
-    return v;
-  }
-  std::int32_t i32(const char* what) { return static_cast<std::int32_t>(u32(what)); }
-  std::int64_t i64(const char* what) { return static_cast<std::int64_t>(u64(what)); }
-  double f64(const char* what) {
-    const std::uint64_t b = u64(what);
-    double v;
-    std::memcpy(&v, &b, 8);
-    return v;
-  }
-  /// a count of items of `item` bytes each, checked against the bytes that remain
-  std::size_t count(std::size_t item, const char* what) {
-    const std::size_t at = pos;
-    const std::uint64_t n = u64(what);
-    if (item > 0 && n > (in.size() - pos) / item)
-      fail(at, std::string("truncated checkpoint: implausible ") + what + " count " + std::to_string(n) + " (only " +
-                   std::to_string(in.size() - pos) + " bytes left)");
-    return static_cast<std::size_t>(n);
-  }
-  std::string str(const char* what) {
-    const std::size_t n = count(1, what);
-    std::string s(in.substr(pos, n));
-    pos += n;
-    return s;
-  }
-  void f64s(std::vector<double>& v, std::size_t n, const char* what) {
-    need(8 * n, what);
-    v.resize(n);
-    for (double& x : v) x = f64(what);
-  }
-  void i32s(std::vector<int>& v, std::size_t n, const char* what) {
-    need(4 * n, what);
-    v.resize(n);
-    for (int& x : v) x = i32(what);
-  }
-};
 
 // bytes per particle: sp, 4 constants, 9 state arrays, 2 wrap counts
 constexpr std::size_t kParticleBytes = 4 + 4 * 8 + 9 * 8 + 2 * 4;
@@ -92,7 +25,7 @@ std::uint64_t fnv1a64(std::string_view bytes) {
 }
 
 Checkpoint decode_checkpoint(std::string_view bytes, const std::string& name) {
-  Reader r{bytes, 0, name};
+  ByteReader r{bytes, 0, name};
   // header: magic, version, endianness, size, checksum
   if (bytes.size() < kCheckpointHeader)
     r.fail(bytes.size(), "not a gransim checkpoint: " + std::to_string(bytes.size()) +

@@ -1,10 +1,13 @@
 // observers: read-only measurements hooked into a run. They see the Simulation after every
 // step (and decide themselves when to sample), write their own files in the run directory,
-// and never change state.
+// and never change state. A run that checkpoints asks each observer for its state (save) and
+// a resumed run hands it back (resume instead of start); see docs/robustness.md.
 #pragma once
 #include <memory>
 #include <string>
 #include <vector>
+
+#include "core/bytes.hpp"
 
 namespace gs {
 
@@ -13,12 +16,21 @@ class Simulation;
 class Observer {
  public:
   virtual ~Observer() = default;
+  /// a stable name: the key of this observer's state in a checkpoint
+  virtual const char* name() const = 0;
   /// the run starts; files go into run_dir
   virtual void start(const Simulation& sim, const std::string& run_dir) = 0;
   /// after every step (keep it cheap: sample on your own interval)
   virtual void after_step(const Simulation& sim) = 0;
   /// the run ends (completed, interrupted or stopped by a health check): flush everything
   virtual void finish(const Simulation& sim) = 0;
+  /// checkpoint (between two steps, files flushed): everything needed to continue exactly —
+  /// accumulators, counters. Files are not saved: the run stores their sizes and truncates
+  /// them to those sizes on resume.
+  virtual void save(ByteWriter& out) const = 0;
+  /// continue a run from a checkpoint instead of start(): reopen files for appending and take
+  /// back what save() wrote. `sim` is the restored simulation.
+  virtual void resume(const Simulation& sim, const std::string& run_dir, ByteReader& in) = 0;
 };
 
 using Observers = std::vector<std::unique_ptr<Observer>>;

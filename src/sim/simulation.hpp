@@ -2,6 +2,7 @@
 #pragma once
 #include <functional>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "broadphase/broadphase.hpp"
@@ -39,6 +40,13 @@ class Simulation {
   double dt() const { return dt_; }
   /// gravity applied during the last step, m/s²
   Vec2 gravity() const { return gravity_; }
+  /// the blow-up check's energy yardstick (reference, tolerated growth), J: a checkpoint
+  /// keeps the original run's, so a resumed run checks against the same numbers
+  std::pair<double, double> energy_yardstick() const { return {energy_ref_, energy_slack_}; }
+  void set_energy_yardstick(double ref, double slack) {
+    energy_ref_ = ref;
+    energy_slack_ = slack;
+  }
   /// does anything drive the system (gravity, pulses, noise)?
   bool driven() const;
   /// can the mechanical energy only decrease (no drive, or constant gravity)?

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "binary.hpp"
 #include "core/error.hpp"
 #include "sim/checkpoint.hpp"
 
@@ -24,40 +25,8 @@ namespace fs = std::filesystem;
 
 const fs::path kCorpus = fs::path(GS_SOURCE_DIR) / "tests" / "app" / "hostile";
 
-struct Outcome {
-  bool exited = false;  ///< false: killed by a signal (crash, or the 30 s alarm)
-  int code = -1;        ///< exit code, or the signal number
-  std::string output;   ///< stdout and stderr together
-};
-
-// run the binary with args; stdout and stderr go to one file; a 30 s alarm stops hangs
-Outcome run_binary(const std::vector<std::string>& args, const fs::path& log) {
-  std::vector<char*> argv;
-  std::string bin = GS_BINARY;
-  argv.push_back(bin.data());
-  std::vector<std::string> a = args;
-  for (std::string& s : a) argv.push_back(s.data());
-  argv.push_back(nullptr);
-  const pid_t pid = ::fork();
-  if (pid == 0) {
-    const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    ::dup2(fd, 1);
-    ::dup2(fd, 2);
-    ::alarm(30);
-    ::execv(argv[0], argv.data());
-    ::_exit(127);
-  }
-  int status = 0;
-  ::waitpid(pid, &status, 0);
-  Outcome o;
-  o.exited = WIFEXITED(status);
-  o.code = o.exited ? WEXITSTATUS(status) : WTERMSIG(status);
-  std::ifstream in(log);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  o.output = ss.str();
-  return o;
-}
+using testing::Outcome;
+using testing::run_binary;
 
 struct Entry {
   std::string file, expect, third;

@@ -1,0 +1,207 @@
+// the run loop of `gransim run` and `gransim resume` (app/run_session.hpp)
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "app/progress.hpp"
+#include "app/run.hpp"
+#include "app/run_session.hpp"
+#include "app/version.hpp"
+#include "core/error.hpp"
+#include "output/run_dir.hpp"
+#include "scene/names.hpp"
+#include "sim/state_file.hpp"
+
+namespace gs {
+namespace {
+
+std::string json_escape(const std::string& s) {
+  std::string o;
+  for (char c : s) {
+    if (c == '"' || c == '\\') o += '\\';
+    if (static_cast<unsigned char>(c) < 0x20) {
+      o += ' ';
+      continue;
+    }
+    o += c;
+  }
+  return o;
+}
+
+}  // namespace
+
+void write_series_row(RunSession& rs) {
+  const Simulation& sim = *rs.sim;
+  const World& w = sim.world();
+  double vmax2 = 0;
+  for (std::size_t i = 0; i < w.size(); ++i)
+    vmax2 = std::max(vmax2, w.s.vx[i] * w.s.vx[i] + w.s.vy[i] * w.s.vy[i]);
+  const ForceStats& f = sim.last_forces();
+  rs.series.row({w.s.t, static_cast<double>(w.s.step), w.kinetic_energy(),
+                 static_cast<double>(f.contacts), f.max_overlap, f.max_overlap_rel,
+                 std::sqrt(vmax2), sim.gravity().x, sim.gravity().y,
+                 static_cast<double>(sim.contacts().degenerate)});
+}
+
+namespace {
+
+void write_run_json(const RunSession& rs, int code, const std::string& failure, double wall,
+                    double rate, long taps_done) {
+  const SceneSpec& scene = rs.scene;
+  const Simulation& sim = *rs.sim;
+  const ProtocolClock& clock = *rs.clock;
+  std::ostringstream js;
+  js << "{\n  \"program\": \"gransim\",\n  \"version\": \"" << program_version() << "\",\n"
+     << "  \"scene_file\": \"" << json_escape(rs.scene_file) << "\",\n"
+     << "  \"status\": \""
+     << (code == kExitOk         ? "completed"
+         : code == kExitUnstable ? "unstable"
+                                 : "interrupted")
+     << "\",\n"
+     << "  \"particles\": " << sim.world().size() << ",\n  \"steps\": " << sim.world().s.step
+     << ",\n"
+     << "  \"simulated_time_s\": " << sim.world().s.t << ",\n  \"wall_time_s\": " << wall << ",\n"
+     << "  \"sessions\": " << rs.sessions << ",\n"
+     << "  \"particle_steps_per_s\": " << rate << ",\n"
+     << "  \"broad_phase\": \"" << sim.broadphase().name() << "\",\n"
+     << "  \"contact_time_s\": " << sim.model().min_contact_time() << ",\n"
+     << "  \"degenerate_contacts\": " << sim.contacts().degenerate << ",\n"
+     << "  \"settle_time_s\": " << scene.prep.settle_time << ",\n";
+  // tapping: the protocol, its control value and how the taps went
+  if (is_tapping(scene.drive)) {
+    const bool neg = scene.drive.kind == DriveKind::NegativeG;
+    const double settled = std::max(rs.wall_settled, 0.0);
+    js << "  \"protocol\": \"" << scene_name(scene.drive.kind) << "\",\n"
+       << "  \"control\": " << (neg ? scene.drive.g_p : scene.drive.f) << ",\n"
+       << "  \"control_name\": \"" << (neg ? "g_p" : "f") << "\",\n"
+       << "  \"period_s\": " << drive_period(scene.drive) << ",\n"
+       << "  \"taps_requested\": " << scene.drive.taps << ",\n"
+       << "  \"taps_done\": " << taps_done << ",\n"
+       << "  \"early_ends\": " << clock.early_ends() << ",\n"
+       << "  \"time_saved_s\": " << clock.time_saved() << ",\n"
+       << "  \"wall_time_settling_s\": " << settled << ",\n"
+       << "  \"wall_time_per_tap_s\": "
+       << (taps_done > 0 ? (wall - settled) / static_cast<double>(taps_done) : 0.0) << ",\n";
+  }
+  if (!failure.empty()) js << "  \"failure\": \"" << json_escape(failure) << "\",\n";
+  js << "  \"scene\": {";
+  bool first = true;
+  for (const auto& [k, v] : scene.resolved) {
+    js << (first ? "\n" : ",\n") << "    \"" << json_escape(k) << "\": \"" << json_escape(v)
+       << "\"";
+    first = false;
+  }
+  js << "\n  }\n}\n";
+  write_file_atomic(rs.out + "/run.json", js.str());
+}
+
+}  // namespace
+
+std::vector<std::string> series_columns() {
+  return {"t",           "step",      "kinetic_energy", "contacts", "max_overlap",
+          "max_overlap_rel", "max_speed", "gx",          "gy",       "degenerate"};
+}
+
+int run_session(RunSession& rs) {
+  Simulation& sim = *rs.sim;
+  ProtocolClock& clock = *rs.clock;
+  const SceneSpec& scene = rs.scene;
+  const OutputSpec& out = scene.output;
+  const double dt = sim.dt();
+  // how long: taps of a tapping protocol (the clock says when the last one is measured), or
+  // settling plus scene.duration
+  const bool by_taps = scene.drive.taps > 0 && is_tapping(scene.drive);
+  const double nominal = clock.nominal_duration();
+  const auto nsteps = static_cast<std::int64_t>(std::llround(nominal / dt));
+  auto finished = [&] {
+    if (by_taps) return clock.done(sim.world());
+    return sim.world().s.step + std::llround(clock.time_saved() / dt) >= nsteps;
+  };
+  auto settling = [&] { return drive_phase(sim.world().scene.drive, sim.world().s.t + dt).settling; };
+  auto taps_done = [&]() -> long {
+    const DrivePhase p = drive_phase(sim.world().scene.drive, sim.world().s.t + dt);
+    return is_tapping(scene.drive) && !p.settling ? p.tap : 0;
+  };
+  install_stop_handlers();
+  Progress progress(rs.sessions > 1 ? "resume" : "run", nominal, "s", rs.quiet);
+  using Clock = std::chrono::steady_clock;
+  const auto t0 = Clock::now();
+  auto wall_now = [&] {
+    return rs.wall_before + std::chrono::duration<double>(Clock::now() - t0).count();
+  };
+  if (rs.wall_settled < 0 && !settling()) rs.wall_settled = wall_now();
+  auto last_checkpoint = Clock::now();
+  auto checkpoint = [&] {
+    write_run_checkpoint(rs, wall_now());
+    last_checkpoint = Clock::now();
+  };
+  int code = kExitOk;
+  std::string failure;
+  try {
+    for (std::int64_t k = 0; !finished(); ++k) {
+      sim.step();
+      clock.after_step(sim.world());  // may end a relaxation early (moves the clock origin)
+      if (rs.wall_settled < 0 && !settling()) rs.wall_settled = wall_now();
+      for (auto& o : rs.observers) o->after_step(sim);
+      const std::int64_t step = sim.world().s.step;
+      if (step % out.series_every == 0) write_series_row(rs);
+      // checkpoints between two steps, after every output of this step is written
+      bool due = out.checkpoint_steps > 0 && step % out.checkpoint_steps == 0;
+      if (out.checkpoint_taps > 0 && by_taps && !settling() &&
+          excitation_starts_next(sim.world().scene.drive, sim.world().s.t, dt) &&
+          taps_done() % out.checkpoint_taps == 0)
+        due = true;
+      if ((k & 63) == 0) {
+        if (out.checkpoint_minutes > 0 &&
+            std::chrono::duration<double>(Clock::now() - last_checkpoint).count() >=
+                60.0 * out.checkpoint_minutes)
+          due = true;
+        progress.update(
+            clock.progress(sim.world()),
+            by_taps ? "tap " + std::to_string(taps_done()) + "/" + std::to_string(scene.drive.taps)
+                    : std::string());
+        if (stop_requested()) {
+          code = kExitInterrupted;
+          break;
+        }
+      }
+      if (due && !finished()) checkpoint();
+    }
+  } catch (const HealthError& e) {
+    code = kExitUnstable;
+    failure = e.what();
+  }
+  // a checkpoint on the way out (not of a blown-up state: the last periodic one stays)
+  if (code != kExitUnstable) checkpoint();
+  const double wall = wall_now();
+  const double n = static_cast<double>(sim.world().size());
+  const double rate = wall > 0 ? static_cast<double>(sim.world().s.step) * n / wall : 0.0;
+
+  for (auto& o : rs.observers) o->finish(sim);
+  rs.series = CsvWriter();
+  // final state and run.json, also for interrupted and failed runs (nothing is lost)
+  write_state_file(sim.world(), rs.out + "/state.csv");
+  write_run_json(rs, code, failure, wall, rate, taps_done());
+
+  char summary[160];
+  std::snprintf(summary, sizeof summary, "%.3g particle-steps/s, output in %s", rate,
+                rs.out.c_str());
+  if (code == kExitOk) {
+    progress.finish(summary);
+  } else if (code == kExitUnstable) {
+    std::fprintf(stderr,
+                 "\ngransim: run stopped by a health check: %s\n(output so far kept in %s)\n",
+                 failure.c_str(), rs.out.c_str());
+  } else {
+    std::fprintf(stderr,
+                 "\ngransim: interrupted at t = %g s (step %lld); checkpoint, state and series "
+                 "kept in %s\n  continue with: gransim resume %s\n",
+                 sim.world().s.t, static_cast<long long>(sim.world().s.step), rs.out.c_str(),
+                 rs.out.c_str());
+  }
+  return code;
+}
+
+}  // namespace gs

@@ -1,0 +1,72 @@
+// run the gransim binary from a test: fork/exec with arguments and extra environment, stdout
+// and stderr into one log file; optionally send a signal after a delay (kill-and-resume tests)
+#pragma once
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace gs::testing {
+
+struct Outcome {
+  bool exited = false;  ///< false: ended by a signal (crash, the alarm, or the test's kill)
+  int code = -1;        ///< exit code, or the signal number
+  std::string output;   ///< stdout and stderr together
+};
+
+struct Launch {
+  std::vector<std::string> env;  ///< "NAME=value" added to the environment
+  int alarm_s = 30;              ///< SIGALRM after this long (stops hangs)
+  double signal_after_s = -1.0;  ///< send `signal` after this many seconds (−1: never)
+  int signal = SIGKILL;
+};
+
+inline Outcome run_binary(const std::vector<std::string>& args, const std::filesystem::path& log,
+                          const Launch& how = {}) {
+  std::vector<std::string> a = args;
+  std::string bin = GS_BINARY;
+  std::vector<char*> argv{bin.data()};
+  for (std::string& s : a) argv.push_back(s.data());
+  argv.push_back(nullptr);
+  std::vector<std::string> env = how.env;
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    ::dup2(fd, 1);
+    ::dup2(fd, 2);
+    for (std::string& e : env) ::putenv(e.data());
+    ::alarm(static_cast<unsigned>(how.alarm_s));
+    ::execv(argv[0], argv.data());
+    ::_exit(127);
+  }
+  int status = 0;
+  if (how.signal_after_s >= 0) {
+    const auto until = std::chrono::steady_clock::now() +
+                       std::chrono::duration<double>(how.signal_after_s);
+    while (std::chrono::steady_clock::now() < until) {
+      if (::waitpid(pid, &status, WNOHANG) == pid) goto done;
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    ::kill(pid, how.signal);
+  }
+  ::waitpid(pid, &status, 0);
+done:
+  Outcome o;
+  o.exited = WIFEXITED(status);
+  o.code = o.exited ? WEXITSTATUS(status) : WTERMSIG(status);
+  std::ifstream in(log);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  o.output = ss.str();
+  return o;
+}
+
+}  // namespace gs::testing

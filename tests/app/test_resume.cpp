@@ -1,0 +1,204 @@
+// kill and resume: a run killed with SIGKILL at random moments and continued with
+// `gransim resume` ends with the same files, byte for byte, as the run that was never
+// interrupted — the final state, every per-tap, series and RFM row — for a polygon tapping
+// scene and a disk RFM scene, with 1 and 2 threads; SIGINT writes a checkpoint and says how
+// to resume; a damaged newest checkpoint falls back to the one before
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "binary.hpp"
+
+namespace gs {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::Launch;
+using testing::Outcome;
+using testing::run_binary;
+
+const std::string kSource = GS_SOURCE_DIR;
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// every output file of a run directory except run.json (wall times) and the checkpoints
+std::map<std::string, std::string> outputs(const fs::path& dir) {
+  std::map<std::string, std::string> m;
+  for (const auto& e : fs::recursive_directory_iterator(dir)) {
+    if (!e.is_regular_file()) continue;
+    const std::string name = fs::relative(e.path(), dir).string();
+    if (name == "run.json" || name.rfind("checkpoint-", 0) == 0) continue;
+    m[name] = slurp(e.path());
+  }
+  return m;
+}
+
+// checkpoints in a run directory
+std::size_t list_size(const fs::path& dir) {
+  std::size_t n = 0;
+  if (fs::exists(dir))
+    for (const auto& e : fs::directory_iterator(dir))
+      n += e.path().filename().string().rfind("checkpoint-", 0) == 0;
+  return n;
+}
+
+struct Case {
+  std::string label;
+  std::vector<std::string> run_args;  ///< scene and --set overrides
+  std::string threads;
+};
+
+void PrintTo(const Case& c, std::ostream* os) { *os << c.label; }
+
+class KillResume : public ::testing::TestWithParam<Case> {};
+
+fs::path fresh(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / ("gs_resume_" + name);
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+std::vector<std::string> with_out(std::vector<std::string> a, const fs::path& out) {
+  a.insert(a.begin(), "run");
+  a.insert(a.end(), {"--out", out.string(), "--quiet"});
+  return a;
+}
+
+TEST_P(KillResume, SigkillAtRandomMomentsThenResumeIsBitwise) {
+  const Case& c = GetParam();
+  const fs::path tmp = fresh(c.label);
+  Launch env;
+  env.env = {"OMP_NUM_THREADS=" + c.threads};
+  env.alarm_s = 120;
+  // the uninterrupted reference and its wall time
+  const auto t0 = std::chrono::steady_clock::now();
+  const Outcome ref = run_binary(with_out(c.run_args, tmp / "ref"), tmp / "ref.log", env);
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  ASSERT_TRUE(ref.exited && ref.code == 0) << ref.output;
+  const auto want = outputs(tmp / "ref");
+  ASSERT_TRUE(want.count("series.csv") && want.count("state.csv"));
+
+  // kill at random moments between 15% and 85% of the run (fixed seed: reproducible)
+  std::mt19937 rng(20261121u + static_cast<unsigned>(c.threads[0]));
+  std::uniform_real_distribution<double> when(0.15 * wall, 0.85 * wall);
+  for (int k = 0; k < 3; ++k) {
+    const fs::path dir = tmp / ("killed" + std::to_string(k));
+    Launch kill = env;
+    kill.signal_after_s = when(rng);
+    kill.signal = SIGKILL;
+    Outcome killed = run_binary(with_out(c.run_args, dir), tmp / "killed.log", kill);
+    // killed before its first checkpoint (a slow start): kill a fresh run later
+    while (!killed.exited && list_size(dir) == 0 && kill.signal_after_s < 0.9 * wall) {
+      kill.signal_after_s += 0.1 * wall;
+      fs::remove_all(dir);
+      killed = run_binary(with_out(c.run_args, dir), tmp / "killed.log", kill);
+    }
+    ASSERT_FALSE(killed.exited) << "the run ended before the kill at " << kill.signal_after_s
+                                << " s (reference took " << wall << " s)";
+    const Outcome r = run_binary({"resume", dir.string(), "--quiet"}, tmp / "resume.log", env);
+    ASSERT_TRUE(r.exited && r.code == 0) << "kill at " << kill.signal_after_s << " s\n" << r.output;
+    EXPECT_NE(r.output.find("resuming"), std::string::npos) << r.output;
+    const auto got = outputs(dir);
+    ASSERT_EQ(got.size(), want.size()) << "kill at " << kill.signal_after_s << " s";
+    for (const auto& [name, bytes] : want) {
+      ASSERT_TRUE(got.count(name)) << name << " missing after resume";
+      EXPECT_TRUE(got.at(name) == bytes)
+          << name << " differs after a kill at " << kill.signal_after_s << " s and resume";
+    }
+    EXPECT_NE(slurp(dir / "run.json").find("\"sessions\": 2"), std::string::npos);
+  }
+}
+
+// a small tapping pile (90 decagons, early rest on: the clock's rest state is checkpointed
+// too) and a 2000-disk randomly forced fluid (over 1000 contacts per step: the force loop
+// runs on both threads); checkpoints every few thousand steps
+const std::vector<std::string> kTapping = {
+    kSource + "/scenes/tap_small_negative_g.toml", "--set", "species[0].count=40", "--set",
+    "species[1].count=50", "--set", "drive.taps=3", "--set", "preparation.settle_time=0.6",
+    "--set", "output.checkpoint_steps=3000"};
+const std::vector<std::string> kRfm = {
+    kSource + "/scenes/rfm2d_reference.toml", "--set", "scene.duration=0.03", "--set",
+    "rfm.discard_time=0.01", "--set", "rfm.sample_every=500", "--set",
+    "output.checkpoint_steps=4000"};
+
+INSTANTIATE_TEST_SUITE_P(Scenes, KillResume,
+                         ::testing::Values(Case{"tap1", kTapping, "1"}, Case{"tap2", kTapping, "2"},
+                                           Case{"rfm1", kRfm, "1"}, Case{"rfm2", kRfm, "2"}),
+                         [](const auto& info) { return info.param.label; });
+
+// SIGINT: the step finishes, a checkpoint is written, exit code 4 with the resume command
+TEST(Resume, SigintCheckpointsAndSaysHowToResume) {
+  const fs::path tmp = fresh("sigint");
+  const auto args = with_out(kTapping, tmp / "ref");
+  ASSERT_EQ(run_binary(args, tmp / "ref.log").code, 0);
+  Launch stop;
+  stop.signal = SIGINT;
+  stop.signal_after_s = 2.0;
+  const Outcome o = run_binary(with_out(kTapping, tmp / "run"), tmp / "run.log", stop);
+  ASSERT_TRUE(o.exited);
+  ASSERT_EQ(o.code, 4) << o.output;
+  EXPECT_NE(o.output.find("gransim resume " + (tmp / "run").string()), std::string::npos)
+      << o.output;
+  EXPECT_NE(slurp(tmp / "run" / "run.json").find("\"status\": \"interrupted\""),
+            std::string::npos);
+  const Outcome r = run_binary({"resume", (tmp / "run").string(), "--quiet"}, tmp / "r.log");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_EQ(outputs(tmp / "run"), outputs(tmp / "ref"));
+  // a completed run has nothing to resume
+  const Outcome again = run_binary({"resume", (tmp / "run").string()}, tmp / "again.log");
+  EXPECT_EQ(again.code, 0);
+  EXPECT_NE(again.output.find("nothing to resume"), std::string::npos) << again.output;
+}
+
+// the newest checkpoint damaged (a crash while copying, a bad disk): resume says so, takes
+// the one before, and still ends bitwise equal
+TEST(Resume, DamagedNewestCheckpointFallsBackToThePreviousOne) {
+  const fs::path tmp = fresh("damaged");
+  ASSERT_EQ(run_binary(with_out(kTapping, tmp / "ref"), tmp / "ref.log").code, 0);
+  Launch stop;
+  stop.signal = SIGINT;
+  stop.signal_after_s = 2.5;
+  ASSERT_EQ(run_binary(with_out(kTapping, tmp / "run"), tmp / "run.log", stop).code, 4);
+  std::vector<fs::path> cks;
+  for (const auto& e : fs::directory_iterator(tmp / "run"))
+    if (e.path().filename().string().rfind("checkpoint-", 0) == 0) cks.push_back(e.path());
+  ASSERT_EQ(cks.size(), 2u) << "the newest two checkpoints are kept";
+  std::sort(cks.begin(), cks.end());
+  {
+    std::fstream f(cks.back(), std::ios::in | std::ios::out | std::ios::binary);
+    f.seekp(100);
+    f.put('\x5a');
+  }
+  const Outcome r = run_binary({"resume", (tmp / "run").string(), "--quiet"}, tmp / "r.log");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("skipping " + cks.back().string()), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("checksum"), std::string::npos) << r.output;
+  EXPECT_EQ(outputs(tmp / "run"), outputs(tmp / "ref"));
+}
+
+TEST(Resume, NothingToResumeIsBadInput) {
+  const fs::path tmp = fresh("none");
+  const Outcome missing = run_binary({"resume", (tmp / "nope").string()}, tmp / "a.log");
+  EXPECT_EQ(missing.code, 2);
+  EXPECT_NE(missing.output.find("does not exist"), std::string::npos) << missing.output;
+  const Outcome empty = run_binary({"resume", tmp.string()}, tmp / "b.log");
+  EXPECT_EQ(empty.code, 2);
+  EXPECT_NE(empty.output.find("no checkpoint"), std::string::npos) << empty.output;
+}
+
+}  // namespace
+}  // namespace gs
