@@ -98,6 +98,9 @@ int run_cli(int argc, char** argv) {
   } catch (const InputError& e) {
     std::fprintf(stderr, "gransim: error: %s\n", e.what());
     return kExitBadInput;
+  } catch (const OutputError& e) {
+    std::fprintf(stderr, "gransim: cannot write output: %s\n", e.what());
+    return kExitOutput;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "gransim: internal error: %s\n", e.what());
     return kExitFailure;

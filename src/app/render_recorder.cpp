@@ -208,7 +208,7 @@ class TrajectoryWriter final : public Observer {
     const World& w = sim.world();
     write_trajectory_frame(out_, w, sim.gravity(), frame_info(w, sim.gravity()).tap);
     out_.flush();  // a frame on disk is a frame kept, whatever happens next
-    if (!out_) throw std::runtime_error("writing " + path_ + " failed");
+    if (!out_) throw OutputError(path_ + ": write failed (disk full or removed?)");
   }
   int every_;
   std::string path_;

@@ -172,24 +172,46 @@ int run_session(RunSession& rs) {
   } catch (const HealthError& e) {
     code = kExitUnstable;
     failure = e.what();
+  } catch (const OutputError& e) {
+    code = kExitOutput;
+    failure = e.what();
   }
-  // a checkpoint on the way out (not of a blown-up state: the last periodic one stays)
-  if (code != kExitUnstable) checkpoint();
+  // whatever else is written now may fail too (a full disk): try each, report, go on
+  auto attempt = [&](const char* what, auto&& f) {
+    try {
+      f();
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "gransim: could not write %s: %s\n", what, e.what());
+      if (code == kExitOk || code == kExitInterrupted) {
+        code = kExitOutput;
+        failure = e.what();
+      }
+    }
+  };
+  // a checkpoint on the way out (not of a blown-up state, nor after a failed write: the last
+  // periodic one stays and matches the files)
+  if (code == kExitOk || code == kExitInterrupted) attempt("the final checkpoint", checkpoint);
   const double wall = wall_now();
   const double n = static_cast<double>(sim.world().size());
   const double rate = wall > 0 ? static_cast<double>(sim.world().s.step) * n / wall : 0.0;
 
-  for (auto& o : rs.observers) o->finish(sim);
+  for (auto& o : rs.observers) attempt(o->name(), [&] { o->finish(sim); });
   rs.series = CsvWriter();
   // final state and run.json, also for interrupted and failed runs (nothing is lost)
-  write_state_file(sim.world(), rs.out + "/state.csv");
-  write_run_json(rs, code, failure, wall, rate, taps_done());
+  attempt("state.csv", [&] { write_state_file(sim.world(), rs.out + "/state.csv"); });
+  attempt("run.json", [&] { write_run_json(rs, code, failure, wall, rate, taps_done()); });
 
   char summary[160];
   std::snprintf(summary, sizeof summary, "%.3g particle-steps/s, output in %s", rate,
                 rs.out.c_str());
   if (code == kExitOk) {
     progress.finish(summary);
+  } else if (code == kExitOutput) {
+    std::fprintf(stderr,
+                 "\ngransim: stopped at t = %g s: cannot write output: %s\nEvery complete row "
+                 "is kept in %s. Free space (or fix the location), then continue from the last "
+                 "checkpoint with: gransim resume %s\n",
+                 sim.world().s.t, failure.c_str(), rs.out.c_str(), rs.out.c_str());
   } else if (code == kExitUnstable) {
     std::fprintf(stderr,
                  "\ngransim: run stopped by a health check: %s\n(output so far kept in %s)\n",

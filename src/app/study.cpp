@@ -39,6 +39,10 @@ struct StudyRow {
   double error = NAN;
   std::string error_kind;
   double reference = NAN;  ///< the value the error is taken against
+  // the statistical problems: the spread (σ_φ, σ_T) against the reference's
+  double sd_reference = NAN;
+  double sd_error = NAN;       ///< |sd − sd_ref| (tapping), relative (rfm)
+  double sd_stat_error = NAN;  ///< 95% half-widths of both spreads in quadrature, same units
 };
 
 // one bar of the stability map
@@ -96,6 +100,12 @@ std::vector<StudySwitches> switch_sets(const StudySpec& s, StudyProblem p) {
         for (bool r : s.rocking) out.push_back({h, r, false});
       break;
     case StudyProblem::GasEnergy: out.push_back({}); break;
+    // the statistical problems are costly: only their own switch varies, the others take the
+    // matrix's first value
+    case StudyProblem::Tapping:
+      for (bool e : s.early_rest) out.push_back({s.hdot_fd.front(), s.rocking.front(), false, e});
+      break;
+    case StudyProblem::RfmTemperature: out.push_back({false, true, s.clip.front(), false}); break;
   }
   return out;
 }
@@ -108,16 +118,48 @@ std::string_view error_kind(StudyProblem p) {
     case StudyProblem::GasEnergy: return "energy_drift_per_s";
     case StudyProblem::Haff: return "haff_slope_rel_error_vs_enskog";
     case StudyProblem::Pile: return "phi_abs_error_vs_reference";
+    case StudyProblem::Tapping: return "phi_mean_abs_error_vs_reference";
+    case StudyProblem::RfmTemperature: return "temperature_rel_error_vs_reference";
   }
   return "";
 }
 
 // problems measured against a small-Δt Gear 6 run of the same model
 bool needs_reference(StudyProblem p) {
-  return p == StudyProblem::TwoDecagon || p == StudyProblem::Pile;
+  return p == StudyProblem::TwoDecagon || p == StudyProblem::Pile || p == StudyProblem::Tapping ||
+         p == StudyProblem::RfmTemperature;
 }
 
-void set_error(const StudySpec& s, StudyRow& r) {
+// problems whose value scatters from run to run: the reference's own error counts
+bool statistical(StudyProblem p) {
+  return p == StudyProblem::Tapping || p == StudyProblem::RfmTemperature;
+}
+
+// the switches of a problem's reference run: tapping is always compared with the
+// paper-faithful protocol (full relaxations), so early rest's effect shows as an error
+StudySwitches reference_switches(StudyProblem p, StudySwitches sw) {
+  if (p == StudyProblem::Tapping) sw.early_rest = false;
+  return sw;
+}
+
+// the reference Δt/t_c of a problem: tapping at an absolute Δt (paper check step 1e-5 s),
+// rfm at its own value when given, the others at the study's
+double reference_dt_over_tc(const StudySpec& s, StudyProblem p, double study_ref) {
+  if (p == StudyProblem::Tapping)
+    return s.sizes.tap_reference_dt / study_contact_time(s.sizes, p);
+  if (p == StudyProblem::RfmTemperature && s.sizes.rfm_reference_dt_over_tc > 0)
+    return s.sizes.rfm_reference_dt_over_tc;
+  return study_ref;
+}
+
+// the Δt list of a problem: its own when its table gives one, else the matrix's
+const std::vector<double>& dt_list(const StudySpec& s, StudyProblem p) {
+  if (p == StudyProblem::Tapping && !s.tap_dt_over_tc.empty()) return s.tap_dt_over_tc;
+  if (p == StudyProblem::RfmTemperature && !s.rfm_dt_over_tc.empty()) return s.rfm_dt_over_tc;
+  return s.dt_over_tc;
+}
+
+void set_error(const StudySpec& s, StudyRow& r, const StudyOutcome& ref) {
   r.error_kind = std::string(error_kind(r.c.problem));
   const double v = r.o.value;
   switch (r.c.problem) {
@@ -132,14 +174,26 @@ void set_error(const StudySpec& s, StudyRow& r) {
       r.error = std::abs(v - 1.0);
       break;
     case StudyProblem::Pile: r.error = std::abs(v - r.reference); break;
+    case StudyProblem::Tapping:
+    case StudyProblem::RfmTemperature: {
+      // relative for T, absolute for φ̄; the band: both 95% half-widths in quadrature
+      const double scale = r.c.problem == StudyProblem::Tapping ? 1.0 : r.reference;
+      r.error = std::abs(v - r.reference) / scale;
+      r.o.stat_error = std::hypot(r.o.stat_error, ref.stat_error) / scale;
+      r.sd_reference = ref.sd;
+      const double sd_scale = r.c.problem == StudyProblem::Tapping ? 1.0 : ref.sd;
+      r.sd_error = std::abs(r.o.sd - ref.sd) / sd_scale;
+      r.sd_stat_error = std::hypot(r.o.sd_stat, ref.sd_stat) / sd_scale;
+      break;
+    }
   }
-  if (!r.o.stable) r.error = NAN;
+  if (!r.o.stable) r.error = r.sd_error = NAN;
 }
 
 const char* kCsvHeader =
     "problem,integrator,dt,dt_over_tc,broad_phase,switches,wall_s,particle_steps_per_s,error,"
     "error_kind,stable,note,wall_per_sim_s,sim_time_s,particles,steps,tc,value,reference,"
-    "stat_error,final_ke\n";
+    "stat_error,final_ke,wall_per_tap_s,sd,sd_reference,sd_error,sd_stat_error,tau_int,samples\n";
 
 std::string csv_row(const StudyRow& r) {
   const StudyOutcome& o = r.o;
@@ -152,7 +206,9 @@ std::string csv_row(const StudyRow& r) {
     << ',' << num(r.error) << ',' << r.error_kind << ',' << (o.stable ? "true" : "false") << ','
     << csv_text(o.note) << ',' << num(per_sim) << ',' << num(o.sim_time) << ',' << o.particles
     << ',' << o.steps << ',' << num(o.tc) << ',' << num(o.value) << ',' << num(r.reference)
-    << ',' << num(o.stat_error) << ',' << num(o.final_ke) << '\n';
+    << ',' << num(o.stat_error) << ',' << num(o.final_ke) << ',' << num(o.wall_per_tap) << ','
+    << num(o.sd) << ',' << num(r.sd_reference) << ',' << num(r.sd_error) << ','
+    << num(r.sd_stat_error) << ',' << num(o.tau_int) << ',' << o.samples << '\n';
   return l.str();
 }
 
@@ -191,6 +247,11 @@ std::string study_json(const StudySpec& s, const std::vector<StudyRow>& rows,
       << ", \"error\": " << json_num(r.error) << ", \"error_kind\": \"" << r.error_kind
       << "\", \"stat_error\": " << json_num(o.stat_error)
       << ", \"final_ke\": " << json_num(o.final_ke)
+      << ", \"wall_per_tap_s\": " << json_num(o.wall_per_tap) << ", \"sd\": " << json_num(o.sd)
+      << ", \"sd_reference\": " << json_num(r.sd_reference)
+      << ", \"sd_error\": " << json_num(r.sd_error)
+      << ", \"sd_stat_error\": " << json_num(r.sd_stat_error)
+      << ", \"tau_int\": " << json_num(o.tau_int) << ", \"samples\": " << o.samples
       << ", \"stable\": " << (o.stable ? "true" : "false") << ", \"note\": " << json_text(o.note)
       << "}";
   }
@@ -270,35 +331,43 @@ int study_command(const StudyOptions& opt) {
   if (!csv) throw InputError(out, "", "cannot write study.csv");
   csv << kCsvHeader << std::flush;
   std::vector<StudyRow> rows;
-  std::map<std::string, double> refs;  // (problem, switches) → reference value
+  std::map<std::string, StudyOutcome> refs;  // (problem, reference switches) → reference run
   for (StudyProblem p : s.problems) {
     for (const StudySwitches& sw : switch_sets(s, p)) {
       const std::string sw_text = study_switches_text(p, sw);
-      double ref = NAN;
+      StudyOutcome ref;
+      ref.value = NAN;
       if (needs_reference(p)) {
-        const auto key = std::string(to_string(p)) + "|" + sw_text;
+        const StudySwitches rsw = reference_switches(p, sw);
+        const auto key = std::string(to_string(p)) + "|" + study_switches_text(p, rsw);
         if (!refs.count(key)) {
-          const StudyOutcome o =
-              run_study_case(s.sizes, {p, IntegratorKind::Gear6, ref_dt, BroadPhaseKind::CellGrid, sw});
-          refs[key] = o.stable ? o.value : NAN;
+          const double rdt = reference_dt_over_tc(s, p, ref_dt);
+          const BroadPhaseKind rbp =
+              study_problem_walled(p) ? s.broad_phases.front() : BroadPhaseKind::CellGrid;
+          StudyOutcome o = run_study_case(s.sizes, {p, IntegratorKind::Gear6, rdt, rbp, rsw});
+          if (!o.stable) o.value = NAN;
+          refs[key] = o;
           if (!opt.quiet)
-            std::fprintf(stderr, "study: reference %s %s (gear6, dt/tc = %s): %s\n",
-                         std::string(to_string(p)).c_str(), sw_text.c_str(), num(ref_dt).c_str(),
-                         num(refs[key]).c_str());
+            std::fprintf(stderr, "study: reference %s %s (gear6, dt/tc = %s): %s%s%s\n",
+                         std::string(to_string(p)).c_str(),
+                         study_switches_text(p, rsw).c_str(), num(rdt).c_str(),
+                         num(o.value).c_str(), statistical(p) ? " +- " : "",
+                         statistical(p) ? num(o.stat_error).c_str() : "");
         }
         ref = refs[key];
       }
-      const std::vector<BroadPhaseKind> bps =
-          study_problem_walled(p) ? s.broad_phases
-                                  : std::vector<BroadPhaseKind>{BroadPhaseKind::CellGrid};
+      // the broad phase varies only on the pile; tapping takes the first one
+      std::vector<BroadPhaseKind> bps{BroadPhaseKind::CellGrid};
+      if (p == StudyProblem::Pile) bps = s.broad_phases;
+      else if (study_problem_walled(p)) bps = {s.broad_phases.front()};
       for (BroadPhaseKind bp : bps)
         for (IntegratorKind integ : s.integrators)
-          for (double x : s.dt_over_tc) {
+          for (double x : dt_list(s, p)) {
             StudyRow r;
             r.c = {p, integ, x, bp, sw};
             r.o = run_study_case(s.sizes, r.c);
-            r.reference = ref;
-            set_error(s, r);
+            r.reference = ref.value;
+            set_error(s, r, ref);
             csv << csv_row(r) << std::flush;
             if (!opt.quiet)
               std::fprintf(stderr, "study: %-11s %-19s dt/tc %-7s %-10s %-34s error %-10s %s\n",

@@ -54,6 +54,9 @@ SceneSpec problem_scene(const StudySizes& z, const StudyCase& c) {
       s = build::decagon_pile(z.pile_n, z.pile_width, 1.0, z.seed);
       s.health.check_every = 10;
       break;
+    case StudyProblem::Tapping:
+    case StudyProblem::RfmTemperature:
+      throw std::logic_error("problem_scene: a statistical problem (study_problems_stat.cpp)");
   }
   s.integrator.kind = c.integrator;
   if (study_problem_walled(c.problem)) s.integrator.broad_phase = c.broad_phase;
@@ -187,9 +190,13 @@ void run_pile(Simulation& sim, const StudySizes& z, StudyOutcome& o) {
 
 }  // namespace
 
-bool study_problem_walled(StudyProblem p) { return p == StudyProblem::Pile; }
+bool study_problem_walled(StudyProblem p) {
+  return p == StudyProblem::Pile || p == StudyProblem::Tapping;
+}
 
 double study_contact_time(const StudySizes& z, StudyProblem p) {
+  if (p == StudyProblem::Tapping || p == StudyProblem::RfmTemperature)
+    return stat_problem_contact_time(z, p);
   StudyCase c;
   c.problem = p;
   const SceneSpec s = problem_scene(z, c);
@@ -198,10 +205,14 @@ double study_contact_time(const StudySizes& z, StudyProblem p) {
 
 StudyOutcome run_study_case(const StudySizes& z, const StudyCase& c) {
   StudyOutcome o;
-  SceneSpec s = problem_scene(z, c);
   try {
     o.tc = study_contact_time(z, c.problem);
     o.dt = c.dt_over_tc * o.tc;
+    if (c.problem == StudyProblem::Tapping || c.problem == StudyProblem::RfmTemperature) {
+      run_stat_problem(z, c, o);
+      return o;
+    }
+    SceneSpec s = problem_scene(z, c);
     s.integrator.dt = o.dt;
     auto sim = start(s);
     o.particles = static_cast<int>(sim->world().size());
@@ -223,6 +234,8 @@ StudyOutcome run_study_case(const StudySizes& z, const StudyCase& c) {
       }
       case StudyProblem::Haff: run_haff(*sim, z, o); break;
       case StudyProblem::Pile: run_pile(*sim, z, o); break;
+      case StudyProblem::Tapping:
+      case StudyProblem::RfmTemperature: break;  // run_stat_problem above
     }
     o.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count();
     o.sim_time = sim->world().s.t - t0;

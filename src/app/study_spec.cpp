@@ -18,7 +18,8 @@ namespace {
 constexpr std::pair<std::string_view, StudyProblem> kProblems[] = {
     {"two_disk", StudyProblem::TwoDisk}, {"two_decagon", StudyProblem::TwoDecagon},
     {"gas_energy", StudyProblem::GasEnergy}, {"haff", StudyProblem::Haff},
-    {"pile", StudyProblem::Pile}};
+    {"pile", StudyProblem::Pile}, {"tapping", StudyProblem::Tapping},
+    {"rfm_temperature", StudyProblem::RfmTemperature}};
 
 // the array at key k (nullptr when absent); any other type fails at the key
 const toml::array* array_at(const TableReader& r, std::string_view k) {
@@ -56,7 +57,8 @@ std::optional<StudyProblem> problem_named(const std::string& s) {
 std::vector<StudyProblem> problem_list(const TableReader& r, std::string_view k,
                                        std::vector<StudyProblem> def) {
   return word_list<StudyProblem>(r, k, std::move(def),
-                                 "two_disk, two_decagon, gas_energy, haff, pile", problem_named);
+                                 "two_disk, two_decagon, gas_energy, haff, pile, tapping, rfm_temperature",
+                                 problem_named);
 }
 
 // an array of booleans (switch values to try)
@@ -70,6 +72,63 @@ std::vector<bool> bool_list(const TableReader& r, std::string_view k, std::vecto
     if (std::find(out.begin(), out.end(), *b) == out.end()) out.push_back(*b);
   }
   return out;
+}
+
+// a problem's own list of Δt/t_c (empty when the key is absent)
+std::vector<double> dt_list(const TableReader& r, std::string_view k) {
+  std::vector<double> out;
+  if (const toml::array* a = array_at(r, k)) {
+    for (const auto& e : *a) {
+      const auto v = e.value<double>();
+      if (!v || e.is_boolean() || !(*v > 0.0) || *v > 100.0)
+        r.fail(k, "must hold numbers in (0, 100] (time steps in contact times)");
+      out.push_back(*v);
+    }
+  }
+  return out;
+}
+
+// the tables of the statistical problems: sizes, and optionally their own Δt lists
+void read_stat_sizes(const TableReader& top, StudySpec& s) {
+  StudySizes& z = s.sizes;
+  if (const toml::table* t = scene_detail::sub_table(top, "tapping")) {
+    TableReader r(top.ctx(), *t, "tapping",
+                  {"n", "width", "taps", "discard", "g_p", "t1", "period", "settle", "seed",
+                   "reference_dt", "dt_over_tc"});
+    z.tap_n = static_cast<int>(r.integer("n", z.tap_n, 4, 100000));
+    z.tap_width = r.number("width", z.tap_width, {0.04, 10.0, false, false});
+    z.tap_taps = static_cast<int>(r.integer("taps", z.tap_taps, 1, 1000000));
+    z.tap_discard = static_cast<int>(r.integer("discard", z.tap_discard, 0, 1000000));
+    if (z.tap_taps - z.tap_discard < 3)
+      r.fail("discard", "must leave at least 3 taps of the " + std::to_string(z.tap_taps));
+    z.tap_g_p = r.number("g_p", z.tap_g_p, Range::positive());
+    z.tap_t1 = r.number("t1", z.tap_t1, Range::positive());
+    z.tap_period = r.number("period", z.tap_period, Range::positive());
+    if (z.tap_period <= z.tap_t1) r.fail("period", "must be longer than t1");
+    z.tap_settle = r.number("settle", z.tap_settle, Range::non_negative());
+    z.tap_seed = static_cast<std::uint64_t>(r.integer("seed", 7, 0, INT64_MAX));
+    z.tap_reference_dt = r.number("reference_dt", z.tap_reference_dt, Range::positive());
+    s.tap_dt_over_tc = dt_list(r, "dt_over_tc");
+  }
+  if (const toml::table* t = scene_detail::sub_table(top, "rfm_temperature")) {
+    TableReader r(top.ctx(), *t, "rfm_temperature",
+                  {"n", "phi", "eps", "D", "duration", "discard", "sample", "blocks", "seed",
+                   "reference_dt_over_tc", "dt_over_tc"});
+    z.rfm_n = static_cast<int>(r.integer("n", z.rfm_n, 4, 1000000));
+    z.rfm_phi = r.number("phi", z.rfm_phi, {0.0, 0.7, true, false});
+    z.rfm_eps = r.number("eps", z.rfm_eps, Range::unit_interval_open_closed());
+    z.rfm_D = r.number("D", z.rfm_D, Range::positive());
+    z.rfm_duration = r.number("duration", z.rfm_duration, Range::positive());
+    z.rfm_discard = r.number("discard", z.rfm_discard, Range::non_negative());
+    z.rfm_sample = r.number("sample", z.rfm_sample, Range::positive());
+    z.rfm_blocks = static_cast<int>(r.integer("blocks", z.rfm_blocks, 2, 10000));
+    if (z.rfm_duration < 2 * z.rfm_blocks * z.rfm_sample)
+      r.fail("duration", "must hold at least two samples per block (blocks × sample × 2)");
+    z.rfm_seed = static_cast<std::uint64_t>(r.integer("seed", 1, 0, INT64_MAX));
+    z.rfm_reference_dt_over_tc =
+        r.number("reference_dt_over_tc", 0.0, Range::non_negative());
+    s.rfm_dt_over_tc = dt_list(r, "dt_over_tc");
+  }
 }
 
 // a table of problem sizes; absent tables keep the defaults
@@ -119,6 +178,10 @@ std::string study_switches_text(StudyProblem p, const StudySwitches& s) {
     case StudyProblem::Pile:
       return std::string("hdot=") + (s.hdot_fd ? "finite_difference" : "analytic") +
              " rocking=" + (s.rocking ? "on" : "off");
+    case StudyProblem::Tapping:
+      return std::string("hdot=") + (s.hdot_fd ? "finite_difference" : "analytic") +
+             " rocking=" + (s.rocking ? "on" : "off") + " early_rest=" + (s.early_rest ? "on" : "off");
+    case StudyProblem::RfmTemperature: return std::string("clip=") + (s.clip ? "on" : "off");
     case StudyProblem::GasEnergy: break;
   }
   return "-";
@@ -143,19 +206,22 @@ StudySpec parse_study_file(const std::string& path) {
   TableReader top(ctx, root, "",
                   {"name", "problems", "matrix", "reference_dt_over_tc", "stability",
                    "stability_problems", "stability_start", "stability_factor", "stability_max",
-                   "seed", "two_disk", "two_decagon", "gas_energy", "haff", "pile"});
+                   "seed", "two_disk", "two_decagon", "gas_energy", "haff", "pile", "tapping",
+                   "rfm_temperature"});
   s.name = top.string("name", s.name, true);
   s.problems = problem_list(top, "problems", {});
   if (s.problems.empty()) top.fail("problems", "is required: a list of reference problems");
   s.reference_dt_over_tc = top.number("reference_dt_over_tc", 0.0, Range::non_negative());
   s.sizes.seed = static_cast<std::uint64_t>(top.integer("seed", 7, 0, INT64_MAX));
   read_sizes(top, s.sizes);
+  read_stat_sizes(top, s);
 
   // the matrix: integrators × Δt × broad phase × switches
   const toml::table* m = scene_detail::sub_table(top, "matrix");
   if (!m) top.fail("matrix", "is required: a [matrix] table with integrators and dt_over_tc");
   TableReader mr(ctx, *m, "matrix",
-                 {"integrators", "dt_over_tc", "broad_phase", "hdot", "clip", "rocking_damping"});
+                 {"integrators", "dt_over_tc", "broad_phase", "hdot", "clip", "rocking_damping",
+                  "early_rest"});
   s.integrators = word_list<IntegratorKind>(
       mr, "integrators", {}, "gear6, velocity_verlet, position_verlet, semi_implicit_euler",
       [](const std::string& w) -> std::optional<IntegratorKind> {
@@ -188,6 +254,7 @@ StudySpec parse_study_file(const std::string& path) {
                               });
   s.clip = bool_list(mr, "clip", {false});
   s.rocking = bool_list(mr, "rocking_damping", {true});
+  s.early_rest = bool_list(mr, "early_rest", {false});
 
   // the stability map
   s.stability = top.boolean("stability", false);

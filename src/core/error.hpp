@@ -11,7 +11,8 @@ enum ExitCode : int {
   kExitFailure = 1,     ///< unexpected internal failure
   kExitBadInput = 2,    ///< bad scene, checkpoint, argument or path
   kExitUnstable = 3,    ///< a run-time health check failed
-  kExitInterrupted = 4  ///< stopped by a signal after writing a checkpoint
+  kExitInterrupted = 4,  ///< stopped by a signal after writing a checkpoint
+  kExitOutput = 5        ///< an output could not be written (disk full, unwritable)
 };
 
 /// bad user input: a scene key, a file, an argument. `where` is "file:line" or a path.
@@ -33,6 +34,13 @@ class InputError : public std::runtime_error {
   }
   std::string where_;
   std::string key_;
+};
+
+/// an output file could not be written while a command ran (disk full, quota, removed
+/// directory): the message names the file and the system's reason
+class OutputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
 };
 
 /// a run-time health check failed (non-finite values, overlap, energy growth)

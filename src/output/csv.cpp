@@ -4,6 +4,10 @@
 #include <cstring>
 #include <stdexcept>
 
+#include <stdio_ext.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include "core/error.hpp"
 
 namespace gs {
@@ -44,6 +48,7 @@ CsvWriter::~CsvWriter() {
 }
 
 void CsvWriter::row(const std::vector<double>& values) {
+  if (!f_) throw OutputError(path_ + ": write after an earlier failure");
   char buf[32];
   std::string line;
   line.reserve(values.size() * 16);
@@ -54,8 +59,21 @@ void CsvWriter::row(const std::vector<double>& values) {
     line += buf;
   }
   line += '\n';
-  if (std::fputs(line.c_str(), f_) < 0 || std::fflush(f_) != 0)
-    throw std::runtime_error(path_ + ": write failed: " + std::strerror(errno));
+  // the size before this row: every earlier row is flushed, so it is exact
+  struct stat st {};
+  const bool sized = ::fstat(::fileno(f_), &st) == 0;
+  if (std::fputs(line.c_str(), f_) < 0 || std::fflush(f_) != 0) {
+    const int e = errno;
+    // keep every complete row: drop what stdio still holds and cut a partly written line
+    __fpurge(f_);
+    if (sized && ::ftruncate(::fileno(f_), st.st_size) != 0) {
+      // nothing more to do: the message below still names the file
+    }
+    std::fclose(f_);
+    f_ = nullptr;
+    throw OutputError(path_ + ": write failed: " + std::strerror(e) +
+                      " (every complete row is kept)");
+  }
 }
 
 }  // namespace gs

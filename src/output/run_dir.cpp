@@ -40,7 +40,7 @@ void prepare_run_dir(const std::string& dir, bool force) {
 void write_file_atomic(const std::string& path, const std::string& contents) {
   const std::string tmp = path + ".tmp";
   const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  if (fd < 0) throw InputError(path, "", std::string("cannot write: ") + std::strerror(errno));
+  if (fd < 0) throw OutputError(path + ": cannot write: " + std::strerror(errno));
   std::size_t done = 0;
   while (done < contents.size()) {
     const ssize_t k = ::write(fd, contents.data() + done, contents.size() - done);
@@ -48,14 +48,14 @@ void write_file_atomic(const std::string& path, const std::string& contents) {
       const int e = errno;
       ::close(fd);
       ::unlink(tmp.c_str());
-      throw InputError(path, "", std::string("write failed: ") + std::strerror(e));
+      throw OutputError(path + ": write failed: " + std::strerror(e));
     }
     done += static_cast<std::size_t>(k);
   }
   if (::fsync(fd) != 0 || ::close(fd) != 0 || std::rename(tmp.c_str(), path.c_str()) != 0) {
     const int e = errno;
     ::unlink(tmp.c_str());
-    throw InputError(path, "", std::string("write failed: ") + std::strerror(e));
+    throw OutputError(path + ": write failed: " + std::strerror(e));
   }
 }
 

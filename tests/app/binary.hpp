@@ -3,6 +3,7 @@
 #pragma once
 #include <fcntl.h>
 #include <signal.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -27,6 +28,7 @@ struct Launch {
   int alarm_s = 30;              ///< SIGALRM after this long (stops hangs)
   double signal_after_s = -1.0;  ///< send `signal` after this many seconds (−1: never)
   int signal = SIGKILL;
+  long file_size_limit = -1;     ///< RLIMIT_FSIZE in bytes (a full disk for every file); −1 none
 };
 
 inline Outcome run_binary(const std::vector<std::string>& args, const std::filesystem::path& log,
@@ -44,6 +46,13 @@ inline Outcome run_binary(const std::vector<std::string>& args, const std::files
     ::dup2(fd, 2);
     for (std::string& e : env) ::putenv(e.data());
     ::alarm(static_cast<unsigned>(how.alarm_s));
+    if (how.file_size_limit >= 0) {
+      // writes past the limit fail with EFBIG instead of killing the process
+      ::signal(SIGXFSZ, SIG_IGN);
+      const rlimit lim{static_cast<rlim_t>(how.file_size_limit),
+                       static_cast<rlim_t>(how.file_size_limit)};
+      ::setrlimit(RLIMIT_FSIZE, &lim);
+    }
     ::execv(argv[0], argv.data());
     ::_exit(127);
   }

@@ -6,6 +6,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -97,8 +98,9 @@ TEST(Study, QuickMatrixWritesOneRowPerCombinationAndCharts) {
   for (const char* c : {"problem", "integrator", "dt", "dt_over_tc", "broad_phase", "switches",
                         "wall_s", "particle_steps_per_s", "error", "error_kind", "stable", "note"})
     EXPECT_GE(column(head, c), 0) << "missing column " << c;
-  // 2 integrators × 2 Δt for each problem; the pile (walled) also × 2 broad phases
-  EXPECT_EQ(rows.size() - 1, 4u + 4u + 4u + 4u + 8u);
+  // 2 integrators × 2 Δt for each problem; the pile (walled) also × 2 broad phases, the
+  // tapping run × early rest on/off
+  EXPECT_EQ(rows.size() - 1, 4u + 4u + 4u + 4u + 8u + 8u + 4u);
   const int stable = column(head, "stable"), err = column(head, "error");
   const int dto = column(head, "dt_over_tc"), integ = column(head, "integrator");
   for (std::size_t k = 1; k < rows.size(); ++k) {
@@ -109,6 +111,32 @@ TEST(Study, QuickMatrixWritesOneRowPerCombinationAndCharts) {
       EXPECT_NE(rows[k][err], "nan") << rows[k][0];
     }
   }
+  // the statistical problems: a finite error, a positive statistical band (the band of the
+  // chart) and the spread against the reference's; tapping reports its wall time per tap
+  const int prob = column(head, "problem"), stat = column(head, "stat_error");
+  const int sd_err = column(head, "sd_error"), per_tap = column(head, "wall_per_tap_s");
+  const int sw = column(head, "switches");
+  ASSERT_GE(stat, 0);
+  ASSERT_GE(sd_err, 0);
+  ASSERT_GE(per_tap, 0);
+  int tapping = 0, rfm = 0, early = 0;
+  for (std::size_t k = 1; k < rows.size(); ++k) {
+    const auto& row = rows[k];
+    if (row[prob] != "tapping" && row[prob] != "rfm_temperature") continue;
+    (row[prob] == "tapping" ? tapping : rfm)++;
+    if (row[sw].find("early_rest=on") != std::string::npos) ++early;
+    if (row[integ] != "velocity_verlet" || row[dto] != "0.05") continue;
+    EXPECT_EQ(row[stable], "true") << row[prob];
+    EXPECT_TRUE(std::isfinite(std::stod(row[err]))) << row[prob];
+    EXPECT_GT(std::stod(row[stat]), 0.0) << row[prob];
+    EXPECT_TRUE(std::isfinite(std::stod(row[sd_err]))) << row[prob];
+    if (row[prob] == "tapping") {
+      EXPECT_GT(std::stod(row[per_tap]), 0.0);
+    }
+  }
+  EXPECT_EQ(tapping, 8);
+  EXPECT_EQ(rfm, 4);
+  EXPECT_EQ(early, 4);
   // the stability map: one row per integrator for each of the two problems
   const auto stab = read_csv(out / "stability.csv");
   ASSERT_EQ(stab.size(), 1u + 4u);
@@ -117,7 +145,9 @@ TEST(Study, QuickMatrixWritesOneRowPerCombinationAndCharts) {
   EXPECT_TRUE(fs::exists(out / "study.json"));
   // charts only where matplotlib is installed
   if (sh("/usr/bin/python3 -c 'import matplotlib'").code == 0) {
-    for (const char* f : {"error_cost_two_disk.png", "error_cost_pile.png", "stability_map.png"})
+    for (const char* f : {"error_cost_two_disk.png", "error_cost_pile.png", "error_cost_tapping.png",
+                          "error_cost_tapping_sd.png", "error_cost_rfm_temperature.png",
+                          "error_cost_rfm_temperature_sd.png", "stability_map.png"})
       EXPECT_TRUE(fs::exists(out / f)) << f << "\n" << r.output;
   } else {
     GTEST_LOG_(INFO) << "matplotlib missing: chart check skipped";
@@ -167,6 +197,13 @@ TEST(Study, BadStudyFileNamesFileLineAndKey) {
   EXPECT_NE(r.output.find("bad.toml:4"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("matrix.integrators"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("velocity_verlet"), std::string::npos) << r.output;
+  // a tapping table that leaves fewer than 3 taps to measure
+  std::ofstream(f) << "name = \"bad\"\nproblems = [\"tapping\"]\n[matrix]\n"
+                      "integrators = [\"gear6\"]\ndt_over_tc = [0.05]\n"
+                      "[tapping]\ntaps = 4\ndiscard = 2\n";
+  r = sh(gransim("study " + f.string() + " --out " + (dir / "o").string()));
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("tapping.discard"), std::string::npos) << r.output;
   // a missing matrix
   std::ofstream(f) << "problems = [\"pile\"]\n";
   r = sh(gransim("study " + f.string() + " --out " + (dir / "o").string()));
