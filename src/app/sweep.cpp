@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "app/run_info.hpp"
+#include "app/run_session.hpp"
 #include "app/sweep_detail.hpp"
 #include "core/error.hpp"
 #include "core/rng.hpp"
@@ -181,7 +182,8 @@ SweepPlan plan_sweep(const SweepOptions& opt, bool check_dirs) {
                            *h + ", now " + plan.base_hash + "); use another --out");
   }
 
-  // which runs are done: completed with the same scene → skipped; unfinished → --force
+  // which runs are done: completed with the same scene → skipped; interrupted with a
+  // checkpoint and the same scene → resumed; other unfinished runs → redone with --force
   std::vector<std::string> unfinished;
   for (Job& j : plan.jobs) {
     const bool exists = fs::exists(j.dir, ec) && !fs::is_empty(j.dir, ec);
@@ -195,6 +197,9 @@ SweepPlan plan_sweep(const SweepOptions& opt, bool check_dirs) {
                          "scene.toml differs from this sweep's); use another --out");
       j.state = "skipped";
       j.exit_code = 0;
+    } else if (const auto have = read_text_file(j.dir + "/scene.toml");
+               have && *have == j.expected && !list_checkpoints(j.dir).empty()) {
+      j.resume = true;
     } else if (!opt.force) {
       unfinished.push_back(j.dir + (st.empty() ? " (no run.json)" : " (" + st + ")"));
     }

@@ -23,6 +23,7 @@ struct Job {
   double nominal = 0.0;           ///< simulated time it needs, s
   std::string expected;           ///< the scene.toml the run writes (scene_to_toml)
   std::string state = "pending";  ///< pending, skipped, running, completed, failed
+  bool resume = false;            ///< an interrupted run with a checkpoint: `gransim resume` it
   int exit_code = -1;
   pid_t pid = -1;                 ///< a child of this process (-1: none, or on another rank)
   int rank = 0;                   ///< MPI rank that runs it

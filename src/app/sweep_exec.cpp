@@ -94,13 +94,16 @@ pid_t spawn_run(const SweepPlan& plan, const Job& j, std::vector<std::string>& e
   if (opt.allow_unstable) args.push_back("--allow-unstable");
   for (const auto& s : opt.sets) args.insert(args.end(), {"--set", s});
   for (const auto& s : j.run.overrides) args.insert(args.end(), {"--set", s});
+  // an interrupted run continues from its newest checkpoint (bitwise the same result)
+  if (j.resume) args = {self_executable(), "resume", j.dir, "--quiet"};
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
   posix_spawn_file_actions_t fa;
   posix_spawn_file_actions_init(&fa);
   posix_spawn_file_actions_addopen(&fa, 0, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_addopen(&fa, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&fa, 1, log.c_str(),
+                                   O_WRONLY | O_CREAT | (j.resume ? O_APPEND : O_TRUNC), 0644);
   posix_spawn_file_actions_adddup2(&fa, 1, 2);
   std::vector<char*> envp;
   for (auto& e : env) envp.push_back(e.data());
@@ -198,11 +201,10 @@ int run_jobs(SweepPlan& plan, int width, int threads, RemoteSlots* remote) {
     done_work += j.nominal;
     worst = worse_exit(worst, code);
     if (!opt.quiet || code != kExitOk)
-      std::fprintf(stderr, "%s%s: %s (exit %d, %s)%s\n", opt.quiet ? "" : "\n",
-                   j.run.name.c_str(), j.state.c_str(), code, format_duration(wall).c_str(),
-                   code == kExitOk
-                       ? ""
-                       : (", log " + plan.out + "/logs/" + j.run.name + ".log").c_str());
+      std::fprintf(
+          stderr, "%s%s: %s (exit %d, %s)%s\n", opt.quiet ? "" : "\n", j.run.name.c_str(),
+          j.state.c_str(), code, format_duration(wall).c_str(),
+          code == kExitOk ? "" : (", log " + plan.out + "/logs/" + j.run.name + ".log").c_str());
     write_manifest(plan, false);
   };
   // the next pending run, marked running on `rank`; -1 when none (or stopping)
@@ -286,7 +288,9 @@ int run_jobs(SweepPlan& plan, int width, int threads, RemoteSlots* remote) {
     progress.finish(summary);
   else
     std::fprintf(stderr, "\ngransim sweep: %s; %s\n", summary.c_str(),
-                 stopping ? "interrupted (continue with --force)" : "some runs failed (see logs/)");
+                 stopping ? "interrupted (run the same command again: interrupted runs resume from "
+                            "their checkpoints)"
+                          : "some runs failed (see logs/)");
   return worst;
 }
 

@@ -227,6 +227,36 @@ TEST(Resume, FullDiskKeepsEveryCompleteRowAndResumes) {
   EXPECT_EQ(outputs(tmp / "run"), outputs(tmp / "ref"));
 }
 
+// a sweep stopped with SIGTERM passes it on to its runs, which checkpoint; the same sweep
+// command again resumes them (no --force) and ends with the uninterrupted sweep's files
+TEST(Resume, InterruptedSweepResumesItsRuns) {
+  const fs::path tmp = fresh("sweep");
+  auto sweep = [&](const fs::path& out) {
+    std::vector<std::string> a = kTapping;
+    a.insert(a.begin(), "sweep");
+    a.insert(a.end(), {"--param", "drive.g_p=4,8", "--jobs", "2", "--quiet", "--out", out.string()});
+    return a;
+  };
+  Launch env;
+  env.env = {"GS_SWEEP_NO_MPI=1"};
+  env.alarm_s = 120;
+  const auto t0 = std::chrono::steady_clock::now();
+  ASSERT_EQ(run_binary(sweep(tmp / "ref"), tmp / "ref.log", env).code, 0);
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  Launch stop = env;
+  stop.signal = SIGTERM;
+  stop.signal_after_s = 0.5 * wall;
+  const Outcome o = run_binary(sweep(tmp / "run"), tmp / "run.log", stop);
+  ASSERT_TRUE(o.exited);
+  ASSERT_EQ(o.code, 4) << o.output;
+  EXPECT_GT(list_size(tmp / "run" / "g_p=4"), 0u);
+  const Outcome r = run_binary(sweep(tmp / "run"), tmp / "r.log", env);
+  ASSERT_EQ(r.code, 0) << r.output;
+  for (const char* run : {"g_p=4", "g_p=8"})
+    EXPECT_EQ(outputs(tmp / "run" / run), outputs(tmp / "ref" / run)) << run;
+  EXPECT_NE(slurp(tmp / "run" / "g_p=4" / "run.json").find("\"sessions\": 2"), std::string::npos);
+}
+
 TEST(Resume, NothingToResumeIsBadInput) {
   const fs::path tmp = fresh("none");
   const Outcome missing = run_binary({"resume", (tmp / "nope").string()}, tmp / "a.log");
