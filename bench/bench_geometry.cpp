@@ -8,6 +8,7 @@
 
 #include "core/rng.hpp"
 #include "geometry/polygon.hpp"
+#include "geometry/prepared.hpp"
 
 namespace {
 
@@ -60,6 +61,39 @@ void BM_DecagonSeparated(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations());
 }
 BENCHMARK(BM_DecagonSeparated);
+
+// the same pairs prepared once (as the force loop does per step): overlap(PolyRef, PolyRef)
+gs::PolyStore prepare(const std::vector<Pair>& pairs) {
+  gs::PolyStore st;
+  st.resize(2 * pairs.size(), 10);
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    st.set(2 * i, pairs[i].a);
+    st.set(2 * i + 1, pairs[i].b);
+  }
+  return st;
+}
+
+void BM_DecagonOverlapPrepared(benchmark::State& state) {
+  const gs::PolyStore st = prepare(make_pairs(0.93, 0.95, 1));
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const std::size_t k = i++ & (kPairs - 1);
+    benchmark::DoNotOptimize(gs::overlap(st.ref(2 * k), st.ref(2 * k + 1)));
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_DecagonOverlapPrepared);
+
+void BM_DecagonSeparatedPrepared(benchmark::State& state) {
+  const gs::PolyStore st = prepare(make_pairs(1.001, 1.05, 2));
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const std::size_t k = i++ & (kPairs - 1);
+    benchmark::DoNotOptimize(gs::overlap(st.ref(2 * k), st.ref(2 * k + 1)));
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_DecagonSeparatedPrepared);
 
 // decagons scattered over a region twice the test rectangle: inside, outside and straddling
 void BM_AreaInRect(benchmark::State& state) {

@@ -73,11 +73,13 @@ def band_of(rows, col):
 
 
 def error_chart(problem, rows, out, err_col="error", stat_col="stat_error", kind=None):
-    many = len({(r["integrator"], r["switches"], r["broad_phase"]) for r in rows}) > 8
+    many = len({(r["integrator"], r["switches"], r["broad_phase"]) for r in rows}) > 6
     cost_col, cost_label = cost_of(rows)
     fig, ax = plt.subplots(figsize=(12.5, 6.0) if many else (7.5, 5.2))
     unstable = {}
     switches = sorted({r["switches"] for r in rows})
+    # switch words shared by every curve say nothing: leave them out of the labels
+    common = set.intersection(*[set(sw.split()) for sw in switches]) if switches else set()
     bps = sorted({r["broad_phase"] for r in rows})
     pts = []
     stat = band_of(rows, stat_col)
@@ -91,7 +93,7 @@ def error_chart(problem, rows, out, err_col="error", stat_col="stat_error", kind
         bad = [r for r in rs if r["stable"] != "true"]
         label = integ
         if len(switches) > 1:
-            label += " " + sw
+            label += " " + " ".join(w for w in sw.split() if w not in common)
         if len(bps) > 1:
             label += " " + bp
         ls = STYLES[(switches.index(sw) + 2 * bps.index(bp)) % len(STYLES)]
@@ -128,7 +130,10 @@ def error_chart(problem, rows, out, err_col="error", stat_col="stat_error", kind
     ax.set_xlabel(cost_label)
     ax.set_ylabel(YLABEL.get(kind, kind))
     n = rows[0]["particles"] if rows else "?"
-    ax.set_title(f"{problem} ({n} particles): error against cost; labels = Δt / t_c")
+    title = f"{problem} ({n} particles): error against cost; labels = Δt / t_c"
+    if common and len(switches) > 1:
+        title += "\n(all: " + " ".join(sorted(common)) + ")"
+    ax.set_title(title)
     ax.grid(True, which="both", alpha=0.3)
     if many:
         ax.legend(fontsize=6, loc="upper left", bbox_to_anchor=(1.01, 1.0))

@@ -108,6 +108,16 @@ TapAnalysisResult run_tap_analysis(const std::vector<TapRunInput>& runs,
                         "τ_int and the τ-corrected intervals are unreliable (series too short)");
   }
 
+  // runs of one protocol at one control value, pairwise: same φ distribution?
+  for (std::size_t i = 0; i < runs.size(); ++i)
+    for (std::size_t j = i + 1; j < runs.size(); ++j) {
+      const TapRunSummary &a = r.runs[i], &b = r.runs[j];
+      if (a.protocol != b.protocol || std::abs(a.control - b.control) > 1e-9 * (1 + std::abs(a.control)))
+        continue;
+      r.pairs.push_back({static_cast<int>(i), static_cast<int>(j),
+                         two_sample_test(phis[i], a.tau.tau_int, phis[j], b.tau.tau_int)});
+    }
+
   // KDEs (B1–B7): Silverman h for the normal kernel; the compact kernels on the same grid with
   // the equivalent (canonical) bandwidth, so that the three smooth alike (paper Fig. 13)
   for (const auto& phi : phis) {

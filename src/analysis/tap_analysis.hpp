@@ -12,6 +12,7 @@
 #include "analysis/overlap_hist.hpp"
 #include "analysis/quadron.hpp"
 #include "analysis/stats.hpp"
+#include "analysis/two_sample.hpp"
 
 namespace gs {
 
@@ -82,6 +83,13 @@ struct TapRunSummary {
   double sigma_right = 0.0;     ///< σ_φ of the right half
 };
 
+/// two runs of one protocol at one control value (e.g. fixed-period against early-rest
+/// relaxation, or two integrators): are their φ distributions the same?
+struct TapPairTest {
+  int a = 0, b = 0;    ///< run indices
+  TwoSampleTest test;  ///< means (Welch), spreads (F), distributions (KS), with n_eff
+};
+
 /// everything the analysis computes
 struct TapAnalysisResult {
   std::vector<TapRunSummary> runs;          ///< per-run statistics, input order
@@ -99,6 +107,7 @@ struct TapAnalysisResult {
   double ref_offset_chi2 = 0.0;             ///< χ² of "the difference is constant"
   int ref_offset_dof = 0;                   ///< its degrees of freedom
   std::map<std::string, QuadronFit> quadron;  ///< "all" and each protocol
+  std::vector<TapPairTest> pairs;           ///< every pair at the same protocol and control
   std::vector<std::string> notes;           ///< what was skipped and why
 };
 

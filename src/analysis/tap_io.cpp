@@ -181,6 +181,21 @@ void write_tap_analysis(const TapAnalysisResult& r, const std::vector<TapRunInpu
   if (ec) throw InputError(out_dir, "", "cannot create the output folder: " + ec.message());
   const auto& ref = r.runs[r.ref];
 
+  // pairs.csv: two-sample tests of runs at the same protocol and control value
+  if (!r.pairs.empty()) {
+    auto f = open_out(dir / "pairs.csv");
+    f << "label_a,label_b,protocol,control,n_eff_a,n_eff_b,mean_diff,mean_diff_err,p_mean,"
+         "sigma_ratio,p_sigma,ks_d,ks_p\n";
+    for (const TapPairTest& p : r.pairs) {
+      const auto &a = r.runs[static_cast<std::size_t>(p.a)], &b = r.runs[static_cast<std::size_t>(p.b)];
+      const TwoSampleTest& t = p.test;
+      f << a.label << ',' << b.label << ',' << a.protocol << ',' << num(a.control) << ','
+        << num(t.n_eff_a) << ',' << num(t.n_eff_b) << ',' << num(t.mean_diff) << ','
+        << num(t.mean_diff_err) << ',' << num(t.p_mean) << ',' << num(t.sigma_ratio) << ','
+        << num(t.p_sigma) << ',' << num(t.ks_d) << ',' << num(t.ks_p) << '\n';
+    }
+  }
+
   // summary.csv: one row per run
   {
     auto f = open_out(dir / "summary.csv");

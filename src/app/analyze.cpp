@@ -206,6 +206,14 @@ int analyze_command(const AnalyzeOptions& opt) {
       std::printf("%-28s %6d %10.5f %9.2e %9.2e [%9.2e,%9.2e] %7.2f\n", s.label.c_str(), s.n_used,
                   s.phi_mean, s.phi_err, s.sigma, s.sigma_ci_tau.lo, s.sigma_ci_tau.hi,
                   s.tau.tau_int);
+    for (const auto& p : res.pairs) {
+      const TwoSampleTest& t = p.test;
+      std::printf("same φ? %s vs %s: Δφ̄ = %.2e ± %.1e (p = %.3f), σ ratio %.3f (p = %.3f), "
+                  "KS D = %.3f (p = %.3f)\n",
+                  res.runs[static_cast<std::size_t>(p.a)].label.c_str(),
+                  res.runs[static_cast<std::size_t>(p.b)].label.c_str(), t.mean_diff,
+                  t.mean_diff_err, t.p_mean, t.sigma_ratio, t.p_sigma, t.ks_d, t.ks_p);
+    }
     for (const auto& n : res.notes) std::printf("note: %s\n", n.c_str());
     std::fflush(stdout);  // before the chart scripts write to the same terminal
   }

@@ -34,6 +34,10 @@ ContactGeom polygon_polygon(const BodyView& a, const BodyView& b) {
   return from_overlap(overlap(*a.poly, *b.poly), b.c - a.c);
 }
 
+ContactGeom polygon_polygon(const PolyRef& a, const PolyRef& b, Vec2 toward) {
+  return from_overlap(overlap(a, b), toward);
+}
+
 ContactGeom polygon_wall(const BodyView& a, const Wall& w) {
   const Overlap ov = overlap(*a.poly, w.poly);
   // the wall lies on the far side of its inner face: point the normal into the wall

@@ -6,6 +6,7 @@
 
 #include "core/vec.hpp"
 #include "geometry/polygon.hpp"
+#include "geometry/prepared.hpp"
 #include "world/world.hpp"
 
 namespace gs {
@@ -29,6 +30,9 @@ struct BodyView {
 
 ContactGeom polygon_polygon(const BodyView& a, const BodyView& b);
 ContactGeom polygon_wall(const BodyView& a, const Wall& w);
+/// the same contacts, bit for bit, from polygons prepared once per step (the hot loop);
+/// `toward` points from i to j (polygon pairs: xj − xi) or into the wall (its normal)
+ContactGeom polygon_polygon(const PolyRef& a, const PolyRef& b, Vec2 toward);
 
 // disks are cheap enough that the call would cost as much as the test: inline
 inline ContactGeom disk_disk(const BodyView& a, const BodyView& b) {

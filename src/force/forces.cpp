@@ -22,6 +22,20 @@ Vec2 image_pos(const World& w, std::uint32_t j, std::uint32_t image) {
   return {w.s.x[j] + image_sx(image) * w.Lx, w.s.y[j] + image_sy(image) * w.Ly};
 }
 
+// the first index of ascending `keys` not below `key` (std::lower_bound), found by a short
+// forward scan from `hint` when the hint lies at or just before it
+std::size_t history_index(const std::vector<PairKey>& keys, PairKey key, std::size_t hint) {
+  const std::size_t n = keys.size();
+  if (hint <= n && (hint == 0 || keys[hint - 1] < key)) {
+    for (int step = 0; step < 4; ++step, ++hint)
+      if (hint == n || !(keys[hint] < key)) return hint;
+    return static_cast<std::size_t>(std::lower_bound(keys.begin() + hint, keys.end(), key) -
+                                    keys.begin());
+  }
+  return static_cast<std::size_t>(std::lower_bound(keys.begin(), keys.end(), key) -
+                                  keys.begin());
+}
+
 }  // namespace
 
 ContactModel::ContactModel(const World& w) : nsp_(w.species.size()) {
@@ -62,6 +76,7 @@ ContactModel::ContactModel(const World& w) : nsp_(w.species.size()) {
       min_contact_time_ = std::min(min_contact_time_, tc);
     }
   }
+  for (const Species& sp : w.species) max_sides_ = std::max(max_sides_, sp.body.n);
 }
 
 ForceStats ContactModel::evaluate(const World& w, const std::vector<PairKey>& cand,
@@ -89,83 +104,95 @@ ForceStats ContactModel::evaluate_polygons(const World& w, const std::vector<Pai
   const std::uint32_t N = static_cast<std::uint32_t>(n);
   const std::size_t stride = nsp_ + 1;
   const std::int64_t ncand = static_cast<std::int64_t>(cand.size());
-  // world-frame polygons once per step
-  shapes_.resize(n);
+  // world-frame polygons once per step, with their edges and bounding circles
+  shapes_.resize(n, max_sides_);
+  int wall_n = 0;
+  for (const Wall& wl : w.walls) wall_n = std::max(wall_n, wl.poly.n);
+  wall_shapes_.resize(w.walls.size(), wall_n);
+  for (std::size_t k = 0; k < w.walls.size(); ++k) wall_shapes_.set(k, w.walls[k].poly);
 #pragma omp parallel for schedule(static) if (n >= kParallelMin)
-  for (std::int64_t i = 0; i < static_cast<std::int64_t>(n); ++i) shapes_[i] = w.shape(i);
+  for (std::int64_t i = 0; i < static_cast<std::int64_t>(n); ++i)
+    shapes_.set_placed(i, w.species[w.sp[i]].body, {w.s.x[i], w.s.y[i]}, w.s.th[i]);
   pair_out_.resize(cand.size());
 
-#pragma omp parallel for schedule(dynamic, 64) if (cand.size() >= kParallelMin)
-  for (std::int64_t k = 0; k < ncand; ++k) {
-    const PairKey key = cand[k];
-    PairResult& out = pair_out_[k];
-    out.touching = false;
-    const std::uint32_t i = key_i(key), j = key_j(key);
-    const bool wall = j >= N;
-    const Vec2 xi{w.s.x[i], w.s.y[i]};
-    const BodyView bi{xi, w.radius[i], &shapes_[i]};
-    ContactGeom g;
-    Vec2 xj;
-    if (wall) {
-      g = polygon_wall(bi, w.walls[j - N]);
-    } else {
-      xj = image_pos(w, j, key_image(key));
-      if (key_image(key) == kNoImage) {
-        g = polygon_polygon(bi, BodyView{xj, w.radius[j], &shapes_[j]});
-      } else {  // a periodic image: shift a copy of j's polygon
-        Poly pj = shapes_[j];
-        for (int v = 0; v < pj.n; ++v) pj.v[v] += xj - Vec2{w.s.x[j], w.s.y[j]};
-        g = polygon_polygon(bi, BodyView{xj, w.radius[j], &pj});
+  const std::vector<PairKey>& old_keys = cs.keys;
+#pragma omp parallel if (cand.size() >= kParallelMin)
+  {
+    std::size_t hint = 0;  // where this thread's last history search ended
+#pragma omp for schedule(dynamic, 64)
+    for (std::int64_t k = 0; k < ncand; ++k) {
+      const PairKey key = cand[k];
+      PairResult& out = pair_out_[k];
+      out.touching = false;
+      const std::uint32_t i = key_i(key), j = key_j(key);
+      const bool wall = j >= N;
+      const Vec2 xi{w.s.x[i], w.s.y[i]};
+      ContactGeom g;
+      Vec2 xj;
+      if (wall) {
+        g = polygon_polygon(shapes_.ref(i), wall_shapes_.ref(j - N), w.walls[j - N].normal);
+      } else {
+        xj = image_pos(w, j, key_image(key));
+        if (key_image(key) == kNoImage) {
+          g = polygon_polygon(shapes_.ref(i), shapes_.ref(j), xj - xi);
+        } else {  // a periodic image: shift a copy of j's polygon (general routine)
+          const Poly pi = shapes_.poly(i);
+          Poly pj = shapes_.poly(j);
+          for (int v = 0; v < pj.n; ++v) pj.v[v] += xj - Vec2{w.s.x[j], w.s.y[j]};
+          g = polygon_polygon(BodyView{xi, w.radius[i], &pi}, BodyView{xj, w.radius[j], &pj});
+        }
       }
+      if (!g.touching) continue;
+
+      // the contact's history, if it touched last step: last step's keys are searched forward
+      // from the previous hit of this thread (candidates ascend), else by bisection
+      ContactState state;
+      hint = history_index(old_keys, key, hint);
+      if (hint < old_keys.size() && old_keys[hint] == key) state = cs.state[hint];
+
+      // geometry of the pair (P.29–P.33): l, m⊥, m∥
+      const std::size_t si = w.sp[i];
+      const law::PolyLawParams& p = poly_[si * stride + (wall ? nsp_ : w.sp[j])];
+      const double ri = w.radius[i];
+      double l, m_perp, inv_m_par = w.inv_mass[i] + ri * ri * w.inv_inertia[i];
+      if (wall) {
+        l = ri;
+        m_perp = w.mass[i];
+      } else {
+        const double rj = w.radius[j];
+        l = ri * rj / (ri + rj);
+        m_perp = w.mass[i] * w.mass[j] / (w.mass[i] + w.mass[j]);
+        inv_m_par += w.inv_mass[j] + rj * rj * w.inv_inertia[j];
+      }
+      const double m_par = 1.0 / inv_m_par;
+
+      // relative velocity of i against j at the contact point
+      const Vec2 ri_s = g.s - xi;
+      Vec2 vrel = Vec2{w.s.vx[i], w.s.vy[i]} + cross(w.s.w[i], ri_s);
+      if (!wall) vrel -= Vec2{w.s.vx[j], w.s.vy[j]} + cross(w.s.w[j], g.s - xj);
+      const Vec2 t = perp(g.n);
+      const double vn = dot(vrel, g.n), vt = dot(vrel, t);
+
+      // normal force (P.34) with ḣ_eff analytic (chord × approach speed / l) or by difference
+      const double h = g.overlap / l;
+      const double hdot = hdot_fd_ ? (h - state.h_prev) / dt  // h_prev = 0 before first touch
+                                   : g.chord * vn / l;
+      state.h_prev = h;
+      const double fn = law::poly_normal_force(p, h, hdot, m_perp);
+      // tangential force (P.35–P.36); the force on i opposes its sliding: −F∥·t
+      const double ft = law::cundall_strack(p, state.spring, vt, fn, m_par, dt);
+
+      // the same dashpot spread along the contact line: its moment about s damps relative
+      // rotation, ∫ x·(γ√(E m⊥)/l)·ω_rel·x dx = γ√(E m⊥)·L³/(12 l)·ω_rel (only while pressing)
+      double couple = 0.0;
+      if (rocking_ && fn > 0.0) {
+        const double w_rel = w.s.w[i] - (wall ? 0.0 : w.s.w[j]);
+        couple = p.gamma * std::sqrt(p.E * m_perp) * g.chord * g.chord * g.chord / (12.0 * l) *
+                 w_rel;
+      }
+      out = {true, g.degenerate, g.s, g.n, xj, fn, ft, couple, g.overlap, h, state};
     }
-    if (!g.touching) continue;
-
-    // the contact's history, if it touched last step (binary search in last step's keys)
-    ContactState state;
-    const auto it = std::lower_bound(cs.keys.begin(), cs.keys.end(), key);
-    if (it != cs.keys.end() && *it == key) state = cs.state[it - cs.keys.begin()];
-
-    // geometry of the pair (P.29–P.33): l, m⊥, m∥
-    const std::size_t si = w.sp[i];
-    const law::PolyLawParams& p = poly_[si * stride + (wall ? nsp_ : w.sp[j])];
-    const double ri = w.radius[i];
-    double l, m_perp, inv_m_par = w.inv_mass[i] + ri * ri * w.inv_inertia[i];
-    if (wall) {
-      l = ri;
-      m_perp = w.mass[i];
-    } else {
-      const double rj = w.radius[j];
-      l = ri * rj / (ri + rj);
-      m_perp = w.mass[i] * w.mass[j] / (w.mass[i] + w.mass[j]);
-      inv_m_par += w.inv_mass[j] + rj * rj * w.inv_inertia[j];
-    }
-    const double m_par = 1.0 / inv_m_par;
-
-    // relative velocity of i against j at the contact point
-    const Vec2 ri_s = g.s - xi;
-    Vec2 vrel = Vec2{w.s.vx[i], w.s.vy[i]} + cross(w.s.w[i], ri_s);
-    if (!wall) vrel -= Vec2{w.s.vx[j], w.s.vy[j]} + cross(w.s.w[j], g.s - xj);
-    const Vec2 t = perp(g.n);
-    const double vn = dot(vrel, g.n), vt = dot(vrel, t);
-
-    // normal force (P.34) with ḣ_eff analytic (chord × approach speed / l) or by difference
-    const double h = g.overlap / l;
-    const double hdot = hdot_fd_ ? (h - state.h_prev) / dt  // h_prev = 0 before first touch
-                                 : g.chord * vn / l;
-    state.h_prev = h;
-    const double fn = law::poly_normal_force(p, h, hdot, m_perp);
-    // tangential force (P.35–P.36); the force on i opposes its sliding: −F∥·t
-    const double ft = law::cundall_strack(p, state.spring, vt, fn, m_par, dt);
-
-    // the same dashpot spread along the contact line: its moment about s damps relative
-    // rotation, ∫ x·(γ√(E m⊥)/l)·ω_rel·x dx = γ√(E m⊥)·L³/(12 l)·ω_rel (only while pressing)
-    double couple = 0.0;
-    if (rocking_ && fn > 0.0) {
-      const double w_rel = w.s.w[i] - (wall ? 0.0 : w.s.w[j]);
-      couple = p.gamma * std::sqrt(p.E * m_perp) * g.chord * g.chord * g.chord / (12.0 * l) * w_rel;
-    }
-    out = {true, g.degenerate, g.s, g.n, xj, fn, ft, couple, g.overlap, h, state};
-  }
+  }  // omp parallel
 
   // accumulate in key order: j gets +fn·n + ft·t, i the opposite; torques about each centre
   for (std::int64_t k = 0; k < ncand; ++k) {

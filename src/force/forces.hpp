@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "contact/contact_set.hpp"
+#include "geometry/prepared.hpp"
 #include "force/laws/disk_law.hpp"
 #include "force/laws/polygon_law.hpp"
 #include "world/world.hpp"
@@ -49,7 +50,9 @@ class ContactModel {
   bool hdot_fd_ = false;
   bool rocking_ = true;
   double min_contact_time_ = 0.0;
-  std::vector<Poly> shapes_;  ///< world-frame polygons of this step
+  PolyStore shapes_;       ///< world-frame polygons of this step, prepared for the overlap
+  PolyStore wall_shapes_;  ///< the walls' polygons, prepared once
+  int max_sides_ = 0;      ///< most vertices of any species' polygon
   /// one candidate pair's outcome, computed in parallel and summed in key order
   struct PairResult {
     bool touching = false;

@@ -1,9 +1,14 @@
 // overlap of two convex polygons (SPEC 2.1): Sutherland–Hodgman clipping of a by the edge
 // lines of b, tracking which vertices of the result lie on both boundaries (the crossings)
+#include <algorithm>
+#include <bit>
+#include <cmath>
 #include <cstdint>
+#include <utility>
 
 #include "geometry/clip.hpp"
 #include "geometry/polygon.hpp"
+#include "geometry/prepared.hpp"
 
 namespace gs {
 
@@ -12,6 +17,8 @@ namespace {
 // vertex flags of the working ring
 constexpr std::uint8_t kCross = 1;  // the vertex lies on the boundary of a and of b
 constexpr std::uint8_t kEdgeA = 2;  // the edge from this vertex to the next lies on a's boundary
+
+static_assert(kMaxPolyVerts < 64, "overlap(PolyRef, PolyRef) keeps one bit per edge");
 
 // clipping a by k lines adds at most k vertices
 constexpr int kRingCap = 2 * kMaxPolyVerts + 4;
@@ -137,23 +144,14 @@ const TaggedRing& clip_all(const Poly& a, const Poly& b, TaggedRing& r1, TaggedR
   return *cur;
 }
 
-}  // namespace
-
-Poly intersect(const Poly& a, const Poly& b) {
-  TaggedRing r1, r2;
-  const TaggedRing& r = clip_all(a, b, r1, r2);
-  return r.to_poly();
-}
-
-Overlap overlap(const Poly& a, const Poly& b) {
-  TaggedRing r1, r2;
-  const TaggedRing& r = clip_all(a, b, r1, r2);
+// area, crossings and (when asked for, or when there is no contact line) centroid of the
+// clipped ring
+Overlap finish(const TaggedRing& r, bool want_centroid) {
   Overlap o;
   if (r.n == 0) return o;
-  // area and centroid of the intersection polygon (degenerate rings: area 0, vertex mean)
+  // area of the intersection polygon (degenerate rings: area 0)
   const double a2 = detail::twice_area(r);
   o.area = a2 > 0.0 ? 0.5 * a2 : 0.0;
-  o.centroid = detail::ring_centroid(r);
   // distinct crossing points (indices into the ring)
   int xs[kRingCap];
   int nx = 0;
@@ -165,22 +163,115 @@ Overlap overlap(const Poly& a, const Poly& b) {
   }
   o.crossings = nx;
   if (nx == 1) o.c1 = o.c2 = r[xs[0]];
-  if (nx < 2) return o;
-  // the pair farthest apart (the only pair in a normal contact)
-  int bi = 0, bj = 1;
-  double best = norm2(r[xs[1]] - r[xs[0]]);
-  for (int i = 0; i < nx; ++i)
-    for (int j = i + 1; j < nx; ++j) {
-      const double d2 = norm2(r[xs[j]] - r[xs[i]]);
-      if (d2 > best) {
-        best = d2;
-        bi = i;
-        bj = j;
+  if (nx >= 2) {
+    // the pair farthest apart (the only pair in a normal contact)
+    int bi = 0, bj = 1;
+    double best = norm2(r[xs[1]] - r[xs[0]]);
+    for (int i = 0; i < nx; ++i)
+      for (int j = i + 1; j < nx; ++j) {
+        const double d2 = norm2(r[xs[j]] - r[xs[i]]);
+        if (d2 > best) {
+          best = d2;
+          bi = i;
+          bj = j;
+        }
       }
-    }
-  o.c1 = r[xs[bi]];
-  o.c2 = r[xs[bj]];
+    o.c1 = r[xs[bi]];
+    o.c2 = r[xs[bj]];
+  }
+  // centroid (degenerate rings: the vertex mean)
+  if (want_centroid || nx < 2 || (o.c1.x == o.c2.x && o.c1.y == o.c2.y))
+    o.centroid = detail::ring_centroid(r);
   return o;
+}
+
+}  // namespace
+
+Poly intersect(const Poly& a, const Poly& b) {
+  TaggedRing r1, r2;
+  const TaggedRing& r = clip_all(a, b, r1, r2);
+  return r.to_poly();
+}
+
+Overlap overlap(const Poly& a, const Poly& b) {
+  TaggedRing r1, r2;
+  return finish(clip_all(a, b, r1, r2), true);
+}
+
+// The same clips as clip_all, in the same order, on the same numbers (vertex means, edge
+// vectors and side values are computed by identical expressions), so the ring and the result
+// are bitwise those of overlap(Poly, Poly). What is skipped is provably a no-op there:
+//  - pairs whose bounding circles are apart (every clip sequence then ends empty);
+//  - clips by edge lines that leave every vertex of the current ring strictly inside. After the
+//    facing edge has cut a down to the cap inside b, the cap lies in a disk (centre m, radius
+//    ρ), and the side value of any of its vertices against edge k is at most
+//    s_k(m) + ρ·|e_k|; when that is negative by more than a round-off margin, clip_tagged would
+//    find smax < 0 and return false. A clip that does cut only shrinks the ring (its new
+//    vertices lie on old edges), so the disk stays a bound for the rest of the loop.
+Overlap overlap(const PolyRef& a, const PolyRef& b) {
+  if (a.n < 3 || b.n < 3) return {};
+  const Vec2 dc = b.mean - a.mean;
+  const double rr = a.radius + b.radius;
+  if (norm2(dc) > rr * rr) return {};
+  // facing edge of b, as facing_edge()
+  const Vec2 d = a.mean - b.mean;
+  int k0 = 0;
+  double best_score = -1e300;
+  for (int k = 0; k < b.n; ++k) {
+    const double score = b.ey[k] * d.x - b.ex[k] * d.y;
+    if (score > best_score) {
+      best_score = score;
+      k0 = k;
+    }
+  }
+  TaggedRing r1, r2;
+  r1.n = a.n;
+  for (int i = 0; i < a.n; ++i) {
+    r1.x[i] = a.x[i];
+    r1.y[i] = a.y[i];
+    r1.f[i] = kEdgeA;
+  }
+  TaggedRing* cur = &r1;
+  TaggedRing* nxt = &r2;
+  if (clip_tagged(*cur, *nxt, {b.x[k0], b.y[k0]}, {b.ex[k0], b.ey[k0]})) std::swap(cur, nxt);
+  if (cur->n == 0) return {};
+  // a disk around the cap: vertex mean m, radius ρ (rounded up)
+  const int nc = cur->n;
+  double mx = 0.0, my = 0.0;
+  for (int i = 0; i < nc; ++i) {
+    mx += cur->x[i];
+    my += cur->y[i];
+  }
+  mx /= nc;
+  my /= nc;
+  double rho2 = 0.0;
+  for (int i = 0; i < nc; ++i) {
+    const double dx = cur->x[i] - mx, dy = cur->y[i] - my;
+    rho2 = std::max(rho2, dx * dx + dy * dy);
+  }
+  const double rho = std::sqrt(rho2) * (1.0 + 1e-12);
+  // which of the other edge lines may cut the cap: s_k(m) + ρ·|e_k| ≥ −margin. Round-off of
+  // the side values is ~1e-16 of (|m − o_k| + ρ)·|e_k|, and |m − o_k| ≤ |m − mean_b| + radius_b:
+  // the margin is wide.
+  const double ml1 = std::abs(mx - b.mean.x) + std::abs(my - b.mean.y);
+  const double margin = 1e-9 * (ml1 + 2.0 * b.radius + rho) * b.len;
+  const double thr = -margin - rho * b.len;
+  // as a bit mask, rotated so that bit 0 is the edge after k0 (clip_all's order)
+  std::uint64_t cut = 0;
+  for (int k = 0; k < b.n; ++k) {
+    const bool may_cut = !((mx - b.x[k]) * b.ey[k] - (my - b.y[k]) * b.ex[k] < thr);  // NaN: clip
+    cut |= static_cast<std::uint64_t>(may_cut) << k;
+  }
+  const int k1 = k0 + 1 == b.n ? 0 : k0 + 1;
+  cut = (cut >> k1) | (cut << (b.n - k1));  // b.n <= kMaxPolyVerts < 64
+  cut &= (std::uint64_t{1} << (b.n - 1)) - 1;  // the n − 1 edges after k0
+  while (cut != 0 && cur->n > 0) {
+    const int j = std::countr_zero(cut);
+    cut &= cut - 1;
+    const int k = k1 + j < b.n ? k1 + j : k1 + j - b.n;
+    if (clip_tagged(*cur, *nxt, {b.x[k], b.y[k]}, {b.ex[k], b.ey[k]})) std::swap(cur, nxt);
+  }
+  return finish(*cur, false);
 }
 
 }  // namespace gs

@@ -139,6 +139,37 @@ TEST(TapAnalysis, WritesTheOutputFiles) {
   EXPECT_NE(q.find("\"curve\""), std::string::npos);
 }
 
+// runs at the same protocol and control value are compared pairwise: two independent series of
+// the same gas agree, a series at another compactivity (φ̄ shifted by several errors) does not
+TEST(TapAnalysis, ComparesRunsAtTheSameControlValue) {
+  QuadronGasSpec gas;
+  gas.refresh = 0.5;  // correlated taps: τ_int = 1.5
+  const double scale = quadron_gas_a(gas) / gas.limits.delta_inv();
+  std::vector<TapRunInput> runs;
+  for (int k = 0; k < 3; ++k) {
+    TapRunInput r;
+    r.label = "run" + std::to_string(k);
+    r.protocol = "negative_g";
+    r.control = 6;
+    r.series = quadron_gas_taps((k == 2 ? 1.35 : 1.2) * scale, 400, gas, 9, 100 + k);
+    runs.push_back(r);
+  }
+  TapRunInput other = runs[0];  // another control value: never paired
+  other.label = "other";
+  other.control = 8;
+  runs.push_back(other);
+  const TapAnalysisResult r = run_tap_analysis(runs, TapAnalysisOptions{});
+  ASSERT_EQ(r.pairs.size(), 3u);  // (0,1), (0,2), (1,2)
+  EXPECT_EQ(r.pairs[0].a, 0);
+  EXPECT_EQ(r.pairs[0].b, 1);
+  EXPECT_GT(r.pairs[0].test.p_mean, 0.001);  // same gas
+  EXPECT_GT(r.pairs[0].test.ks_p, 0.001);
+  EXPECT_GT(r.pairs[0].test.n_eff_a, 90);     // 390 taps / (2 τ_int ≈ 3)
+  EXPECT_LT(r.pairs[0].test.n_eff_a, 200);
+  EXPECT_LT(r.pairs[1].test.p_mean, 1e-4);   // another β: φ̄ differs
+  EXPECT_GT(r.pairs[1].test.mean_diff, 0.0);  // larger β → denser
+}
+
 // the default reference is the paper's (negative g, g_p nearest 6), wherever it is listed;
 // an explicit label overrides it, and an unknown label is an input error
 TEST(TapAnalysis, ReferenceSelection) {

@@ -1,0 +1,76 @@
+// prepared convex polygons: per-polygon quantities computed once, by the same expressions
+// overlap(Poly, Poly) uses, so that the prepared overlap reproduces it bit for bit
+#include "geometry/prepared.hpp"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+
+namespace gs {
+
+void PolyStore::resize(std::size_t count, int max_n) {
+  stride_ = static_cast<std::size_t>(std::max(max_n, 0));
+  data_.resize(count * 4 * stride_);
+  n_.assign(count, 0);
+  meta_.resize(count);
+}
+
+// c + rotate(v, cos θ, sin θ), as place()
+void PolyStore::set_placed(std::size_t i, const Poly& body, Vec2 c, double theta) {
+  assert(static_cast<std::size_t>(body.n) <= stride_);
+  const double cs = std::cos(theta), sn = std::sin(theta);
+  double* x = data_.data() + i * 4 * stride_;
+  double* y = x + stride_;
+  for (int k = 0; k < body.n; ++k) {
+    const Vec2 v = c + rotate(body.v[k], cs, sn);
+    x[k] = v.x;
+    y[k] = v.y;
+  }
+  n_[i] = body.n;
+  finish(i);
+}
+
+void PolyStore::set(std::size_t i, const Poly& p) {
+  assert(static_cast<std::size_t>(p.n) <= stride_);
+  double* x = data_.data() + i * 4 * stride_;
+  double* y = x + stride_;
+  for (int k = 0; k < p.n; ++k) {
+    x[k] = p.v[k].x;
+    y[k] = p.v[k].y;
+  }
+  n_[i] = p.n;
+  finish(i);
+}
+
+// edge vectors v[k+1] − v[k] (as clip_all and facing_edge), the vertex mean (as vertex_mean:
+// summed from zero in vertex order, then divided by n), the largest distance from it
+void PolyStore::finish(std::size_t i) {
+  const int n = n_[i];
+  double* x = data_.data() + i * 4 * stride_;
+  double* y = x + stride_;
+  double* ex = y + stride_;
+  double* ey = ex + stride_;
+  Vec2 m{};
+  double l2 = 0.0;
+  for (int k = 0; k < n; ++k) {
+    const int k1 = k + 1 == n ? 0 : k + 1;
+    ex[k] = x[k1] - x[k];
+    ey[k] = y[k1] - y[k];
+    l2 = std::max(l2, ex[k] * ex[k] + ey[k] * ey[k]);
+    m += Vec2{x[k], y[k]};
+  }
+  if (n > 0) m = m / static_cast<double>(n);
+  double r2 = 0.0;
+  for (int k = 0; k < n; ++k) r2 = std::max(r2, norm2(Vec2{x[k], y[k]} - m));
+  // rounded up: the circle must hold every vertex despite the rounding of these sums
+  meta_[i] = {m, std::sqrt(r2) * (1.0 + 1e-12), std::sqrt(l2) * (1.0 + 1e-12)};
+}
+
+Poly PolyStore::poly(std::size_t i) const {
+  const PolyRef r = ref(i);
+  Poly p;
+  for (int k = 0; k < r.n; ++k) p.push({r.x[k], r.y[k]});
+  return p;
+}
+
+}  // namespace gs

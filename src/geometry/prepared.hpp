@@ -1,0 +1,70 @@
+// prepared convex polygons for the contact hot loop: each grain's world-frame vertices, edge
+// vectors, edge lengths, vertex mean and bounding circle, computed once per step into flat
+// arrays, so that the overlap of a pair needs no per-pair set-up (SPEC 2.1)
+#pragma once
+#include <cstddef>
+#include <vector>
+
+#include "core/vec.hpp"
+#include "geometry/polygon.hpp"
+
+namespace gs {
+
+/// a read-only view of one prepared convex polygon (counter-clockwise vertices)
+struct PolyRef {
+  int n = 0;
+  const double* x = nullptr;   ///< vertex abscissae, m
+  const double* y = nullptr;   ///< vertex ordinates, m
+  const double* ex = nullptr;  ///< edge k = vertex k+1 − vertex k, x component, m
+  const double* ey = nullptr;  ///< edge k, y component, m
+  Vec2 mean;                   ///< vertex mean (the interior point overlap() uses), m
+  double radius = 0.0;         ///< a circle about `mean` holding every vertex (rounded up), m
+  double len = 0.0;            ///< the longest edge (rounded up), m
+};
+
+/// prepared polygons in one flat array (structure of arrays per polygon, fixed stride)
+class PolyStore {
+ public:
+  /// room for `count` polygons of at most `max_n` vertices (contents undefined until set)
+  void resize(std::size_t count, int max_n);
+  /// polygon i := body placed at c with orientation θ (the same arithmetic as place())
+  void set_placed(std::size_t i, const Poly& body, Vec2 c, double theta);
+  /// polygon i := p (world coordinates)
+  void set(std::size_t i, const Poly& p);
+  /// a view of polygon i (valid until the next resize)
+  PolyRef ref(std::size_t i) const {
+    PolyRef r;
+    r.n = n_[i];
+    r.x = data_.data() + i * 4 * stride_;
+    r.y = r.x + stride_;
+    r.ex = r.y + stride_;
+    r.ey = r.ex + stride_;
+    r.mean = meta_[i].mean;
+    r.radius = meta_[i].radius;
+    r.len = meta_[i].len;
+    return r;
+  }
+  /// polygon i as a Poly (for the general routines)
+  Poly poly(std::size_t i) const;
+  std::size_t size() const { return n_.size(); }
+
+ private:
+  void finish(std::size_t i);  // edges, mean, radius, longest edge from the vertices
+  struct Meta {
+    Vec2 mean;
+    double radius = 0.0, len = 0.0;
+  };
+  std::size_t stride_ = 0;
+  std::vector<double> data_;  ///< per polygon: x, y, ex, ey, each `stride_` long
+  std::vector<int> n_;
+  std::vector<Meta> meta_;
+};
+
+/// exact overlap of prepared convex polygons a and b: the same result, bit for bit, as
+/// overlap(Poly, Poly), except that `centroid` is only computed when a caller needs it
+/// (fewer than two distinct crossings, or c1 == c2) and is left zero otherwise. Faster:
+/// bounding circles reject separated pairs, and after the facing edge has cut a down to the
+/// cap inside b, the edge lines of b that provably cut nothing of the cap are skipped.
+Overlap overlap(const PolyRef& a, const PolyRef& b);
+
+}  // namespace gs
