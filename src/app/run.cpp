@@ -16,6 +16,7 @@
 #include "output/run_dir.hpp"
 #include "scene/names.hpp"
 #include "scene/parse.hpp"
+#include "sim/stability.hpp"
 #include "world/prepare.hpp"
 
 namespace gs {
@@ -74,6 +75,11 @@ int run_command(const RunOptions& opt) {
   clock.start(world);
   Simulation sim(std::move(world));
   const double dt = scene.integrator.dt, tc = sim.model().min_contact_time();
+  // the integrator's stability limit on the stiffest contact (sim/stability.hpp), then the
+  // resolution of the contact itself (fewer than 5 steps per contact time)
+  if (const StepAdvice adv = time_step_advice(sim); !scene.health.allow_unstable && !adv.stable)
+    throw InputError(scene.path, "integrator.dt",
+                     adv.message + ", or pass --allow-unstable to run it anyway");
   if (!scene.health.allow_unstable && dt > tc / 5.0) {
     std::ostringstream m;
     m << "dt = " << dt << " s is " << dt / tc << " of the stiffest contact time (" << tc

@@ -164,6 +164,9 @@ case("ring_reduced_and_width.toml", sub(sub(BASE, 'kind = "periodic"', 'kind = "
      "width = 0.05", "width = 0.05\nreduced_length = 0.01"), "reduced_length")
 # stability and protocol
 case("dt_too_large.toml", sub(BASE, "dt = 1e-6", "dt = 1e-3"), "dt")
+# within 1/5 of the contact time but beyond Gear 6's stability limit (omega*dt 0.42 > 0.35)
+case("dt_beyond_gear6_limit.toml", sub(sub(BASE, "dt = 1e-6", "dt = 2.5e-6"),
+     'kind = "velocity_verlet"', 'kind = "gear6"'), "stability limit")
 case("protocol_t1_ge_period.toml", POLY + '\n[drive]\nkind = "negative_g"\nt1 = 3.0\nperiod = 2.0\ntaps = 2\n', "t1")
 case("protocol_taps_with_gravity.toml", POLY + '\n[drive]\nkind = "gravity"\ntaps = 5\n', "taps")
 case("protocol_g_p_negative.toml", POLY + '\n[drive]\nkind = "negative_g"\ng_p = -6.0\ntaps = 1\n', "g_p")
