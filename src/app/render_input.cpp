@@ -1,6 +1,7 @@
 // the saved-state readers behind `gransim render` and `gransim movie`
 #include "app/render_input.hpp"
 
+#include "app/run_session.hpp"
 #include "app/trajectory.hpp"
 #include "core/error.hpp"
 #include "drive/protocol.hpp"
@@ -59,6 +60,17 @@ Snapshot read_trajectory(const fs::path& file, const SnapshotRequest& req) {
   return s;
 }
 
+// a checkpoint: the complete state, with the scene it embeds (--scene/--set are not needed;
+// --set still applies to what only drawing uses)
+Snapshot read_checkpoint_file(const fs::path& file, const SnapshotRequest&) {
+  const Checkpoint c = read_checkpoint(file.string());
+  Simulation sim = restore_simulation(c);
+  Snapshot s{sim.world(), file.string(), "checkpoint", sim.gravity(), {}};
+  const DrivePhase p = drive_phase(s.world.scene.drive, s.world.s.t);
+  if (is_tapping(s.world.scene.drive) && !p.settling) s.tap = p.tap;
+  return s;
+}
+
 bool has_ext(const fs::path& p, const char* ext) {
   return fs::is_regular_file(p) && p.extension() == ext;
 }
@@ -67,7 +79,21 @@ bool has_ext(const fs::path& p, const char* ext) {
 
 const std::vector<SnapshotReader>& snapshot_readers() {
   static const std::vector<SnapshotReader> readers = {
-      // a run directory: its final state (checkpoints, when they exist, go before this entry)
+      // a checkpoint file, and a run directory without a final state (killed): its newest
+      // valid checkpoint
+      {"checkpoint", [](const fs::path& p) { return has_ext(p, ".gsck"); }, read_checkpoint_file},
+      {"run directory (checkpoint)",
+       [](const fs::path& p) {
+         return fs::is_directory(p) && !fs::exists(p / "state.csv") &&
+                !list_checkpoints(p.string()).empty();
+       },
+       [](const fs::path& p, const SnapshotRequest& r) {
+         const Checkpoint c = newest_valid_checkpoint(p.string());
+         Snapshot s = read_checkpoint_file(c.path, r);
+         s.kind = "run directory (checkpoint)";
+         return s;
+       }},
+      // a run directory: its final state
       {"run directory",
        [](const fs::path& p) { return fs::is_directory(p) && fs::exists(p / "state.csv"); },
        [](const fs::path& p, const SnapshotRequest& r) {

@@ -36,8 +36,8 @@ struct SnapshotReader {
   std::function<Snapshot(const std::filesystem::path&, const SnapshotRequest&)> read;
 };
 
-/// the readers tried in order: run directory, state file (.csv), trajectory (.xyz).
-/// Checkpoints: add their reader to this table (render_input.cpp).
+/// the readers tried in order: checkpoint (.gsck), run directory without a final state (its
+/// newest checkpoint), run directory, state file (.csv), trajectory (.xyz)
 const std::vector<SnapshotReader>& snapshot_readers();
 
 /// read whatever `path` is; InputError when no reader accepts it or it cannot be read

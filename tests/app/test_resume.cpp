@@ -161,6 +161,15 @@ TEST(Resume, SigintCheckpointsAndSaysHowToResume) {
       << o.output;
   EXPECT_NE(slurp(tmp / "run" / "run.json").find("\"status\": \"interrupted\""),
             std::string::npos);
+  // a checkpoint is a snapshot `gransim render` can draw
+  std::string ck;
+  for (const auto& e : fs::directory_iterator(tmp / "run"))
+    if (e.path().extension() == ".gsck") ck = e.path().string();
+  const Outcome pic = run_binary(
+      {"render", ck, "-o", (tmp / "ck.png").string(), "--renderer", "software"}, tmp / "pic.log");
+  EXPECT_EQ(pic.code, 0) << pic.output;
+  EXPECT_NE(pic.output.find("from the checkpoint"), std::string::npos) << pic.output;
+  EXPECT_GT(fs::file_size(tmp / "ck.png"), 10000u);
   const Outcome r = run_binary({"resume", (tmp / "run").string(), "--quiet"}, tmp / "r.log");
   ASSERT_EQ(r.code, 0) << r.output;
   EXPECT_EQ(outputs(tmp / "run"), outputs(tmp / "ref"));
