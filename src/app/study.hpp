@@ -60,20 +60,20 @@ struct StudySizes {
   // tapping (negative g, P.37, as scenes/tap_small_negative_g.toml)
   int tap_n = 60;                 ///< tapping: decagons (paper mix 544:640 of 9 : 6.36 mm)
   double tap_width = 0.12;        ///< tapping: box width, m
-  int tap_taps = 40;              ///< tapping: taps after settling
-  int tap_discard = 5;            ///< tapping: first taps left out of φ̄ and σ_φ
+  int tap_taps = 24;              ///< tapping: taps after settling
+  int tap_discard = 4;            ///< tapping: first taps left out of φ̄ and σ_φ
   double tap_g_p = 6.0;           ///< tapping: pulse strength, units of g
   double tap_t1 = 0.01;           ///< tapping: pulse length, s
-  double tap_period = 1.0;        ///< tapping: period T, s
+  double tap_period = 1.5;        ///< tapping: period T, s (60 grains rest ≈ 1 s after a pulse)
   double tap_settle = 1.0;        ///< tapping: settling under gravity before the first tap, s
   std::uint64_t tap_seed = 7;     ///< tapping: placement seed
   double tap_reference_dt = 1e-5; ///< tapping: Δt of the Gear 6 reference, s
   // random force model, 2D (as scenes/rfm2d_reference.toml)
-  int rfm_n = 300;                ///< rfm_temperature: disks
+  int rfm_n = 400;                ///< rfm_temperature: disks
   double rfm_phi = 0.353;         ///< rfm_temperature: area fraction
   double rfm_eps = 0.6;           ///< rfm_temperature: ε_n = ε_t
   double rfm_D = 1e-8;            ///< rfm_temperature: noise strength, N² s
-  double rfm_duration = 0.3;      ///< rfm_temperature: sampled time after the transient, s
+  double rfm_duration = 0.6;      ///< rfm_temperature: sampled time after the transient, s
   double rfm_discard = 0.05;      ///< rfm_temperature: transient left out, s
   double rfm_sample = 1e-3;       ///< rfm_temperature: time between T samples, s
   int rfm_blocks = 10;            ///< rfm_temperature: blocks of the T average (T.2.20)

@@ -100,8 +100,7 @@ void run_tapping(const StudySizes& z, const StudyCase& c, StudyOutcome& o) {
     const long k = drive_phase(cw.scene.drive, cw.s.t + o.dt).tap;
     if (k == 0) wall_settled = seconds_since(w0);
     ++measured;
-    if (k > z.tap_discard)
-      phis.push_back(measure_tap(cw, sim.contacts(), s.output.test_rect).phi);
+    if (k > z.tap_discard) phis.push_back(measure_tap(cw, sim.contacts(), s.output.test_rect).phi);
   }
   o.wall_s = seconds_since(w0);
   o.sim_time = sim.world().s.t;
@@ -129,8 +128,7 @@ void run_tapping(const StudySizes& z, const StudyCase& c, StudyOutcome& o) {
                 ? " (at " + fmt("%.2g", z.tap_period - clock.time_saved() / clock.early_ends()) +
                       " s of T)"
                 : std::string()) +
-           ", final max speed " +
-           fmt("%.2g", max_speed(sim.world())) + " m/s";
+           ", final max speed " + fmt("%.2g", max_speed(sim.world())) + " m/s";
 }
 
 // ---- random force model ---------------------------------------------------------------------

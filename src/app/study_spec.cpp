@@ -56,9 +56,9 @@ std::optional<StudyProblem> problem_named(const std::string& s) {
 
 std::vector<StudyProblem> problem_list(const TableReader& r, std::string_view k,
                                        std::vector<StudyProblem> def) {
-  return word_list<StudyProblem>(r, k, std::move(def),
-                                 "two_disk, two_decagon, gas_energy, haff, pile, tapping, rfm_temperature",
-                                 problem_named);
+  return word_list<StudyProblem>(
+      r, k, std::move(def),
+      "two_disk, two_decagon, gas_energy, haff, pile, tapping, rfm_temperature", problem_named);
 }
 
 // an array of booleans (switch values to try)
@@ -180,7 +180,8 @@ std::string study_switches_text(StudyProblem p, const StudySwitches& s) {
              " rocking=" + (s.rocking ? "on" : "off");
     case StudyProblem::Tapping:
       return std::string("hdot=") + (s.hdot_fd ? "finite_difference" : "analytic") +
-             " rocking=" + (s.rocking ? "on" : "off") + " early_rest=" + (s.early_rest ? "on" : "off");
+             " rocking=" + (s.rocking ? "on" : "off") +
+             " early_rest=" + (s.early_rest ? "on" : "off");
     case StudyProblem::RfmTemperature: return std::string("clip=") + (s.clip ? "on" : "off");
     case StudyProblem::GasEnergy: break;
   }

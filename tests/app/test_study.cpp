@@ -145,9 +145,10 @@ TEST(Study, QuickMatrixWritesOneRowPerCombinationAndCharts) {
   EXPECT_TRUE(fs::exists(out / "study.json"));
   // charts only where matplotlib is installed
   if (sh("/usr/bin/python3 -c 'import matplotlib'").code == 0) {
-    for (const char* f : {"error_cost_two_disk.png", "error_cost_pile.png", "error_cost_tapping.png",
-                          "error_cost_tapping_sd.png", "error_cost_rfm_temperature.png",
-                          "error_cost_rfm_temperature_sd.png", "stability_map.png"})
+    for (const char* f :
+         {"error_cost_two_disk.png", "error_cost_pile.png", "error_cost_tapping.png",
+          "error_cost_tapping_sd.png", "error_cost_rfm_temperature.png",
+          "error_cost_rfm_temperature_sd.png", "stability_map.png"})
       EXPECT_TRUE(fs::exists(out / f)) << f << "\n" << r.output;
   } else {
     GTEST_LOG_(INFO) << "matplotlib missing: chart check skipped";
