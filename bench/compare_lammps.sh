@@ -1,36 +1,105 @@
 #!/usr/bin/env bash
-# gransim against LAMMPS (Debian's `lammps`, gran/hooke/history) on the same 10⁴-disk randomly
-# forced periodic fluid (scenes/bench_fluid_10k.toml ↔ bench/lammps/forced_fluid.in).
-# Prints particle-steps per second for each and the ratio, with 1 and 2 threads/ranks.
+# gransim against LAMMPS (Debian's `lammps`, gran/hooke/history) on two 10⁴-disk scenes:
+#   fluid    the randomly forced periodic fluid (scenes/bench_fluid_10k.toml ↔ bench/lammps/forced_fluid.in)
+#   settled  disks resting under gravity in a walled box (scenes/bench_settled_10k.toml ↔
+#            bench/lammps/settled.in), both started at rest from the same packed crystal
+#            (bench/lammps_twin.py writes the gransim scene with it, the LAMMPS data file and the
+#            LAMMPS parameters)
+# Prints particle-steps per second (LAMMPS: its "Loop time"; gransim: run.json, the stepping) for
+# 1 and 2 threads (gransim, OpenMP) / ranks (LAMMPS, MPI) and the ratios; nothing is asserted.
+# Environment: STEPS (default 10000; QUICK=1: 2000), GS_BUILD_DIR (default build),
+# GS_BENCH_RESULTS (file to append "key value" lines to, for bench/summary.py),
+# OMP_WAIT_POLICY (default passive), GS_MPI_ARGS (default "--mca mpi_yield_when_idle 1").
 set -euo pipefail
 cd "$(dirname "$0")/.."
-steps=${STEPS:-10000}
+# a busy machine: OpenMP threads and MPI ranks that spin while waiting are descheduled and stall
+# the others (30× slower with 2 threads at load 6 on 2 cores); so sleep/yield unless told otherwise
+export OMP_WAIT_POLICY=${OMP_WAIT_POLICY:-passive}
+read -r -a mpi_args <<<"${GS_MPI_ARGS---mca mpi_yield_when_idle 1}"
+root=$PWD
+gs=$root/${GS_BUILD_DIR:-build}/gransim
+steps=${STEPS:-$([ "${QUICK:-0}" = 1 ] && echo 2000 || echo 10000)}
+results=${GS_BENCH_RESULTS:-/dev/null}
 if ! command -v lmp >/dev/null; then
   sudo_cmd=""; [ "$(id -u)" -ne 0 ] && sudo_cmd=sudo
   $sudo_cmd apt-get update -q && DEBIAN_FRONTEND=noninteractive $sudo_cmd apt-get install -y -q --no-install-recommends lammps
 fi
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-dt=1e-6
-dur=$(python3 -c "print($steps*$dt)")
-printf '%-34s %14s\n' "code (10^4 forced disks, $steps steps)" "particle-steps/s"
-for threads in 1 2; do
-  OMP_NUM_THREADS=$threads build/gransim run scenes/bench_fluid_10k.toml --out "$tmp/g$threads" \
-    --force --quiet --set scene.duration="$dur" 2>/dev/null
-  g=$(grep particle_steps_per_s "$tmp/g$threads/run.json" | tr -dc '0-9.e+-')
-  printf '%-34s %14.4g\n' "gransim ($threads thread)" "$g"
-  eval "g$threads=$g"
-done
-for ranks in 1 2; do
+mpi=1
+command -v mpirun >/dev/null || { mpi=0; echo "mpirun missing: LAMMPS on 2 ranks skipped"; }
+
+# the settled pile: scene with the crystal, data file and LAMMPS variables
+python3 bench/lammps_twin.py scenes/bench_settled_10k.toml "$tmp" >"$tmp/settled.vars"
+
+num() { sed 's/.*: *//; s/,.*//'; }
+
+# gransim SCENE_FILE DT THREADS: particle-steps/s of `steps` steps
+gransim() {
+  local dur out=$tmp/g$3
+  dur=$(python3 -c "print($steps*$2)")
+  OMP_NUM_THREADS=$3 "$gs" run "$1" --out "$out" --force --quiet --set scene.duration="$dur" \
+    --set output.final_state=true 2>/dev/null
+  grep '"particle_steps_per_s"' "$out/run.json" | num
+}
+
+# lammps INPUT RANKS N VARS...: particle-steps/s of `steps` steps (Loop time)
+lammps() {
+  local in=$1 ranks=$2 n=$3 out
+  shift 3
   if [ "$ranks" -eq 1 ]; then
-    out=$(cd "$tmp" && lmp -in "$OLDPWD/bench/lammps/forced_fluid.in" -var nsteps "$steps" -log none)
+    out=$(cd "$tmp" && lmp -in "$in" -var nsteps "$steps" "$@" -log none)
   else
-    command -v mpirun >/dev/null || { echo "mpirun missing: skipping 2 ranks"; continue; }
-    out=$(cd "$tmp" && mpirun --allow-run-as-root --oversubscribe -np 2 lmp -in "$OLDPWD/bench/lammps/forced_fluid.in" -var nsteps "$steps" -log none)
+    out=$(cd "$tmp" && mpirun --allow-run-as-root --oversubscribe "${mpi_args[@]}" -np "$ranks" lmp -in "$in" \
+      -var nsteps "$steps" "$@" -log none)
   fi
-  loop=$(echo "$out" | awk '/^Loop time/ {print $4}')
-  l=$(python3 -c "print($steps*10000/$loop)")
-  printf '%-34s %14.4g\n' "LAMMPS gran/hooke/history ($ranks rank)" "$l"
-  eval "l$ranks=$l"
+  echo "$out" >"$tmp/lammps$ranks.out"
+  python3 -c "print($steps*$n/$(echo "$out" | awk '/^Loop time/ {print $4}'))"
+}
+
+# the settled pile after the run, both codes: mean height and kinetic energy (a sanity check
+# that the twins do the same thing; they agree to a few per cent, not bitwise)
+settled_check() {
+  python3 - "$tmp/g1/state.csv" "$tmp/lammps1.out" <<'EOF'
+import csv, sys
+rows = list(csv.DictReader(l for l in open(sys.argv[1]) if not l.startswith('#')))
+m = 3.53e-5
+ym = sum(float(r['y']) for r in rows) / len(rows)
+ke = sum(0.5 * m * (float(r['vx'])**2 + float(r['vy'])**2) for r in rows)
+lines = open(sys.argv[2]).read().splitlines()
+i = [k for k, l in enumerate(lines) if l.split()[:1] == ['Step']][0]
+_, lke, lym, _ = lines[i + 2].split()
+y0 = 0.130104772462  # mean height of the crystal at the start
+print(f"  check after the run: sink of the mean height gransim {y0-ym:.3g} m, LAMMPS "
+      f"{y0-float(lym):.3g} m; kinetic energy gransim {ke:.3g} J, LAMMPS {float(lke):.3g} J")
+EOF
+}
+
+printf '%-46s %16s\n' "10^4 disks, $steps steps of 1e-6 s" "particle-steps/s"
+for scene in settled fluid; do
+  if [ "$scene" = settled ]; then
+    file=$tmp/scene.toml; in=$root/bench/lammps/settled.in
+    read -r -a vars <"$tmp/settled.vars"; vars+=(-var data "$tmp/settled.data")
+  else
+    file=$root/scenes/bench_fluid_10k.toml; in=$root/bench/lammps/forced_fluid.in; vars=()
+  fi
+  declare -A r=()
+  for t in 1 2; do
+    r[g$t]=$(gransim "$file" 1e-6 "$t")
+    printf '%-46s %16.4g\n' "$scene: gransim ($t thread$([ "$t" = 2 ] && echo s))" "${r[g$t]}"
+  done
+  for t in 1 2; do
+    if [ "$t" = 2 ] && [ "$mpi" = 0 ]; then r[l2]=""; continue; fi
+    r[l$t]=$(lammps "$in" "$t" 10000 "${vars[@]}")
+    printf '%-46s %16.4g\n' "$scene: LAMMPS gran/hooke/history ($t rank$([ "$t" = 2 ] && echo s))" "${r[l$t]}"
+  done
+  [ "$scene" = settled ] && { settled_check || true; }
+  python3 - "$scene" "${r[g1]}" "${r[g2]}" "${r[l1]}" "${r[l2]:-nan}" "$results" <<'EOF'
+import sys
+s, (g1, g2, l1, l2), res = sys.argv[1], map(float, sys.argv[2:6]), sys.argv[6]
+print(f"  {s}: ratio gransim/LAMMPS per core {g1/l1:.2f}, on 2 cores {g2/l2:.2f}")
+with open(res, "a") as fh:
+    for k, v in (("gransim1", g1), ("gransim2", g2), ("lammps1", l1), ("lammps2", l2)):
+        fh.write(f"lammps.{s}.{k} {v:.6g}\n")
+EOF
 done
-python3 -c "print('ratio gransim/LAMMPS per core: %.2f; on 2 cores: %.2f' % ($g1/$l1, $g2/${l2:-$l1}))"

@@ -1,13 +1,47 @@
 #!/usr/bin/env bash
 # The benchmark harness: build Release (tools/setup.sh), run the Google Benchmark kernels and
-# whole-scene figures, then gransim against LAMMPS. Nothing here is asserted; it prints a table.
+# whole steps, the cost-per-particle-step scan over N, gransim against LAMMPS, the tapping
+# figures and the MPI sweep, then print one summary table with the targets. Nothing is asserted.
+#
+#   bench/run.sh            full run (≈ 10–15 minutes on an idle 2-core machine, after the build)
+#   QUICK=1 bench/run.sh    short version (≈ 3 minutes): short benchmark times, 2000 LAMMPS
+#                           steps, paper taps of 0.3 s (per-tap time extrapolated), no early-rest
+#                           paper taps, 1 tap per small-pile run
+# Environment: GS_BUILD_DIR (build directory, default build), GS_JOBS (build jobs),
+#   GS_SKIP_BUILD=1 (use the binaries as they are),
+#   GS_BENCH_OUT (keep the raw results here; default a temporary directory),
+#   OMP_WAIT_POLICY (default passive; `active` is a little faster on an idle machine but stalls
+#   2-thread runs on a busy one), GS_MPI_ARGS (extra mpirun options, default
+#   "--mca mpi_yield_when_idle 1"), STEPS (LAMMPS comparison steps).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-GS_CMAKE_ARGS="-DGS_BUILD_BENCH=ON" tools/setup.sh >/dev/null
+export GS_BUILD_DIR=${GS_BUILD_DIR:-build}
+export OMP_WAIT_POLICY=${OMP_WAIT_POLICY:-passive}
+quick=${QUICK:-0}
+bin=$GS_BUILD_DIR/gransim_bench
+t_start=$(date +%s)
+
+[ "${GS_SKIP_BUILD:-0}" = 1 ] || GS_CMAKE_ARGS="-DGS_BUILD_BENCH=ON" tools/setup.sh >/dev/null
+if [ -n "${GS_BENCH_OUT:-}" ]; then out=$GS_BENCH_OUT; mkdir -p "$out"; rm -f "$out"/gb_*.json "$out/results.txt"
+else out=$(mktemp -d); trap 'rm -rf "$out"' EXIT; fi
+export GS_BENCH_RESULTS=$out/results.txt
+: >"$GS_BENCH_RESULTS"
+
+if [ "$quick" = 1 ]; then mt=0.1; mt_scan=0.2; else mt=1; mt_scan=1; fi
+gbench() {  # JSON FILTER THREADS MIN_TIME: console table to stdout, JSON to $out
+  OMP_NUM_THREADS=$3 "$bin" --benchmark_min_time="$4" --benchmark_filter="$2" \
+    --benchmark_out="$out/$1" --benchmark_out_format=json 2>/dev/null || echo "($1: gransim_bench failed)"
+}
 echo "== kernels and whole steps (Google Benchmark; 1 thread) =="
-OMP_NUM_THREADS=1 build/gransim_bench --benchmark_min_time=1 \
-  --benchmark_filter='Decagon|AreaInRect|Pile|Disk|Render|Frame' 2>/dev/null
+gbench gb_1t.json 'Decagon|AreaInRect|Pile|Disk|Render|Frame|Png|Rfm|RingNeighbours' 1 "$mt"
 echo "== the same whole steps with 2 threads =="
-OMP_NUM_THREADS=2 build/gransim_bench --benchmark_min_time=1 --benchmark_filter='PileStep|DiskFluid' 2>/dev/null
+gbench gb_2t.json 'PileStep|DiskFluid' 2 "$mt"
+echo "== cost per particle-step against N (forced disk fluid, 1 thread) =="
+gbench gb_scaling.json 'FluidCostScaling' 1 "$mt_scan"
 echo "== gransim vs LAMMPS =="
 bench/compare_lammps.sh
+echo "== seconds per tap; MPI sweep =="
+bench/taps.sh
+echo
+python3 bench/summary.py "$out"
+echo "harness wall time: $(( $(date +%s) - t_start )) s (OMP_WAIT_POLICY=$OMP_WAIT_POLICY; $(nproc) cores; load $(cut -d' ' -f1-3 /proc/loadavg))"

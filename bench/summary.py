@@ -1,0 +1,153 @@
+#!/usr/bin/env python3
+"""The harness's final table: every whole-scene figure, its target and whether it is met.
+
+usage: summary.py RESULTS_DIR
+  gb_1t.json, gb_2t.json, gb_scaling.json  Google Benchmark JSON (1 thread, 2 threads, N scan)
+  results.txt                              "key value" lines of compare_lammps.sh and taps.sh
+Missing inputs give "–" rows. Targets are reported, never asserted (exit status 0).
+"""
+import json
+import math
+import os
+import sys
+
+d = sys.argv[1]
+
+
+def gb(name):
+    try:
+        with open(os.path.join(d, name)) as fh:
+            return {b["name"]: b for b in json.load(fh).get("benchmarks", [])
+                    if not b.get("error_occurred")}
+    except (OSError, ValueError):
+        return {}
+
+
+g1, g2, gs = gb("gb_1t.json"), gb("gb_2t.json"), gb("gb_scaling.json")
+kv = {}
+try:
+    with open(os.path.join(d, "results.txt")) as fh:
+        for line in fh:
+            k, _, v = line.partition(" ")
+            try:
+                kv[k] = float(v)
+            except ValueError:
+                pass
+except OSError:
+    pass
+
+
+def counter(table, name, key="particle-steps/s"):
+    b = table.get(name)
+    return b.get(key) if b else None
+
+
+def ratio(a, b):
+    return a / b if a is not None and b is not None and b > 0 and not math.isnan(b) else None
+
+
+rows = []  # (figure, value text, target text, verdict)
+
+
+def fmt(v, unit=""):
+    if v is None or (isinstance(v, float) and math.isnan(v)):
+        return "–"
+    return (f"{v:.3g}" if abs(v) < 1e4 else f"{v:.3g}".replace("e+0", "e")) + unit
+
+
+def row(figure, v, unit="", target=None, ok=None, note=""):
+    verdict = "–" if v is None or ok is None else ("met" if ok(v) else "NOT met")
+    rows.append((figure, fmt(v, unit) + note, target or "(info)", verdict))
+
+
+quick = kv.get("tap.paper.quick") == 1
+ge = lambda t: (lambda v: v >= t)
+le = lambda t: (lambda v: v <= t)
+
+
+
+def pile(table, label):  # BM_PileStep by its label "integrator/broad phase"
+    for name, b in table.items():
+        if name.startswith("BM_PileStep/") and b.get("label") == label:
+            return b.get("particle-steps/s")
+    return None
+
+
+# the settled paper pile (Google Benchmark whole steps)
+for bp, bpname in (("box2d_tree", "Box2D tree"), ("cell_grid", "cell grid")):
+    row(f"1184-decagon pile, Gear 6, {bpname}, 1 thread", pile(g1, "gear6/" + bp), " p-st/s")
+    row(f"1184-decagon pile, Gear 6, {bpname}, 2 threads", pile(g2, "gear6/" + bp), " p-st/s",
+        "≥ 5e6 p-st/s", ge(5e6))
+row("1184-decagon pile, velocity Verlet, 2 threads", pile(g2, "velocity_verlet/box2d_tree"), " p-st/s")
+
+# gransim against LAMMPS
+for sc, label in (("settled", "10⁴ disks settled under gravity"), ("fluid", "10⁴-disk forced fluid")):
+    p = f"lammps.{sc}."
+    row(f"{label}: gransim, 1 / 2 threads", kv.get(p + "gransim1"), " p-st/s",
+        note=f" / {fmt(kv.get(p + 'gransim2'))}")
+    row(f"{label}: LAMMPS, 1 / 2 ranks", kv.get(p + "lammps1"), " p-st/s",
+        note=f" / {fmt(kv.get(p + 'lammps2'))}")
+    row(f"{label}: gransim/LAMMPS per core", ratio(kv.get(p + "gransim1"), kv.get(p + "lammps1")),
+        "×", "≥ 2×", ge(2.0))
+    row(f"{label}: gransim/LAMMPS on 2 cores", ratio(kv.get(p + "gransim2"), kv.get(p + "lammps2")),
+        "×")
+
+# Random Force Model
+row("1D ring (N = 1000), 1 thread", counter(g1, "BM_Rfm1DRingStep/0/min_time:3.000"), " p-st/s",
+    "≥ 1e8 p-st/s", ge(1e8))
+row("2D RFM reference fluid (N = 2000), 1 thread",
+    counter(g1, "BM_Rfm2DReferenceStep/0/min_time:3.000"), " p-st/s")
+
+# cost flatness
+base = counter(gs, "BM_FluidCostScaling/10000/real_time")
+for n in (1000, 10000, 100000, 1000000):
+    v = counter(gs, f"BM_FluidCostScaling/{n}/real_time")
+    rel = ratio(base, v)  # cost per particle-step relative to N = 10⁴
+    row(f"forced fluid N = 1e{round(math.log10(n))}: cost per particle-step ÷ N = 1e4's", rel, "",
+        "0.75…1.25" if n != 10000 else None,
+        (lambda x: 0.75 <= x <= 1.25) if n != 10000 else None, note=f" ({fmt(v)} p-st/s, 1 thread)")
+
+# seconds per tap
+ext = " (extrapolated ×10)" if quick else ""
+row("paper tap (3 s), fixed period, Gear 6, 1 thread", kv.get("tap.paper.fixed.t1"), " s", note=ext)
+row("paper tap (3 s), fixed period, Gear 6, 2 threads", kv.get("tap.paper.fixed.t2"), " s",
+    "≤ 15 s", le(15.0), note=ext)
+row("paper tap, whole run, Gear 6, 2 threads", kv.get("tap.paper.fixed.rate.t2"), " p-st/s")
+
+
+def ends(key):  # how many relaxations ended early
+    v = kv.get(key)
+    return " (skipped: QUICK)" if quick and v is None else "" if v is None else f" ({v:.0f} early ends)"
+
+
+row("paper tap, early rest (_fast.toml: VV 1e-4 s), 1 thread", kv.get("tap.paper.rest.t1"), " s",
+    note=ends("tap.paper.rest.early.t1"))
+row("paper tap, early rest (_fast.toml: VV 1e-4 s), 2 threads", kv.get("tap.paper.rest.t2"), " s",
+    "≤ 5 s", le(5.0), note=ends("tap.paper.rest.early.t2"))
+row("small pile (250) tap, fixed period, 1 thread", kv.get("tap.small.fixed.t1"), " s")
+row("small pile (250) tap, early rest, 1 thread", kv.get("tap.small.rest.t1"), " s",
+    note=ends("tap.small.rest.early.t1"))
+
+# MPI sweep
+s1, s2 = kv.get("sweep.serial_s"), kv.get("sweep.mpi2_s")
+row("sweep of 4 small-pile runs: serial / mpirun -np 2", s1, " s", note=f" / {fmt(s2, ' s')}")
+row("sweep speed-up on 2 ranks", ratio(s1, s2), "×", "(ideal 2×)")
+
+# frames per second (every benchmark with an fps counter)
+for name, b in list(g1.items()):
+    if "fps" in b:
+        row(f"frames: {name.removeprefix('BM_').split('/real_time')[0]}", b["fps"], " fps")
+
+w = [max(len(r[i]) for r in rows + [("figure", "value", "target", "verdict")]) for i in range(4)]
+line = "-+-".join("-" * x for x in w)
+print("=" * len(line))
+print(f"SUMMARY{' (QUICK mode: short runs, noisy)' if quick else ''}; p-st/s = particle-steps per second")
+print("=" * len(line))
+for r in [("figure", "value", "target", "verdict")] + rows:
+    print(" | ".join(c.ljust(x) for c, x in zip(r, w)))
+    if r[0] == "figure":
+        print(line)
+met = sum(r[3] == "met" for r in rows)
+missed = sum(r[3] == "NOT met" for r in rows)
+print(f"targets met: {met}, not met: {missed}, not measured: "
+      f"{sum(r[3] == '–' and r[2] != '(info)' for r in rows)}")

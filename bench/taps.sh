@@ -1,0 +1,89 @@
+#!/usr/bin/env bash
+# Whole-scene tapping figures: wall seconds per tap (run.json's wall_time_per_tap_s, settling
+# excluded) of the paper pile and of the small pile, and the scaling of a small sweep over MPI.
+#   paper  scenes/paper_negative_g.toml started from the settled pile (bench/data/
+#          paper_pile_settled.csv, via bench/scene_from_state.py; no settling), 1 and 2 threads:
+#          fixed period (Gear 6 at 5e-5 s, the paper's), and early rest with the recommended
+#          settings of scenes/paper_negative_g_fast.toml (velocity Verlet at 1e-4 s; Gear 6 at
+#          the paper's Δt keeps jittering and never meets the rest thresholds)
+#   small  scenes/tap_small_negative_g.toml (settles 1.5 s first), fixed period and early rest
+#   sweep  tap_small at g_p = 4,6,8,10: `gransim sweep --jobs 1` against
+#          `mpirun -np 2 gransim sweep` (one run per rank, OMP_NUM_THREADS=1); skipped without mpirun
+# Full: 2 taps per run (paper ≈ 4–6 minutes in all). QUICK=1: the paper only with a 0.3 s tap period
+# at fixed period (its time per 3 s tap extrapolated ×10; no early rest), 1 tap elsewhere.
+# Environment: GS_BUILD_DIR (default build), GS_BENCH_RESULTS (file for "key value" lines),
+# OMP_WAIT_POLICY (default passive), GS_MPI_ARGS (default "--mca mpi_yield_when_idle 1").
+set -euo pipefail
+cd "$(dirname "$0")/.."
+# a busy machine: OpenMP threads and MPI ranks that spin while waiting are descheduled and stall
+# the others (30× slower with 2 threads at load 6 on 2 cores); so sleep/yield unless told otherwise
+export OMP_WAIT_POLICY=${OMP_WAIT_POLICY:-passive}
+read -r -a mpi_args <<<"${GS_MPI_ARGS---mca mpi_yield_when_idle 1}"
+root=$PWD
+gs=$root/${GS_BUILD_DIR:-build}/gransim
+results=${GS_BENCH_RESULTS:-/dev/null}
+quick=${QUICK:-0}
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+
+# field KEY RUN_DIR: a number from run.json
+field() { grep "\"$1\"" "$2/run.json" | head -1 | sed 's/.*: *//; s/,.*//'; }
+
+# tap NAME SCENE THREADS SCALE SETS...: one run, its seconds per tap (×SCALE) to stdout and results
+tap() {
+  local name=$1 scene=$2 threads=$3 scale=$4 out=$tmp/$1_$3
+  shift 4
+  if ! OMP_NUM_THREADS=$threads "$gs" run "$scene" --out "$out" --force --quiet \
+      --set output.final_state=false --set output.checkpoint_minutes=0 "$@" 2>"$out.err"; then
+    echo "$name ($threads threads): gransim run failed: $(tail -1 "$out.err")"; return 0
+  fi
+  local per taps ends rate
+  per=$(python3 -c "print($(field wall_time_per_tap_s "$out")*$scale)")
+  taps=$(field taps_done "$out"); ends=$(field early_ends "$out"); rate=$(field particle_steps_per_s "$out")
+  printf '%-44s %10.3g %6s %8s %14.3g\n' "$name ($threads thread$([ "$threads" = 2 ] && echo s))" \
+    "$per" "$taps" "$ends" "$rate"
+  echo "tap.$name.t$threads $per" >>"$results"
+  echo "tap.$name.rate.t$threads $rate" >>"$results"
+  echo "tap.$name.early.t$threads $ends" >>"$results"
+}
+
+python3 bench/scene_from_state.py scenes/paper_negative_g.toml bench/data/paper_pile_settled.csv \
+  "$tmp/paper.toml"
+python3 bench/scene_from_state.py scenes/paper_negative_g_fast.toml bench/data/paper_pile_settled.csv \
+  "$tmp/fast.toml"
+paper=(--set preparation.settle_time=0)
+printf '%-44s %10s %6s %8s %14s\n' "scene (wall s per tap, settling excluded)" "s/tap" "taps" "early" "particle-st/s"
+if [ "$quick" = 1 ]; then
+  for t in 1 2; do
+    tap paper.fixed "$tmp/paper.toml" "$t" 10 "${paper[@]}" --set drive.taps=1 --set drive.period=0.3
+  done
+  echo "  (QUICK: paper taps of 0.3 s, seconds per 3 s tap extrapolated ×10; early rest skipped)"
+  echo "tap.paper.quick 1" >>"$results"
+  ntaps=1
+else
+  for t in 1 2; do tap paper.fixed "$tmp/paper.toml" "$t" 1 "${paper[@]}" --set drive.taps=2; done
+  for t in 1 2; do tap paper.rest "$tmp/fast.toml" "$t" 1 "${paper[@]}" --set drive.taps=2; done
+  ntaps=2
+fi
+tap small.fixed scenes/tap_small_negative_g.toml 1 1 --set drive.taps=$ntaps --set drive.early_rest=false
+tap small.rest scenes/tap_small_negative_g.toml 1 1 --set drive.taps=$ntaps
+
+# MPI sweep scaling
+if ! command -v mpirun >/dev/null; then echo "mpirun missing: sweep scaling skipped"; exit 0; fi
+sweep=(sweep scenes/tap_small_negative_g.toml --param drive.g_p=4,6,8,10 --set drive.taps=$ntaps
+  --set output.final_state=false --quiet --force)
+s0=$(date +%s.%N)
+OMP_NUM_THREADS=1 "$gs" "${sweep[@]}" --jobs 1 --out "$tmp/sweep1" >/dev/null 2>&1 || echo "serial sweep failed"
+s1=$(date +%s.%N)
+OMP_NUM_THREADS=1 mpirun --allow-run-as-root --oversubscribe "${mpi_args[@]}" -np 2 "$gs" "${sweep[@]}" \
+  --out "$tmp/sweep2" >/dev/null 2>&1 || echo "MPI sweep failed"
+s2=$(date +%s.%N)
+python3 - "$s0" "$s1" "$s2" "$results" "$ntaps" <<'EOF'
+import sys
+s0, s1, s2 = map(float, sys.argv[1:4])
+a, b = s1 - s0, s2 - s1
+print(f"sweep of 4 tap_small runs ({sys.argv[5]} taps): serial {a:.1f} s, mpirun -np 2 {b:.1f} s, "
+      f"speed-up {a / b:.2f}")
+with open(sys.argv[4], "a") as fh:
+    fh.write(f"sweep.serial_s {a:.4g}\nsweep.mpi2_s {b:.4g}\n")
+EOF
