@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -76,6 +77,28 @@ done:
   ss << in.rdbuf();
   o.output = ss.str();
   return o;
+}
+
+/// a shell command line's exit code and output (stdout and stderr together)
+struct ShellResult {
+  int code = -1;
+  std::string output;
+};
+
+inline ShellResult sh(const std::string& cmd) {
+  ShellResult r;
+  FILE* p = popen((cmd + " 2>&1").c_str(), "r");
+  if (!p) return r;
+  char buf[4096];
+  while (std::fgets(buf, sizeof buf, p)) r.output += buf;
+  const int st = pclose(p);
+  r.code = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  return r;
+}
+
+/// the command line that runs gransim with `args` (the chart scripts of this source tree)
+inline std::string gransim(const std::string& args) {
+  return std::string("GS_TOOLS_DIR=") + GS_SOURCE_DIR + "/tools " + GS_BINARY + " " + args;
 }
 
 }  // namespace gs::testing

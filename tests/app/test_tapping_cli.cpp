@@ -13,31 +13,16 @@
 #include <string>
 #include <vector>
 
+#include "binary.hpp"
+
 namespace gs {
 namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-  int code = -1;
-  std::string output;  // stdout and stderr
-};
-
-// run a shell command line, capture its output and exit code
-Result sh(const std::string& cmd) {
-  Result r;
-  FILE* p = popen((cmd + " 2>&1").c_str(), "r");
-  if (!p) return r;
-  char buf[4096];
-  while (std::fgets(buf, sizeof buf, p)) r.output += buf;
-  const int st = pclose(p);
-  r.code = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  return r;
-}
-
-std::string gransim(const std::string& args) {
-  return std::string("GS_TOOLS_DIR=") + GS_SOURCE_DIR + "/tools " + GS_BINARY + " " + args;
-}
+using Result = testing::ShellResult;
+using testing::gransim;
+using testing::sh;
 
 std::string slurp(const fs::path& p) {
   std::ifstream in(p);
