@@ -6,15 +6,32 @@
 
 namespace gs {
 
+namespace {
+// stream id of particle i
+constexpr std::uint64_t kNoiseStream = 0x6e6f697365ULL;
+}  // namespace
+
+std::vector<std::uint64_t> random_force_keys(std::uint64_t seed, std::size_t n) {
+  std::vector<std::uint64_t> k(n);
+  for (std::size_t i = 0; i < n; ++i) k[i] = RngStream(seed, kNoiseStream + i).key;
+  return k;
+}
+
 void add_random_force(const World& w, std::uint64_t seed, std::int64_t step, double D, double dt,
                       std::vector<double>& ax, std::vector<double>& ay) {
+  add_random_force(w, random_force_keys(seed, w.size()), step, D, dt, ax, ay);
+}
+
+void add_random_force(const World& w, const std::vector<std::uint64_t>& keys, std::int64_t step,
+                      double D, double dt, std::vector<double>& ax, std::vector<double>& ay) {
   const std::size_t n = w.size();
   const double sigma = std::sqrt(2.0 * D / dt);  // per component (T.2.16)
   const bool ring = w.box == BoxKind::Ring1D;
   double mean = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
     // stream (seed, particle); its counter is a function of the step alone
-    RngStream r(seed, 0x6e6f697365ULL + i);
+    RngStream r;
+    r.key = keys[i];
     r.counter = static_cast<std::uint64_t>(step) << 8;  // 256 values per step: ample for 2 normals
     const double z0 = r.normal_fast();
     const double z1 = ring ? 0.0 : r.normal_fast();

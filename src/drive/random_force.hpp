@@ -9,9 +9,16 @@
 
 namespace gs {
 
+/// the stream keys of particles 0…n−1 for `seed` (RngStream(seed, stream of i).key): computed
+/// once per run instead of twice per particle and step
+std::vector<std::uint64_t> random_force_keys(std::uint64_t seed, std::size_t n);
+
 /// add the noise accelerations η/M of step `step` to (ax, ay); ring: x only, symmetrised (T.2.18)
 void add_random_force(const World& w, std::uint64_t seed, std::int64_t step, double D, double dt,
                       std::vector<double>& ax, std::vector<double>& ay);
+/// the same with the keys of random_force_keys(seed, w.size()) (bitwise the same values)
+void add_random_force(const World& w, const std::vector<std::uint64_t>& keys, std::int64_t step,
+                      double D, double dt, std::vector<double>& ax, std::vector<double>& ay);
 
 /// subtract the centre-of-mass velocity (2D drift control, every K steps)
 void remove_com_velocity(World& w);

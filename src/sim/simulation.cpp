@@ -72,8 +72,10 @@ void Simulation::compute_accelerations(std::int64_t index) {
     s.ay[i] = forces_.fy[i] * w_.inv_mass[i] + gravity_.y;
     s.aw[i] = forces_.tq[i] * w_.inv_inertia[i];
   }
-  if (w_.scene.drive.kind == DriveKind::RandomForce)
-    add_random_force(w_, w_.scene.prep.seed, index, w_.scene.drive.D, dt_, s.ax, s.ay);
+  if (w_.scene.drive.kind == DriveKind::RandomForce) {
+    if (noise_keys_.size() != n) noise_keys_ = random_force_keys(w_.scene.prep.seed, n);
+    add_random_force(w_, noise_keys_, index, w_.scene.drive.D, dt_, s.ax, s.ay);
+  }
 }
 
 void Simulation::step() {
