@@ -101,4 +101,43 @@ inline std::string gransim(const std::string& args) {
   return std::string("GS_TOOLS_DIR=") + GS_SOURCE_DIR + "/tools " + GS_BINARY + " " + args;
 }
 
+/// a 40-grain tapping pile in a 0.1 m box (velocity Verlet at 1e-4 s, T = 0.5 s, 0.01 s
+/// pulses of g_p = 2): a few seconds per run
+inline std::string tiny_tapping_scene(int taps) {
+  return R"(
+[scene]
+name = "tiny_tapping"
+[[material]]
+name = "grain"
+[[species]]
+name = "big"
+radius = 0.009
+count = 18
+[[species]]
+name = "small"
+radius = 0.00636
+count = 22
+[box]
+width = 0.1
+height = 0.5
+[preparation]
+seed = 5
+settle_time = 0.5
+[integrator]
+kind = "velocity_verlet"
+dt = 1e-4
+[drive]
+kind = "negative_g"
+g_p = 2.0
+t1 = 0.01
+period = 0.5
+taps = )" + std::to_string(taps) +
+         R"(
+[output]
+test_rect = [0.01, 0.01, 0.09, 0.05]
+discard_taps = 2
+series_every = 500
+)";
+}
+
 }  // namespace gs::testing

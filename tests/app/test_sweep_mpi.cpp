@@ -57,43 +57,6 @@ std::string mpi_unavailable() {
 
 // 40 decagons in a 0.1 m box, velocity Verlet: 0.5 s of settling, then `taps` taps of
 // T = 0.5 s (about 0.2 s of wall time per tap)
-std::string tiny_scene(int taps) {
-  return R"(
-[scene]
-name = "tiny_tapping"
-[[material]]
-name = "grain"
-[[species]]
-name = "big"
-radius = 0.009
-count = 18
-[[species]]
-name = "small"
-radius = 0.00636
-count = 22
-[box]
-width = 0.1
-height = 0.5
-[preparation]
-seed = 5
-settle_time = 0.5
-[integrator]
-kind = "velocity_verlet"
-dt = 1e-4
-[drive]
-kind = "negative_g"
-g_p = 2.0
-t1 = 0.01
-period = 0.5
-taps = )" + std::to_string(taps) +
-         R"(
-[output]
-test_rect = [0.01, 0.01, 0.09, 0.05]
-discard_taps = 2
-series_every = 500
-)";
-}
-
 class SweepMpi : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -103,7 +66,7 @@ class SweepMpi : public ::testing::Test {
     fs::remove_all(dir_);
     fs::create_directories(dir_);
     scene_ = (dir_ / "tiny.toml").string();
-    std::ofstream(scene_) << tiny_scene(4);
+    std::ofstream(scene_) << testing::tiny_tapping_scene(4);
   }
   void TearDown() override { fs::remove_all(dir_); }
   fs::path dir_;
@@ -220,7 +183,7 @@ TEST_F(SweepMpi, BadInputStopsEveryRank) {
 
 // replicas without MPI: the analysis sees one run per replica (they are not pooled)
 TEST_F(SweepMpi, ReplicasAreAnalysedAsRuns) {
-  std::ofstream(scene_) << tiny_scene(22);
+  std::ofstream(scene_) << testing::tiny_tapping_scene(22);
   const fs::path sw = dir_ / "sweep";
   Result r = sh(gransim("sweep " + scene_ + " --param drive.g_p=2 --replicas 2 --jobs 2 -q --out " +
                         sw.string()));

@@ -66,39 +66,7 @@ Table read_csv(const fs::path& p) {
 
 // 40 decagons (18 big, 22 small) in a 0.1 m box; velocity Verlet at Δt = 1e-4 s (contact time
 // 6.9e-4 s), 0.5 s of settling, 22 taps of T = 0.5 s with 0.01 s pulses: a few seconds per run
-constexpr const char* kTinyScene = R"(
-[scene]
-name = "tiny_tapping"
-[[material]]
-name = "grain"
-[[species]]
-name = "big"
-radius = 0.009
-count = 18
-[[species]]
-name = "small"
-radius = 0.00636
-count = 22
-[box]
-width = 0.1
-height = 0.5
-[preparation]
-seed = 5
-settle_time = 0.5
-[integrator]
-kind = "velocity_verlet"
-dt = 1e-4
-[drive]
-kind = "negative_g"
-g_p = 2.0
-t1 = 0.01
-period = 0.5
-taps = 22
-[output]
-test_rect = [0.01, 0.01, 0.09, 0.05]
-discard_taps = 2
-series_every = 500
-)";
+const std::string kTinyScene = testing::tiny_tapping_scene(22);
 
 class TappingCli : public ::testing::Test {
  protected:
