@@ -374,11 +374,20 @@ std::pair<int, int> non_ascii_outside_strings(std::string_view t) {
       }
     }
   };
+  // a quote opens a string only where TOML can start one: at the start of a line (a quoted
+  // key), after '=', '[', ',', '{' or '.' (blanks between). Anywhere else toml++ scans over it
+  // as part of a bare value, and a non-ASCII byte behind it would reach the unreachable branch
+  // of its whitespace test (fuzz: `x = Z'''` then U+02BF), so such a quote is an ordinary byte.
+  char prev = '\n';  // the last non-blank byte outside strings ('\n' at a line start)
   while (i < t.size()) {
     const unsigned char c = static_cast<unsigned char>(t[i]);
     if (c >= 0x80) return {line, col + 1};
+    const bool string_start = std::string_view("\n=[,{.").find(prev) != std::string_view::npos;
+    if (c != ' ' && c != '\t' && c != '\r') prev = static_cast<char>(c);
     if (c == '#') {  // comment: to the end of the line
       while (i < t.size() && t[i] != '\n') advance(1);
+    } else if (!string_start && (c == '"' || c == '\'')) {
+      advance(1);  // not a string here: what follows is checked like any other byte
     } else if (starts("\"\"\"") || starts("'''")) {  // multi-line strings
       const std::string_view close = t.substr(i, 3);
       advance(3);

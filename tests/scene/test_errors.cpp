@@ -222,6 +222,20 @@ TEST(SceneErrors, NonAsciiOutsideStringsIsRefusedWithItsPosition) {
   EXPECT_NO_THROW(parse_scene_string(ok_text, "ok.toml"));
   // an override value with such bytes becomes a plain string, never reaches toml++ bare
   EXPECT_THROW(parse_scene_string(ok_text, "ok.toml", {"drive.kind=\xce\xb5"}), InputError);
+  // a quote where TOML cannot open a string is no string: toml++ scans over it as part of a bare
+  // value and reached its unreachable branch on the non-ASCII byte behind it (found by the scene
+  // fuzzer: "dt = 1e", control bytes, a triple quote, ..., U+02BF); the scan refuses the byte
+  for (const char* tail :
+       {"x = Z'''\xca\xbf'''\n", "x = 1\"\xca\xbf\"\n", "x = [1, 2]'\xca\xbf'\n"}) {
+    const std::string text = std::string("[scene]\nname = \"x\"\n") + tail;
+    try {
+      parse_scene_string(text, "fuzz.toml");
+      FAIL() << "accepted " << tail;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("fuzz.toml:3:"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("non-ASCII"), std::string::npos) << e.what();
+    }
+  }
 }
 }  // namespace
 }  // namespace gs
