@@ -407,7 +407,8 @@ SceneSpec parse_scene_string(std::string_view text, const std::string& name_for_
   // bytes toml++ 3.3.0 cannot survive: non-ASCII outside strings and comments
   if (const auto [l, c] = scene_detail::non_ascii_outside_strings(text); l != 0)
     throw InputError(name_for_messages + ":" + std::to_string(l) + ":" + std::to_string(c), "",
-                     "TOML syntax error: a non-ASCII character outside a string or comment "
+                     "TOML syntax error: a non-ASCII character outside a string or comment, or "
+                     "after a backslash "
                      "(keys and values must be ASCII; write e.g. eps_n, not ε_n)");
   try {
     root = toml::parse(text, name_for_messages);

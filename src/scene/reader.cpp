@@ -378,6 +378,12 @@ std::pair<int, int> non_ascii_outside_strings(std::string_view t) {
   // key), after '=', '[', ',', '{' or '.' (blanks between). Anywhere else toml++ scans over it
   // as part of a bare value, and a non-ASCII byte behind it would reach the unreachable branch
   // of its whitespace test (fuzz: `x = Z'''` then U+02BF), so such a quote is an ordinary byte.
+  // a backslash followed by a non-ASCII byte in a basic string: toml++ tests that byte for
+  // whitespace (a line-ending backslash) and reaches the same branch (fuzz: `"""\` U+0465);
+  // it is no valid escape anyway
+  auto escapes_non_ascii = [&] {
+    return t[i] == '\\' && i + 1 < t.size() && static_cast<unsigned char>(t[i + 1]) >= 0x80;
+  };
   char prev = '\n';  // the last non-blank byte outside strings ('\n' at a line start)
   while (i < t.size()) {
     const unsigned char c = static_cast<unsigned char>(t[i]);
@@ -391,12 +397,18 @@ std::pair<int, int> non_ascii_outside_strings(std::string_view t) {
     } else if (starts("\"\"\"") || starts("'''")) {  // multi-line strings
       const std::string_view close = t.substr(i, 3);
       advance(3);
-      while (i < t.size() && !starts(close)) advance(t[i] == '\\' && close[0] == '"' ? 2 : 1);
+      while (i < t.size() && !starts(close)) {
+        if (close[0] == '"' && escapes_non_ascii()) return {line, col + 2};
+        advance(t[i] == '\\' && close[0] == '"' ? 2 : 1);
+      }
       advance(3);
     } else if (c == '"' || c == '\'') {  // one-line strings (basic strings have escapes)
       const char q = static_cast<char>(c);
       advance(1);
-      while (i < t.size() && t[i] != q && t[i] != '\n') advance(t[i] == '\\' && q == '"' ? 2 : 1);
+      while (i < t.size() && t[i] != q && t[i] != '\n') {
+        if (q == '"' && escapes_non_ascii()) return {line, col + 2};
+        advance(t[i] == '\\' && q == '"' ? 2 : 1);
+      }
       advance(1);
     } else {
       advance(1);
