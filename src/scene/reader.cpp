@@ -384,12 +384,16 @@ std::pair<int, int> non_ascii_outside_strings(std::string_view t) {
   auto escapes_non_ascii = [&] {
     return t[i] == '\\' && i + 1 < t.size() && static_cast<unsigned char>(t[i + 1]) >= 0x80;
   };
-  char prev = '\n';  // the last non-blank byte outside strings ('\n' at a line start)
+  char prev = '\n';       // the last non-blank byte outside strings ('\n' at a line start)
+  bool in_value = false;  // past the '=' of this line: a '.' is a decimal point, not a key dot
   while (i < t.size()) {
     const unsigned char c = static_cast<unsigned char>(t[i]);
     if (c >= 0x80) return {line, col + 1};
-    const bool string_start = std::string_view("\n=[,{.").find(prev) != std::string_view::npos;
+    const bool string_start = std::string_view("\n=[,{").find(prev) != std::string_view::npos ||
+                              (prev == '.' && !in_value);  // (fuzz: `x = 0."` then U+FE7B)
     if (c != ' ' && c != '\t' && c != '\r') prev = static_cast<char>(c);
+    if (c == '=') in_value = true;
+    if (c == '\n') in_value = false;
     if (c == '#') {  // comment: to the end of the line
       while (i < t.size() && t[i] != '\n') advance(1);
     } else if (!string_start && (c == '"' || c == '\'')) {

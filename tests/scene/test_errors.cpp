@@ -229,7 +229,9 @@ TEST(SceneErrors, NonAsciiOutsideStringsIsRefusedWithItsPosition) {
        {"x = Z'''\xca\xbf'''\n", "x = 1\"\xca\xbf\"\n", "x = [1, 2]'\xca\xbf'\n",
         // and a backslash before a non-ASCII byte in a basic string (toml++ tests it for
         // whitespace: fuzz input """ then backslash then U+0465)
-        "x = \"\"\"\\\xd1\xa5\"\"\"\n", "x = \"a\\\xd1\xa5\"\n"}) {
+        "x = \"\"\"\\\xd1\xa5\"\"\"\n", "x = \"a\\\xd1\xa5\"\n",
+        // a decimal point is no key dot: the quote after it opens nothing (fuzz: `0."` U+FE7B)
+        "x = 0.\"\xef\xb9\xbb\"\n"}) {
     const std::string text = std::string("[scene]\nname = \"x\"\n") + tail;
     try {
       parse_scene_string(text, "fuzz.toml");
