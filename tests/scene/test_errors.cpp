@@ -215,9 +215,9 @@ TEST(SceneErrors, NonAsciiOutsideStringsIsRefusedWithItsPosition) {
     EXPECT_NE(std::string(e.what()).find("greek.toml:5:1"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("non-ASCII"), std::string::npos) << e.what();
   }
-  // the same bytes inside a string and a comment are harmless
+  // the same bytes in a comment and in a plain `key = "…"` string are harmless
   const std::string ok_text =
-      "# \xce\xb5 in a comment\n[scene]\nname = \"\xce\xb5\"\ndescription = '''\xce\xb5'''\n"
+      "# \xce\xb5 in a comment\n[scene]\nname = \"\xce\xb5\"\ndescription = '\xce\xb5'\n"
       "[box]\nwidth = 0.2\n[[species]]\nname = \"g\"\nradius = 0.009\ncount = 5\n";
   EXPECT_NO_THROW(parse_scene_string(ok_text, "ok.toml"));
   // an override value with such bytes becomes a plain string, never reaches toml++ bare
@@ -231,7 +231,9 @@ TEST(SceneErrors, NonAsciiOutsideStringsIsRefusedWithItsPosition) {
         // whitespace: fuzz input """ then backslash then U+0465)
         "x = \"\"\"\\\xd1\xa5\"\"\"\n", "x = \"a\\\xd1\xa5\"\n",
         // a decimal point is no key dot: the quote after it opens nothing (fuzz: `0."` U+FE7B)
-        "x = 0.\"\xef\xb9\xbb\"\n"}) {
+        "x = 0.\"\xef\xb9\xbb\"\n",
+        // multi-line strings and array items stay ASCII
+        "x = '''\xce\xb5'''\n", "x = [\"\xce\xb5\"]\n"}) {
     const std::string text = std::string("[scene]\nname = \"x\"\n") + tail;
     try {
       parse_scene_string(text, "fuzz.toml");
