@@ -386,6 +386,8 @@ std::pair<int, int> non_ascii_outside_strings(std::string_view t) {
   };
   char prev = '\n';       // the last non-blank byte outside strings ('\n' at a line start)
   bool in_value = false;  // past the '=' of this line: a '.' is a decimal point, not a key dot
+  int eqs = 0;            // '=' outside strings on this line
+  bool plain_key = true;  // everything before the first '=' is a bare (dotted) key
   while (i < t.size()) {
     const unsigned char c = static_cast<unsigned char>(t[i]);
     if (c >= 0x80) return {line, col + 1};
@@ -393,8 +395,18 @@ std::pair<int, int> non_ascii_outside_strings(std::string_view t) {
     const bool string_start = std::string_view("\n=[,{").find(prev) != std::string_view::npos ||
                               (prev == '.' && !in_value);  // (fuzz: `x = 0."` then U+FE7B)
     if (c != ' ' && c != '\t' && c != '\r') prev = static_cast<char>(c);
-    if (c == '=') in_value = true;
-    if (c == '\n') in_value = false;
+    if (eqs == 0 && c != '=' && !std::isalnum(c) && c != '_' && c != '-' && c != '.' && c != ' ' &&
+        c != '\t')
+      plain_key = false;
+    if (c == '=') {
+      in_value = true;
+      ++eqs;
+    }
+    if (c == '\n') {
+      in_value = false;
+      eqs = 0;
+      plain_key = true;
+    }
     if (c == '#') {  // comment: to the end of the line
       while (i < t.size() && t[i] != '\n') advance(1);
     } else if (!string_start && (c == '"' || c == '\'')) {
@@ -413,7 +425,8 @@ std::pair<int, int> non_ascii_outside_strings(std::string_view t) {
       // non-ASCII text only in a plain `key = "…"` value, which toml++ reads as a string
       // and nothing else; in keys, arrays and inline tables it is refused (fuzzing found
       // three ways to the unreachable branch around strings)
-      const bool text_ok = before == '=';
+      // (the first '=' of a line after a bare key: fuzz `h =-"\"="` then U+03A5)
+      const bool text_ok = before == '=' && eqs == 1 && plain_key;
       advance(1);
       while (i < t.size() && t[i] != q && t[i] != '\n') {
         if (!text_ok && static_cast<unsigned char>(t[i]) >= 0x80) return {line, col + 1};

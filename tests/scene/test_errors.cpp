@@ -233,7 +233,9 @@ TEST(SceneErrors, NonAsciiOutsideStringsIsRefusedWithItsPosition) {
         // a decimal point is no key dot: the quote after it opens nothing (fuzz: `0."` U+FE7B)
         "x = 0.\"\xef\xb9\xbb\"\n",
         // multi-line strings and array items stay ASCII
-        "x = '''\xce\xb5'''\n", "x = [\"\xce\xb5\"]\n"}) {
+        "x = '''\xce\xb5'''\n", "x = [\"\xce\xb5\"]\n",
+        // only the first '=' after a bare key starts a value string (fuzz input)
+        "h =-\"\\\"=\"\\\"\xce\xa5\n"}) {
     const std::string text = std::string("[scene]\nname = \"x\"\n") + tail;
     try {
       parse_scene_string(text, "fuzz.toml");
