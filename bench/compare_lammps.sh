@@ -12,12 +12,7 @@
 # OMP_WAIT_POLICY (default passive), GS_MPI_ARGS (default "--mca mpi_yield_when_idle 1").
 set -euo pipefail
 cd "$(dirname "$0")/.."
-# a busy machine: OpenMP threads and MPI ranks that spin while waiting are descheduled and stall
-# the others (30× slower with 2 threads at load 6 on 2 cores); so sleep/yield unless told otherwise
-export OMP_WAIT_POLICY=${OMP_WAIT_POLICY:-passive}
-read -r -a mpi_args <<<"${GS_MPI_ARGS---mca mpi_yield_when_idle 1}"
-root=$PWD
-gs=$root/${GS_BUILD_DIR:-build}/gransim
+. bench/common.sh  # OMP_WAIT_POLICY, mpi_args, root, gs
 steps=${STEPS:-$([ "${QUICK:-0}" = 1 ] && echo 2000 || echo 10000)}
 results=${GS_BENCH_RESULTS:-/dev/null}
 if ! command -v lmp >/dev/null; then
