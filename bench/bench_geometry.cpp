@@ -95,6 +95,29 @@ void BM_DecagonSeparatedPrepared(benchmark::State& state) {
 }
 BENCHMARK(BM_DecagonSeparatedPrepared);
 
+// the per-step preparation of the pile's 1184 decagons (world-frame vertices, edges, vertex
+// mean, bounding circle), as the force loop runs it before the pairs: time per decagon
+void BM_DecagonPrepare(benchmark::State& state) {
+  constexpr int kCount = 1184;
+  gs::RngStream rng(5, 0);
+  const gs::Poly big = gs::regular_polygon(10, kRBig), small = gs::regular_polygon(10, kRSmall);
+  std::vector<gs::Vec2> c(kCount);
+  std::vector<double> th(kCount);
+  for (int i = 0; i < kCount; ++i) {
+    c[i] = {rng.uniform(0.0, 0.48), rng.uniform(0.0, 1.2)};
+    th[i] = rng.uniform(-20.0, 20.0);
+  }
+  gs::PolyStore st;
+  st.resize(kCount, 10);
+  for (auto _ : state) {
+    for (int i = 0; i < kCount; ++i) st.set_placed(i, (i & 1) ? small : big, c[i], th[i]);
+    benchmark::DoNotOptimize(st.ref(kCount - 1).radius);
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * kCount);
+}
+BENCHMARK(BM_DecagonPrepare);
+
 // decagons scattered over a region twice the test rectangle: inside, outside and straddling
 void BM_AreaInRect(benchmark::State& state) {
   gs::RngStream rng(3, 0);

@@ -13,21 +13,13 @@
 #include "sim/simulation.hpp"
 #include "world/prepare.hpp"
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
+#include "one_thread.hpp"
 
 namespace gs {
 std::unique_ptr<BroadPhase> make_ring_neighbours();  // broadphase/ring_neighbours.cpp
 
 namespace {
 
-// one thread: the rate is per core
-void single_thread() {
-#ifdef _OPENMP
-  omp_set_num_threads(1);
-#endif
-}
 
 // the scene's fluid after `warm` seconds of driving (uniform start for the 2D fluid: the
 // square lattice of the reference scene is a dense block that takes ~0.1 s to spread)
@@ -50,7 +42,7 @@ void rate(benchmark::State& st, const Simulation& sim) {
 // the 2D reference fluid; range(0) = 1 adds the RFM observer (sampling every 1000 steps,
 // S(k) and g(R) every 10th sample, contacts followed every step)
 void BM_Rfm2DReferenceStep(benchmark::State& st) {
-  single_thread();
+  const OneThread one;  // the rate is per core
   auto sim = warmed("rfm2d_reference.toml", 0.05, {"preparation.placement=uniform"});
   std::unique_ptr<RfmObserver> obs;
   const std::string dir = (std::filesystem::temp_directory_path() / "gs_bench_rfm2d").string();
@@ -73,7 +65,7 @@ BENCHMARK(BM_Rfm2DReferenceStep)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond)-
 
 // the 1D ring (cell-grid broad phase, as selected by the scene)
 void BM_Rfm1DRingStep(benchmark::State& st) {
-  single_thread();
+  const OneThread one;  // the rate is per core
   auto sim = warmed("rfm1d_reference.toml", 0.05, {});
   std::unique_ptr<RfmObserver> obs;
   const std::string dir = (std::filesystem::temp_directory_path() / "gs_bench_rfm1d").string();
@@ -98,7 +90,7 @@ BENCHMARK(BM_Rfm1DRingStep)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond)->MinT
 // the ring-neighbour broad phase alone (always a full O(N) pass; the cell grid is not timed
 // this way: with a Verlet skin it returns its cached list when nothing moves)
 void BM_RingNeighbours(benchmark::State& st) {
-  single_thread();
+  const OneThread one;  // the rate is per core
   auto sim = warmed("rfm1d_reference.toml", 0.01, {});
   auto bp = make_ring_neighbours();
   std::vector<PairKey> keys;

@@ -12,17 +12,13 @@
 #include "sim/simulation.hpp"
 #include "world/prepare.hpp"
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
+#include "one_thread.hpp"
 
 namespace gs {
 namespace {
 
 void BM_FluidCostScaling(benchmark::State& st) {
-#ifdef _OPENMP
-  omp_set_num_threads(1);
-#endif
+  const OneThread one;  // the rate is per core
   SceneSpec s = build::disk_gas(static_cast<int>(st.range(0)), 0.353, 0.6, 0.6, 1);
   s.drive.kind = DriveKind::RandomForce;
   World w = make_world(s);

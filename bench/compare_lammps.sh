@@ -9,7 +9,7 @@
 # 1 and 2 threads (gransim, OpenMP) / ranks (LAMMPS, MPI) and the ratios; nothing is asserted.
 # Environment: STEPS (default 10000; QUICK=1: 2000), GS_BUILD_DIR (default build),
 # GS_BENCH_RESULTS (file to append "key value" lines to, for bench/summary.py),
-# OMP_WAIT_POLICY (default passive), GS_MPI_ARGS (default "--mca mpi_yield_when_idle 1").
+# OMP_WAIT_POLICY (default: the runtime's), GS_MPI_ARGS (default "--mca mpi_yield_when_idle 1").
 set -euo pipefail
 cd "$(dirname "$0")/.."
 . bench/common.sh  # OMP_WAIT_POLICY, mpi_args, root, gs

@@ -10,13 +10,12 @@
 # Environment: GS_BUILD_DIR (build directory, default build), GS_JOBS (build jobs),
 #   GS_SKIP_BUILD=1 (use the binaries as they are),
 #   GS_BENCH_OUT (keep the raw results here; default a temporary directory),
-#   OMP_WAIT_POLICY (default passive; `active` is a little faster on an idle machine but stalls
-#   2-thread runs on a busy one), GS_MPI_ARGS (extra mpirun options, default
+#   OMP_WAIT_POLICY (default: the runtime's; `passive` on a machine busy with other jobs, where
+#   spinning threads stall each other), GS_MPI_ARGS (extra mpirun options, default
 #   "--mca mpi_yield_when_idle 1"), STEPS (LAMMPS comparison steps).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 export GS_BUILD_DIR=${GS_BUILD_DIR:-build}
-export OMP_WAIT_POLICY=${OMP_WAIT_POLICY:-passive}
 quick=${QUICK:-0}
 bin=$GS_BUILD_DIR/gransim_bench
 t_start=$(date +%s)
@@ -44,4 +43,4 @@ echo "== seconds per tap; MPI sweep =="
 bench/taps.sh
 echo
 python3 bench/summary.py "$out"
-echo "harness wall time: $(( $(date +%s) - t_start )) s (OMP_WAIT_POLICY=$OMP_WAIT_POLICY; $(nproc) cores; load $(cut -d' ' -f1-3 /proc/loadavg))"
+echo "harness wall time: $(( $(date +%s) - t_start )) s (OMP_WAIT_POLICY=${OMP_WAIT_POLICY:-default}; $(nproc) cores; load $(cut -d' ' -f1-3 /proc/loadavg))"

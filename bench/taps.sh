@@ -12,7 +12,7 @@
 # Full: 2 taps per run (paper ≈ 4–6 minutes in all). QUICK=1: the paper only with a 0.3 s tap period
 # at fixed period (its time per 3 s tap extrapolated ×10; no early rest), 1 tap elsewhere.
 # Environment: GS_BUILD_DIR (default build), GS_BENCH_RESULTS (file for "key value" lines),
-# OMP_WAIT_POLICY (default passive), GS_MPI_ARGS (default "--mca mpi_yield_when_idle 1").
+# OMP_WAIT_POLICY (default: the runtime's), GS_MPI_ARGS (default "--mca mpi_yield_when_idle 1").
 set -euo pipefail
 cd "$(dirname "$0")/.."
 . bench/common.sh  # OMP_WAIT_POLICY, mpi_args, root, gs

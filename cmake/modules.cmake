@@ -60,8 +60,9 @@ if(MPI_CXX_FOUND)
   target_link_libraries(gs_app PUBLIC MPI::MPI_CXX)
   target_compile_definitions(gs_app PUBLIC GS_HAVE_MPI=1)
 endif()
-# OpenMP: parallel force loops; results are bitwise independent of the thread count
+# OpenMP: parallel loops over particles and pairs (core/parallel.hpp); results are bitwise independent of the thread count
 if(OpenMP_CXX_FOUND)
-  target_link_libraries(gs_force PUBLIC OpenMP::OpenMP_CXX)
-  target_link_libraries(gs_sim PUBLIC OpenMP::OpenMP_CXX)
+  foreach(m integrate broadphase force drive sim)
+    target_link_libraries(gs_${m} PUBLIC OpenMP::OpenMP_CXX)
+  endforeach()
 endif()

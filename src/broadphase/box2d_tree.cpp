@@ -15,15 +15,17 @@ class Box2DTree final : public BroadPhase {
  public:
   const char* name() const override { return "box2d_tree"; }
 
-  void update(const World& w, std::vector<PairKey>& out) override {
+  using BroadPhase::update;
+  const std::vector<PairKey>& update(const World& w) override {
+    std::vector<PairKey>& out = out_;
     const std::size_t n = w.size();
     if (!built_ || n != n_) build(w);
 
     // move every particle's proxy (Box2D skips those still inside their fat AABB)
     for (std::size_t i = 0; i < n; ++i) {
       const b2Vec2 c(static_cast<float>(w.s.x[i] * inv_scale_), static_cast<float>(w.s.y[i] * inv_scale_));
-      const b2Vec2 disp = c - last_[i];
-      last_[i] = c;
+      const b2Vec2 disp = c - last_pos_[i];
+      last_pos_[i] = c;
       bp_->MoveProxy(proxy_[i], aabb_of(w, i), disp);
     }
 
@@ -52,6 +54,11 @@ class Box2DTree final : public BroadPhase {
         if (dx * dx + dy * dy < rr * rr) out.push_back(k);
       }
     }
+    if (out != last_) {
+      ++generation_;
+      last_ = out;
+    }
+    return out;
   }
 
   // b2BroadPhase::UpdatePairs callback: user data carries the body index + 1
@@ -83,10 +90,10 @@ class Box2DTree final : public BroadPhase {
     n_ = w.size();
     inv_scale_ = 1.0 / (2.0 * w.max_radius);
     proxy_.resize(n_);
-    last_.resize(n_);
+    last_pos_.resize(n_);
     for (std::size_t i = 0; i < n_; ++i) {
       proxy_[i] = bp_->CreateProxy(aabb_of(w, i), reinterpret_cast<void*>(i + 1));
-      last_[i].Set(static_cast<float>(w.s.x[i] * inv_scale_), static_cast<float>(w.s.y[i] * inv_scale_));
+      last_pos_[i].Set(static_cast<float>(w.s.x[i] * inv_scale_), static_cast<float>(w.s.y[i] * inv_scale_));
     }
     wall_proxy_.clear();
     for (std::size_t k = 0; k < w.walls.size(); ++k) {
@@ -106,8 +113,9 @@ class Box2DTree final : public BroadPhase {
   std::size_t n_ = 0;
   double inv_scale_ = 1.0;
   std::vector<int> proxy_, wall_proxy_;
-  std::vector<b2Vec2> last_;
+  std::vector<b2Vec2> last_pos_;
   std::vector<PairKey> pairs_, fresh_, merged_;
+  std::vector<PairKey> out_, last_;  ///< this update's candidates, and the previous ones
 };
 
 }  // namespace

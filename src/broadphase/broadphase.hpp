@@ -34,12 +34,21 @@ class BroadPhase {
  public:
   virtual ~BroadPhase() = default;
   /// the candidate pairs of the current state, sorted ascending, no duplicates: every pair
-  /// whose bounding circles (or circle and wall box) overlap is among them
-  virtual void update(const World& w, std::vector<PairKey>& out) = 0;
+  /// whose bounding circles (or circle and wall box) overlap is among them. The list stays
+  /// valid until the next call.
+  virtual const std::vector<PairKey>& update(const World& w) = 0;
+  /// the same, copied into out
+  void update(const World& w, std::vector<PairKey>& out) { out = update(w); }
   virtual const char* name() const = 0;
+  /// changes whenever update() may have returned a different list than the call before (the
+  /// force loop keeps a per-particle index of the candidates while it stays the same); never 0
+  std::uint64_t generation() const { return generation_; }
+
+ protected:
+  std::uint64_t generation_ = 1;
 };
 
-/// the broad phase a scene asks for (Auto: Box2D tree for walled boxes, cell grid otherwise)
+/// the broad phase a scene asks for (Auto: the ring's neighbours in 1D, else the cell grid)
 std::unique_ptr<BroadPhase> make_broadphase(BroadPhaseKind kind, const World& w);
 std::unique_ptr<BroadPhase> make_cell_grid();
 std::unique_ptr<BroadPhase> make_box2d_tree();

@@ -3,9 +3,11 @@
 // (so no pair can have come within contact unseen); periodic boxes wrap cells and use the
 // minimum image, fixed per pair until the next rebuild
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 #include "broadphase/broadphase.hpp"
+#include "core/parallel.hpp"
 
 namespace gs {
 namespace {
@@ -14,9 +16,13 @@ class CellGrid final : public BroadPhase {
  public:
   const char* name() const override { return "cell_grid"; }
 
-  void update(const World& w, std::vector<PairKey>& out) override {
-    if (needs_rebuild(w)) build(w);
-    out = pairs_;
+  using BroadPhase::update;
+  const std::vector<PairKey>& update(const World& w) override {
+    if (needs_rebuild(w)) {
+      build(w);
+      ++generation_;
+    }
+    return pairs_;
   }
 
  private:
@@ -25,11 +31,16 @@ class CellGrid final : public BroadPhase {
     const std::size_t n = w.size();
     if (n != bx_.size()) return true;
     const double lim = 0.25 * skin_ * skin_;
-    for (std::size_t i = 0; i < n; ++i) {
-      const double dx = w.s.x[i] - bx_[i], dy = w.s.y[i] - by_[i];
-      if (dx * dx + dy * dy > lim) return true;
-    }
-    return false;
+    std::atomic<bool> moved{false};  // an OR: the same answer whatever the thread count
+    parallel_ranges(n, kParallelMinCheap, [&](std::size_t b, std::size_t e) {
+      bool m = false;
+      for (std::size_t i = b; i < e; ++i) {
+        const double dx = w.s.x[i] - bx_[i], dy = w.s.y[i] - by_[i];
+        m = m || dx * dx + dy * dy > lim;
+      }
+      if (m) moved.store(true, std::memory_order_relaxed);
+    });
+    return moved.load();
   }
 
   void build(const World& w) {
@@ -85,53 +96,78 @@ class CellGrid final : public BroadPhase {
     fill_ = start_;
     for (std::size_t i = 0; i < n; ++i) order_[fill_[cell_of_[i]]++] = static_cast<int>(i);
 
-    // neighbour cells (deduplicated when the grid is narrower than three cells)
-    const std::uint32_t N = static_cast<std::uint32_t>(n);
-    for (std::size_t i = 0; i < n; ++i) {
-      const int ix = cell_of_[i] % nx_, iy = cell_of_[i] / nx_;
-      int cells[9], nc = 0;
-      for (int dy = -1; dy <= 1; ++dy) {
-        for (int dx = -1; dx <= 1; ++dx) {
-          int jx = ix + dx, jy = iy + dy;
-          if (periodic) {
-            jx = (jx + nx_) % nx_;
-            jy = (jy + ny_) % ny_;
-          } else if (jx < 0 || jy < 0 || jx >= nx_ || jy >= ny_) {
-            continue;
-          }
-          const int c = jy * nx_ + jx;
-          if (std::find(cells, cells + nc, c) == cells + nc) cells[nc++] = c;
-        }
-      }
-      const std::size_t first = out.size();
-      const Vec2 pi{w.s.x[i], w.s.y[i]};
-      for (int k = 0; k < nc; ++k) {
-        for (int q = start_[cells[k]]; q < start_[cells[k] + 1]; ++q) {
-          const std::size_t j = static_cast<std::size_t>(order_[q]);
-          if (j <= i) continue;
-          Vec2 d{w.s.x[j] - pi.x, w.s.y[j] - pi.y};
-          int sx = 0, sy = 0;
-          if (periodic) {
-            sx = -static_cast<int>(std::nearbyint(d.x / w.Lx));
-            d.x += sx * w.Lx;
-            if (!ring) {
-              sy = -static_cast<int>(std::nearbyint(d.y / w.Ly));
-              d.y += sy * w.Ly;
-            }
-          }
-          const double rr = w.radius[i] + w.radius[j] + skin_;
-          if (d.x * d.x + d.y * d.y < rr * rr)
-            out.push_back(make_key(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j),
-                                   make_image(sx, sy)));
-        }
-      }
-      // walls: circle against the wall's box
-      for (std::size_t k = 0; k < w.walls.size(); ++k)
-        if (circle_box_overlap(pi, w.radius[i] + skin_, w.walls[k].lo, w.walls[k].hi))
-          out.push_back(make_key(static_cast<std::uint32_t>(i), N + static_cast<std::uint32_t>(k),
-                                 kNoImage));
-      std::sort(out.begin() + first, out.end());
+    // each grain's partners above it, sorted: in parallel into per-thread lists over
+    // contiguous ranges of i, joined in range order (the same list for any thread count)
+    const auto nn = static_cast<std::int64_t>(n);
+#pragma omp parallel if (run_parallel(n, kParallelMin))
+    {
+#ifdef _OPENMP
+      const int t = omp_get_thread_num(), nt = omp_get_num_threads();
+#else
+      const int t = 0, nt = 1;
+#endif
+#pragma omp single
+      part_.resize(static_cast<std::size_t>(nt));
+      std::vector<PairKey>& mine = part_[static_cast<std::size_t>(t)];
+      mine.clear();
+      const std::int64_t i0 = nn * t / nt, i1 = nn * (t + 1) / nt;
+      for (std::int64_t i = i0; i < i1; ++i) partners(w, static_cast<std::size_t>(i), mine);
     }
+    std::size_t total = 0;
+    for (const auto& p : part_) total += p.size();
+    out.reserve(total);
+    for (const auto& p : part_) out.insert(out.end(), p.begin(), p.end());
+  }
+
+  // the partners j > i of grain i within reach (r_i + r_j + skin), and its walls, ascending
+  void partners(const World& w, std::size_t i, std::vector<PairKey>& out) const {
+    const std::uint32_t N = static_cast<std::uint32_t>(w.size());
+    const bool periodic = w.box == BoxKind::Periodic || w.box == BoxKind::Ring1D;
+    const bool ring = w.box == BoxKind::Ring1D;
+    // neighbour cells (deduplicated when the grid is narrower than three cells)
+    const int ix = cell_of_[i] % nx_, iy = cell_of_[i] / nx_;
+    int cells[9], nc = 0;
+    for (int dy = -1; dy <= 1; ++dy) {
+      for (int dx = -1; dx <= 1; ++dx) {
+        int jx = ix + dx, jy = iy + dy;
+        if (periodic) {
+          jx = (jx + nx_) % nx_;
+          jy = (jy + ny_) % ny_;
+        } else if (jx < 0 || jy < 0 || jx >= nx_ || jy >= ny_) {
+          continue;
+        }
+        const int c = jy * nx_ + jx;
+        if (std::find(cells, cells + nc, c) == cells + nc) cells[nc++] = c;
+      }
+    }
+    const std::size_t first = out.size();
+    const Vec2 pi{w.s.x[i], w.s.y[i]};
+    for (int k = 0; k < nc; ++k) {
+      for (int q = start_[cells[k]]; q < start_[cells[k] + 1]; ++q) {
+        const std::size_t j = static_cast<std::size_t>(order_[q]);
+        if (j <= i) continue;
+        Vec2 d{w.s.x[j] - pi.x, w.s.y[j] - pi.y};
+        int sx = 0, sy = 0;
+        if (periodic) {
+          sx = -static_cast<int>(std::nearbyint(d.x / w.Lx));
+          d.x += sx * w.Lx;
+          if (!ring) {
+            sy = -static_cast<int>(std::nearbyint(d.y / w.Ly));
+            d.y += sy * w.Ly;
+          }
+        }
+        const double rr = w.radius[i] + w.radius[j] + skin_;
+        if (d.x * d.x + d.y * d.y < rr * rr)
+          out.push_back(make_key(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j),
+                                 make_image(sx, sy)));
+      }
+    }
+    // walls: circle against the wall's box
+    for (std::size_t k = 0; k < w.walls.size(); ++k)
+      if (circle_box_overlap(pi, w.radius[i] + skin_, w.walls[k].lo, w.walls[k].hi))
+        out.push_back(make_key(static_cast<std::uint32_t>(i), N + static_cast<std::uint32_t>(k),
+                               kNoImage));
+    std::sort(out.begin() + static_cast<std::ptrdiff_t>(first), out.end());
   }
 
   int nx_ = 1, ny_ = 1;
@@ -139,6 +175,7 @@ class CellGrid final : public BroadPhase {
   std::vector<double> bx_, by_;      ///< positions at the last build, m
   std::vector<PairKey> pairs_;       ///< the pair list of the last build, sorted
   std::vector<int> cell_of_, start_, fill_, order_;
+  std::vector<std::vector<PairKey>> part_;  ///< per-thread partner lists of a build
 };
 
 }  // namespace
@@ -148,8 +185,9 @@ std::unique_ptr<BroadPhase> make_cell_grid() { return std::make_unique<CellGrid>
 std::unique_ptr<BroadPhase> make_broadphase(BroadPhaseKind kind, const World& w) {
   // the 1D ring: neighbour contacts only, order preserved (SPEC 5.2)
   if (kind == BroadPhaseKind::Auto && w.box == BoxKind::Ring1D) return make_ring_neighbours();
-  if (kind == BroadPhaseKind::Auto)
-    kind = w.box == BoxKind::Walls ? BroadPhaseKind::Box2DTree : BroadPhaseKind::CellGrid;
+  // Auto: the cell grid everywhere, measured faster than Box2D's tree in both walled benchmark
+  // scenes (10⁴ settled disks 1.5×, the settled 1184-decagon pile 7 %); the tree stays selectable
+  if (kind == BroadPhaseKind::Auto) kind = BroadPhaseKind::CellGrid;
   if (kind == BroadPhaseKind::Box2DTree && w.box != BoxKind::Walls)
     kind = BroadPhaseKind::CellGrid;  // Box2D has no periodic wrapping
   return kind == BroadPhaseKind::Box2DTree ? make_box2d_tree() : make_cell_grid();

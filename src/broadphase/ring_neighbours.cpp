@@ -19,11 +19,14 @@ class RingNeighbours final : public BroadPhase {
  public:
   const char* name() const override { return "ring_neighbours"; }
 
-  void update(const World& w, std::vector<PairKey>& out) override {
+  using BroadPhase::update;
+  const std::vector<PairKey>& update(const World& w) override {
     const std::size_t n = w.size();
     if (n < 2) {
-      out.clear();
-      return;
+      if (!keys_.empty()) ++generation_;
+      keys_.clear();
+      shift_.clear();
+      return keys_;
     }
     const double L = w.Lx;
     // pair k links `behind` = k and `ahead` = k + 1 (the last one: N−1 → 0); its shift is
@@ -42,8 +45,11 @@ class RingNeighbours final : public BroadPhase {
         stale_ = true;
       }
     }
-    if (stale_) build(n);
-    out = keys_;
+    if (stale_) {
+      build(n);
+      ++generation_;
+    }
+    return keys_;
   }
 
  private:

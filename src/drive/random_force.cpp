@@ -1,7 +1,9 @@
 #include "drive/random_force.hpp"
 
+#include <algorithm>
 #include <cmath>
 
+#include "core/parallel.hpp"
 #include "core/rng.hpp"
 
 namespace gs {
@@ -27,27 +29,42 @@ void add_random_force(const World& w, const std::vector<std::uint64_t>& keys, st
   const std::size_t n = w.size();
   const double sigma = std::sqrt(2.0 * D / dt);  // per component (T.2.16)
   const bool ring = w.box == BoxKind::Ring1D;
-  double mean = 0.0;
+  std::vector<double> kick(ring ? n : 0);
   for (std::size_t i = 0; i < n; ++i) {
-    // stream (seed, particle); its counter is a function of the step alone
-    RngStream r;
-    r.key = keys[i];
-    r.counter = static_cast<std::uint64_t>(step) << 8;  // 256 values per step: ample for 2 normals
-    const double z0 = r.normal_fast();
-    const double z1 = ring ? 0.0 : r.normal_fast();
+    double z0, z1;
+    noise_normals(keys[i], step, ring, z0, z1);
     const double ex = sigma * z0 * w.inv_mass[i];
     ax[i] += ex;
     if (ring) {
-      mean += ex * w.mass[i];
+      kick[i] = ex;
     } else {
       ay[i] += sigma * z1 * w.inv_mass[i];
     }
   }
-  // 1D: symmetrise the kicks every step, η_i → η_i − ⟨η⟩ (T.2.18)
-  if (ring && n > 0) {
-    mean /= static_cast<double>(n);
-    for (std::size_t i = 0; i < n; ++i) ax[i] -= mean * w.inv_mass[i];
-  }
+  if (ring) symmetrise_ring_kicks(w, kick, ax);
+}
+
+// η_i → η_i − ⟨η⟩: the mean momentum kick over fixed blocks (one block: the plain sum)
+void symmetrise_ring_kicks(const World& w, const std::vector<double>& kick,
+                           std::vector<double>& ax) {
+  const std::size_t n = w.size();
+  if (n == 0) return;
+  const std::size_t nb = (n + kSumBlock - 1) / kSumBlock;
+  std::vector<double> part(nb, 0.0);
+  parallel_chunks(nb, 2, 1, [&](std::size_t b0, std::size_t b1) {
+    for (std::size_t b = b0; b < b1; ++b) {
+      const std::size_t i1 = std::min(n, (b + 1) * kSumBlock);
+      double m = 0.0;
+      for (std::size_t i = b * kSumBlock; i < i1; ++i) m += kick[i] * w.mass[i];
+      part[b] = m;
+    }
+  });
+  double mean = 0.0;
+  for (double m : part) mean += m;
+  mean /= static_cast<double>(n);
+  parallel_ranges(n, kParallelMinCheap, [&](std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i) ax[i] -= mean * w.inv_mass[i];
+  });
 }
 
 void remove_com_velocity(World& w) {

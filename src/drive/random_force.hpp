@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/rng.hpp"
 #include "world/world.hpp"
 
 namespace gs {
@@ -12,6 +13,23 @@ namespace gs {
 /// the stream keys of particles 0…n−1 for `seed` (RngStream(seed, stream of i).key): computed
 /// once per run instead of twice per particle and step
 std::vector<std::uint64_t> random_force_keys(std::uint64_t seed, std::size_t n);
+
+/// the standard normals of one particle's kick at step `step`, from its stream key: stream
+/// (seed, particle), counter a function of the step alone; the ring draws z0 only
+inline void noise_normals(std::uint64_t key, std::int64_t step, bool ring, double& z0,
+                          double& z1) {
+  RngStream r;
+  r.key = key;
+  r.counter = static_cast<std::uint64_t>(step) << 8;  // 256 values per step: ample for 2 normals
+  z0 = r.normal_fast();
+  z1 = ring ? 0.0 : r.normal_fast();
+}
+
+/// the ring's symmetrisation (T.2.18): subtract the mean kick ⟨η⟩ from every particle, given
+/// each particle's kick acceleration; the mean is a blocked sum (kSumBlock), bitwise
+/// independent of the thread count
+void symmetrise_ring_kicks(const World& w, const std::vector<double>& kick,
+                           std::vector<double>& ax);
 
 /// add the noise accelerations η/M of step `step` to (ax, ay); ring: x only, symmetrised (T.2.18)
 void add_random_force(const World& w, std::uint64_t seed, std::int64_t step, double D, double dt,

@@ -4,6 +4,8 @@
 #include <cmath>
 
 #include "contact/narrow.hpp"
+#include "core/error.hpp"
+#include "core/parallel.hpp"
 
 namespace gs {
 namespace {
@@ -12,10 +14,6 @@ namespace {
 law::PolyLawParams poly_params(const MaterialSpec& a, const MaterialSpec& b) {
   return {0.5 * (a.E + b.E), 0.5 * (a.gamma + b.gamma), 0.5 * (a.mu + b.mu)};
 }
-
-// below this many items a parallel region costs more than it saves (and on a busy machine
-// far more: waiting threads lose their time slices)
-constexpr std::size_t kParallelMin = 1000;
 
 // position of j's periodic image as seen from i
 Vec2 image_pos(const World& w, std::uint32_t j, std::uint32_t image) {
@@ -79,13 +77,142 @@ ContactModel::ContactModel(const World& w) : nsp_(w.species.size()) {
   for (const Species& sp : w.species) max_sides_ = std::max(max_sides_, sp.body.n);
 }
 
+// Model P (SPEC 2.2): overlap-area normal force with Cundall–Strack friction
+bool ContactModel::polygon_pair(const World& w, PairKey key, const ContactSet& cs,
+                                std::size_t& hint, double dt, PairForce& pf,
+                                PairResult& pr) const {
+  const std::uint32_t N = static_cast<std::uint32_t>(w.size());
+  const std::size_t stride = nsp_ + 1;
+  const std::uint32_t i = key_i(key), j = key_j(key);
+  const bool wall = j >= N;
+  const Vec2 xi{w.s.x[i], w.s.y[i]};
+  ContactGeom g;
+  Vec2 xj;
+  if (wall) {
+    g = polygon_polygon(shapes_.ref(i), wall_shapes_.ref(j - N), w.walls[j - N].normal);
+  } else {
+    xj = image_pos(w, j, key_image(key));
+    if (key_image(key) == kNoImage) {
+      g = polygon_polygon(shapes_.ref(i), shapes_.ref(j), xj - xi);
+    } else {  // a periodic image: shift a copy of j's polygon (general routine)
+      const Poly pi = shapes_.poly(i);
+      Poly pj = shapes_.poly(j);
+      for (int v = 0; v < pj.n; ++v) pj.v[v] += xj - Vec2{w.s.x[j], w.s.y[j]};
+      g = polygon_polygon(BodyView{xi, w.radius[i], &pi}, BodyView{xj, w.radius[j], &pj});
+    }
+  }
+  if (!g.touching) return false;
+
+  // the contact's history, if it touched last step: last step's keys are searched forward
+  // from the previous hit of this thread (candidates ascend), else by bisection
+  ContactState state;
+  const std::vector<PairKey>& old_keys = cs.keys;
+  hint = history_index(old_keys, key, hint);
+  if (hint < old_keys.size() && old_keys[hint] == key) state = cs.state[hint];
+
+  // geometry of the pair (P.29–P.33): l, m⊥, m∥
+  const std::size_t si = w.sp[i];
+  const law::PolyLawParams& p = poly_[si * stride + (wall ? nsp_ : w.sp[j])];
+  const double ri = w.radius[i];
+  double l, m_perp, inv_m_par = w.inv_mass[i] + ri * ri * w.inv_inertia[i];
+  if (wall) {
+    l = ri;
+    m_perp = w.mass[i];
+  } else {
+    const double rj = w.radius[j];
+    l = ri * rj / (ri + rj);
+    m_perp = w.mass[i] * w.mass[j] / (w.mass[i] + w.mass[j]);
+    inv_m_par += w.inv_mass[j] + rj * rj * w.inv_inertia[j];
+  }
+  const double m_par = 1.0 / inv_m_par;
+
+  // relative velocity of i against j at the contact point
+  const Vec2 ri_s = g.s - xi;
+  Vec2 vrel = Vec2{w.s.vx[i], w.s.vy[i]} + cross(w.s.w[i], ri_s);
+  if (!wall) vrel -= Vec2{w.s.vx[j], w.s.vy[j]} + cross(w.s.w[j], g.s - xj);
+  const Vec2 t = perp(g.n);
+  const double vn = dot(vrel, g.n), vt = dot(vrel, t);
+
+  // normal force (P.34) with ḣ_eff analytic (chord × approach speed / l) or by difference
+  const double h = g.overlap / l;
+  const double hdot = hdot_fd_ ? (h - state.h_prev) / dt  // h_prev = 0 before first touch
+                               : g.chord * vn / l;
+  state.h_prev = h;
+  const double fn = law::poly_normal_force(p, h, hdot, m_perp);
+  // tangential force (P.35–P.36); the force on i opposes its sliding: −F∥·t
+  const double ft = law::cundall_strack(p, state.spring, vt, fn, m_par, dt);
+
+  // the same dashpot spread along the contact line: its moment about s damps relative
+  // rotation, ∫ x·(γ√(E m⊥)/l)·ω_rel·x dx = γ√(E m⊥)·L³/(12 l)·ω_rel (only while pressing)
+  double couple = 0.0;
+  if (rocking_ && fn > 0.0) {
+    const double w_rel = w.s.w[i] - (wall ? 0.0 : w.s.w[j]);
+    couple = p.gamma * std::sqrt(p.E * m_perp) * g.chord * g.chord * g.chord / (12.0 * l) * w_rel;
+  }
+  // j gets +fn·n + ft·t, i the opposite; torques about each centre
+  const Vec2 F = g.n * fn + perp(g.n) * ft;
+  pf = {F.x, F.y, cross(g.s - xi, F) + couple, wall ? 0.0 : cross(g.s - xj, F) + couple};
+  pr = {g.degenerate, g.s, g.n, fn, ft, g.overlap, h, state};
+  return true;
+}
+
+// Model S (SPEC 3): linear spring, normal and tangential dashpots, optional friction
+[[gnu::always_inline]] inline bool ContactModel::disk_pair(const World& w, PairKey key,
+                                                            PairForce& pf, PairResult& pr) const {
+  const std::uint32_t N = static_cast<std::uint32_t>(w.size());
+  const std::uint32_t i = key_i(key), j = key_j(key);
+  const bool wall = j >= N;
+  const Vec2 xi{w.s.x[i], w.s.y[i]};
+  const BodyView bi{xi, w.radius[i], nullptr};
+  const ContactGeom g = wall ? disk_wall(bi, w.walls[j - N])
+                             : disk_disk(bi, BodyView{image_pos(w, j, key_image(key)),
+                                                      w.radius[j], nullptr});
+  if (!g.touching) return false;
+  Vec2 vrel{w.s.vx[i], w.s.vy[i]};
+  if (!wall) vrel -= Vec2{w.s.vx[j], w.s.vy[j]};
+  const Vec2 t = perp(g.n);
+  const law::DiskLawParams& p = disk_[w.sp[i] * (nsp_ + 1) + (wall ? nsp_ : w.sp[j])];
+  const law::DiskForce df = law::linear_spring_dashpot(p, g.overlap, dot(vrel, g.n), dot(vrel, t));
+  const Vec2 F = g.n * df.fn + t * df.ft;
+  pf = {F.x, F.y, 0.0, 0.0};
+  pr.degenerate = false;
+  pr.s = g.s;
+  pr.n = g.n;
+  pr.fn = df.fn;
+  pr.ft = df.ft;
+  pr.overlap = g.overlap;
+  pr.h = g.overlap;
+  return true;
+}
+
+// Below the thresholds a plain loop over the candidates sums each pair's force into its two
+// particles as it goes. Above them: pairs in parallel into per-candidate slots → touching ones
+// compacted into the contact set in fixed blocks → each particle's forces summed over its own
+// pairs in candidate order, from zero. Each particle's terms are the same in the same order
+// either way, so the forces are bitwise the same on any number of threads, serial or parallel.
 ForceStats ContactModel::evaluate(const World& w, const std::vector<PairKey>& cand,
-                                  ContactSet& cs, ForceBuffer& f, double dt) {
-  new_keys_.clear();
-  new_state_.clear();
-  new_records_.clear();
-  ForceStats st = w.polygons() ? evaluate_polygons(w, cand, cs, f, dt)
-                               : evaluate_disks(w, cand, cs, f);
+                                  ContactSet& cs, ForceBuffer& f, double dt,
+                                  std::uint64_t generation) {
+  const std::size_t n = w.size();
+  const std::size_t ncand = cand.size();
+  const bool poly = w.polygons();
+  if (ncand >= (std::size_t{1} << 31))
+    throw std::length_error("ContactModel::evaluate: more than 2^31 candidate pairs");
+  if (poly) place_shapes(w);
+  f.fx.resize(n);
+  f.fy.resize(n);
+  f.tq.resize(poly ? n : 0);
+  ForceStats st;
+  if (run_parallel(ncand, poly ? kParallelMin : kParallelMinCheap)) {
+    const bool reindex = generation == 0 || generation != indexed_generation_ ||
+                         n != indexed_n_ || ncand != indexed_count_;
+    st = evaluate_parallel(w, cand, cs, f, dt, reindex);
+    indexed_generation_ = generation;
+    indexed_n_ = n;
+    indexed_count_ = ncand;
+  } else {
+    st = evaluate_serial(w, cand, cs, f, dt);
+  }
   cs.keys.swap(new_keys_);
   cs.state.swap(new_state_);
   cs.records.swap(new_records_);
@@ -94,168 +221,164 @@ ForceStats ContactModel::evaluate(const World& w, const std::vector<PairKey>& ca
   return st;
 }
 
-// Model P (SPEC 2.2): overlap-area normal force with Cundall–Strack friction. The pairs are
-// evaluated in parallel into a per-candidate array; forces are then summed serially in key
-// order, so the result is bitwise the same for any number of threads.
-ForceStats ContactModel::evaluate_polygons(const World& w, const std::vector<PairKey>& cand,
-                                           ContactSet& cs, ForceBuffer& f, double dt) {
-  ForceStats st;
+// world-frame polygons once per step, with their edges and bounding circles
+void ContactModel::place_shapes(const World& w) {
   const std::size_t n = w.size();
-  const std::uint32_t N = static_cast<std::uint32_t>(n);
-  const std::size_t stride = nsp_ + 1;
-  const std::int64_t ncand = static_cast<std::int64_t>(cand.size());
-  // world-frame polygons once per step, with their edges and bounding circles
   shapes_.resize(n, max_sides_);
   int wall_n = 0;
   for (const Wall& wl : w.walls) wall_n = std::max(wall_n, wl.poly.n);
   wall_shapes_.resize(w.walls.size(), wall_n);
   for (std::size_t k = 0; k < w.walls.size(); ++k) wall_shapes_.set(k, w.walls[k].poly);
-#pragma omp parallel for schedule(static) if (n >= kParallelMin)
-  for (std::int64_t i = 0; i < static_cast<std::int64_t>(n); ++i)
-    shapes_.set_placed(i, w.species[w.sp[i]].body, {w.s.x[i], w.s.y[i]}, w.s.th[i]);
-  pair_out_.resize(cand.size());
+  parallel_ranges(n, kParallelMin, [&](std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i)
+      shapes_.set_placed(i, w.species[w.sp[i]].body, {w.s.x[i], w.s.y[i]}, w.s.th[i]);
+  });
+}
 
-  const std::vector<PairKey>& old_keys = cs.keys;
-#pragma omp parallel if (cand.size() >= kParallelMin)
-  {
-    std::size_t hint = 0;  // where this thread's last history search ended
-#pragma omp for schedule(dynamic, 64)
-    for (std::int64_t k = 0; k < ncand; ++k) {
-      const PairKey key = cand[k];
-      PairResult& out = pair_out_[k];
-      out.touching = false;
+// the contact's statistics: h_eff (or δ) and the same over the smaller grain's radius
+static void note_overlap(ForceStats& st, const World& w, PairKey key, double h, bool degenerate) {
+  const std::uint32_t i = key_i(key), j = key_j(key);
+  const double ri = w.radius[i];
+  st.degenerate += degenerate;
+  st.max_overlap = std::max(st.max_overlap, h);
+  st.max_overlap_rel =
+      std::max(st.max_overlap_rel, h / (j >= w.size() ? ri : std::min(ri, w.radius[j])));
+}
+
+ForceStats ContactModel::evaluate_serial(const World& w, const std::vector<PairKey>& cand,
+                                         const ContactSet& cs, ForceBuffer& f, double dt) {
+  const bool poly = w.polygons();
+  const std::uint32_t N = static_cast<std::uint32_t>(w.size());
+  std::fill(f.fx.begin(), f.fx.end(), 0.0);
+  std::fill(f.fy.begin(), f.fy.end(), 0.0);
+  std::fill(f.tq.begin(), f.tq.end(), 0.0);
+  new_keys_.clear();
+  new_state_.clear();
+  new_records_.clear();
+  ForceStats st;
+  PairForce pf;
+  PairResult r;
+  // one loop per model, so that the disk loop is free of polygon branches
+  auto run = [&](auto&& pair) {
+    for (PairKey key : cand) {
+      if (!pair(key)) continue;
       const std::uint32_t i = key_i(key), j = key_j(key);
-      const bool wall = j >= N;
-      const Vec2 xi{w.s.x[i], w.s.y[i]};
-      ContactGeom g;
-      Vec2 xj;
-      if (wall) {
-        g = polygon_polygon(shapes_.ref(i), wall_shapes_.ref(j - N), w.walls[j - N].normal);
-      } else {
-        xj = image_pos(w, j, key_image(key));
-        if (key_image(key) == kNoImage) {
-          g = polygon_polygon(shapes_.ref(i), shapes_.ref(j), xj - xi);
-        } else {  // a periodic image: shift a copy of j's polygon (general routine)
-          const Poly pi = shapes_.poly(i);
-          Poly pj = shapes_.poly(j);
-          for (int v = 0; v < pj.n; ++v) pj.v[v] += xj - Vec2{w.s.x[j], w.s.y[j]};
-          g = polygon_polygon(BodyView{xi, w.radius[i], &pi}, BodyView{xj, w.radius[j], &pj});
+      f.fx[i] -= pf.fx;
+      f.fy[i] -= pf.fy;
+      if (poly) f.tq[i] -= pf.ti;
+      if (j < N) {
+        f.fx[j] += pf.fx;
+        f.fy[j] += pf.fy;
+        if (poly) f.tq[j] += pf.tj;
+      }
+      new_keys_.push_back(key);
+      new_records_.push_back({key, r.s, r.n, r.fn, r.ft, r.overlap});
+      if (poly) new_state_.push_back(r.state);
+      note_overlap(st, w, key, r.h, r.degenerate);
+    }
+  };
+  std::size_t hint = 0;
+  if (poly)
+    run([&](PairKey key) { return polygon_pair(w, key, cs, hint, dt, pf, r); });
+  else
+    run([&](PairKey key) { return disk_pair(w, key, pf, r); });
+  return st;
+}
+
+ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<PairKey>& cand,
+                                           const ContactSet& cs, ForceBuffer& f, double dt,
+                                           bool reindex) {
+  const std::size_t n = w.size();
+  const std::size_t ncand = cand.size();
+  const bool poly = w.polygons();
+  if (reindex) index_candidates(cand, n);
+  touch_.resize(ncand);
+  pair_f_.resize(ncand);
+  pair_r_.resize(ncand);
+  // every candidate pair; a chunk's history search resumes where its last one ended
+  parallel_chunks(ncand, 0, poly ? 64 : 512, [&](std::size_t b, std::size_t e) {
+    std::size_t hint = 0;
+    for (std::size_t k = b; k < e; ++k)
+      touch_[k] = poly ? polygon_pair(w, cand[k], cs, hint, dt, pair_f_[k], pair_r_[k])
+                       : disk_pair(w, cand[k], pair_f_[k], pair_r_[k]);
+  });
+  // the touching pairs' places in the contact set, block by block
+  const std::size_t nblocks = (ncand + kSumBlock - 1) / kSumBlock;
+  block_first_.resize(nblocks);
+  block_stats_.assign(nblocks, {});
+  std::size_t total = 0;
+  for (std::size_t b = 0; b < nblocks; ++b) {
+    block_first_[b] = total;
+    const std::size_t k1 = std::min(ncand, (b + 1) * kSumBlock);
+    for (std::size_t k = b * kSumBlock; k < k1; ++k) total += touch_[k];
+  }
+  new_keys_.resize(total);
+  new_records_.resize(total);
+  new_state_.resize(poly ? total : 0);
+  parallel_chunks(nblocks, 2, 1, [&](std::size_t b0, std::size_t b1) {
+    for (std::size_t b = b0; b < b1; ++b) {
+      std::size_t out = block_first_[b];
+      const std::size_t k1 = std::min(ncand, (b + 1) * kSumBlock);
+      for (std::size_t k = b * kSumBlock; k < k1; ++k) {
+        if (!touch_[k]) continue;
+        const PairKey key = cand[k];
+        const PairResult& r = pair_r_[k];
+        new_keys_[out] = key;
+        new_records_[out] = {key, r.s, r.n, r.fn, r.ft, r.overlap};
+        if (poly) new_state_[out] = r.state;
+        ++out;
+        note_overlap(block_stats_[b], w, key, r.h, r.degenerate);
+      }
+    }
+  });
+  // each particle's forces: its pairs in candidate order, from zero
+  parallel_ranges(n, 0, [&](std::size_t p0, std::size_t p1) {
+    for (std::size_t p = p0; p < p1; ++p) {
+      double fx = 0.0, fy = 0.0, tq = 0.0;
+      for (std::uint32_t e = cand_start_[p]; e < cand_start_[p + 1]; ++e) {
+        const std::uint32_t k = cand_entry_[e] >> 1;
+        if (!touch_[k]) continue;
+        const PairForce& r = pair_f_[k];
+        if (cand_entry_[e] & 1u) {
+          fx += r.fx;
+          fy += r.fy;
+          tq += r.tj;
+        } else {
+          fx -= r.fx;
+          fy -= r.fy;
+          tq -= r.ti;
         }
       }
-      if (!g.touching) continue;
-
-      // the contact's history, if it touched last step: last step's keys are searched forward
-      // from the previous hit of this thread (candidates ascend), else by bisection
-      ContactState state;
-      hint = history_index(old_keys, key, hint);
-      if (hint < old_keys.size() && old_keys[hint] == key) state = cs.state[hint];
-
-      // geometry of the pair (P.29–P.33): l, m⊥, m∥
-      const std::size_t si = w.sp[i];
-      const law::PolyLawParams& p = poly_[si * stride + (wall ? nsp_ : w.sp[j])];
-      const double ri = w.radius[i];
-      double l, m_perp, inv_m_par = w.inv_mass[i] + ri * ri * w.inv_inertia[i];
-      if (wall) {
-        l = ri;
-        m_perp = w.mass[i];
-      } else {
-        const double rj = w.radius[j];
-        l = ri * rj / (ri + rj);
-        m_perp = w.mass[i] * w.mass[j] / (w.mass[i] + w.mass[j]);
-        inv_m_par += w.inv_mass[j] + rj * rj * w.inv_inertia[j];
-      }
-      const double m_par = 1.0 / inv_m_par;
-
-      // relative velocity of i against j at the contact point
-      const Vec2 ri_s = g.s - xi;
-      Vec2 vrel = Vec2{w.s.vx[i], w.s.vy[i]} + cross(w.s.w[i], ri_s);
-      if (!wall) vrel -= Vec2{w.s.vx[j], w.s.vy[j]} + cross(w.s.w[j], g.s - xj);
-      const Vec2 t = perp(g.n);
-      const double vn = dot(vrel, g.n), vt = dot(vrel, t);
-
-      // normal force (P.34) with ḣ_eff analytic (chord × approach speed / l) or by difference
-      const double h = g.overlap / l;
-      const double hdot = hdot_fd_ ? (h - state.h_prev) / dt  // h_prev = 0 before first touch
-                                   : g.chord * vn / l;
-      state.h_prev = h;
-      const double fn = law::poly_normal_force(p, h, hdot, m_perp);
-      // tangential force (P.35–P.36); the force on i opposes its sliding: −F∥·t
-      const double ft = law::cundall_strack(p, state.spring, vt, fn, m_par, dt);
-
-      // the same dashpot spread along the contact line: its moment about s damps relative
-      // rotation, ∫ x·(γ√(E m⊥)/l)·ω_rel·x dx = γ√(E m⊥)·L³/(12 l)·ω_rel (only while pressing)
-      double couple = 0.0;
-      if (rocking_ && fn > 0.0) {
-        const double w_rel = w.s.w[i] - (wall ? 0.0 : w.s.w[j]);
-        couple = p.gamma * std::sqrt(p.E * m_perp) * g.chord * g.chord * g.chord / (12.0 * l) *
-                 w_rel;
-      }
-      out = {true, g.degenerate, g.s, g.n, xj, fn, ft, couple, g.overlap, h, state};
+      f.fx[p] = fx;
+      f.fy[p] = fy;
+      if (poly) f.tq[p] = tq;
     }
-  }  // omp parallel
-
-  // accumulate in key order: j gets +fn·n + ft·t, i the opposite; torques about each centre
-  for (std::int64_t k = 0; k < ncand; ++k) {
-    const PairResult& r = pair_out_[k];
-    if (!r.touching) continue;
-    const PairKey key = cand[k];
-    const std::uint32_t i = key_i(key), j = key_j(key);
-    const bool wall = j >= N;
-    const Vec2 F = r.n * r.fn + perp(r.n) * r.ft;
-    const Vec2 xi{w.s.x[i], w.s.y[i]};
-    f.fx[i] -= F.x;
-    f.fy[i] -= F.y;
-    f.tq[i] -= cross(r.s - xi, F) + r.couple;
-    if (!wall) {
-      f.fx[j] += F.x;
-      f.fy[j] += F.y;
-      f.tq[j] += cross(r.s - r.xj, F) + r.couple;
-    }
-    new_keys_.push_back(key);
-    new_state_.push_back(r.state);
-    new_records_.push_back({key, r.s, r.n, r.fn, r.ft, r.overlap});
-    if (r.degenerate) ++st.degenerate;
-    const double ri = w.radius[i];
-    st.max_overlap = std::max(st.max_overlap, r.h);
-    st.max_overlap_rel = std::max(st.max_overlap_rel, r.h / (wall ? ri : std::min(ri, w.radius[j])));
+  });
+  ForceStats st;
+  for (const ForceStats& b : block_stats_) {
+    st.degenerate += b.degenerate;
+    st.max_overlap = std::max(st.max_overlap, b.max_overlap);
+    st.max_overlap_rel = std::max(st.max_overlap_rel, b.max_overlap_rel);
   }
   return st;
 }
 
-// Model S (SPEC 3): linear spring, normal and tangential dashpots, optional friction
-ForceStats ContactModel::evaluate_disks(const World& w, const std::vector<PairKey>& cand,
-                                        ContactSet&, ForceBuffer& f) {
-  ForceStats st;
-  const std::uint32_t N = static_cast<std::uint32_t>(w.size());
-  const std::size_t stride = nsp_ + 1;
+// counting sort of the candidates' (k, side) entries by particle: ascending k per particle
+void ContactModel::index_candidates(const std::vector<PairKey>& cand, std::size_t n) {
+  const std::uint32_t N = static_cast<std::uint32_t>(n);
+  cand_start_.assign(n + 1, 0);
   for (PairKey key : cand) {
-    const std::uint32_t i = key_i(key), j = key_j(key);
-    const bool wall = j >= N;
-    const Vec2 xi{w.s.x[i], w.s.y[i]};
-    const BodyView bi{xi, w.radius[i], nullptr};
-    const ContactGeom g = wall ? disk_wall(bi, w.walls[j - N])
-                               : disk_disk(bi, BodyView{image_pos(w, j, key_image(key)),
-                                                        w.radius[j], nullptr});
-    if (!g.touching) continue;
-    Vec2 vrel{w.s.vx[i], w.s.vy[i]};
-    if (!wall) vrel -= Vec2{w.s.vx[j], w.s.vy[j]};
-    const Vec2 t = perp(g.n);
-    const law::DiskLawParams& p = disk_[w.sp[i] * stride + (wall ? nsp_ : w.sp[j])];
-    const law::DiskForce df = law::linear_spring_dashpot(p, g.overlap, dot(vrel, g.n), dot(vrel, t));
-    const Vec2 F = g.n * df.fn + t * df.ft;
-    f.fx[i] -= F.x;
-    f.fy[i] -= F.y;
-    if (!wall) {
-      f.fx[j] += F.x;
-      f.fy[j] += F.y;
-    }
-    new_keys_.push_back(key);
-    new_records_.push_back({key, g.s, g.n, df.fn, df.ft, g.overlap});
-    st.max_overlap = std::max(st.max_overlap, g.overlap);
-    st.max_overlap_rel = std::max(st.max_overlap_rel,
-                                  g.overlap / (wall ? w.radius[i] : std::min(w.radius[i], w.radius[j])));
+    ++cand_start_[key_i(key) + 1];
+    if (key_j(key) < N) ++cand_start_[key_j(key) + 1];
   }
-  return st;
+  for (std::size_t p = 0; p < n; ++p) cand_start_[p + 1] += cand_start_[p];
+  cand_entry_.resize(cand_start_[n]);
+  fill_.assign(cand_start_.begin(), cand_start_.end() - 1);
+  for (std::size_t k = 0; k < cand.size(); ++k) {
+    const auto e = static_cast<std::uint32_t>(k << 1);
+    cand_entry_[fill_[key_i(cand[k])]++] = e;
+    if (key_j(cand[k]) < N) cand_entry_[fill_[key_j(cand[k])]++] = e | 1u;
+  }
 }
 
 }  // namespace gs

@@ -1,6 +1,7 @@
 // the force stage: one loop over the candidate pairs per model, narrow phase then law, forces
 // and torques accumulated per particle; body forces (gravity, noise) are added by the drive
 #pragma once
+#include <cstdint>
 #include <vector>
 
 #include "contact/contact_set.hpp"
@@ -11,7 +12,8 @@
 
 namespace gs {
 
-/// per-step force accumulators (N, N·m)
+/// per-step contact forces and torques on each particle (N, N·m); ContactModel::evaluate
+/// overwrites them (tq only for polygon models; disks exert no contact torque)
 struct ForceBuffer {
   std::vector<double> fx, fy, tq;
   void reset(std::size_t n) {
@@ -33,17 +35,30 @@ struct ForceStats {
 class ContactModel {
  public:
   explicit ContactModel(const World& w);
-  /// evaluate every contact among the candidates; update the contact set; add to f
+  /// evaluate every contact among the candidates, update the contact set, and set f to the
+  /// contact forces (f.tq: polygon models only). `generation` identifies the candidate list
+  /// (BroadPhase::generation()): an unchanged list reuses its per-particle index; 0 = unknown.
+  /// Pairs are evaluated in parallel, then each particle's forces are summed over its pairs in
+  /// candidate order, so the result is bitwise the same for any number of threads.
   ForceStats evaluate(const World& w, const std::vector<PairKey>& candidates, ContactSet& cs,
-                      ForceBuffer& f, double dt);
+                      ForceBuffer& f, double dt, std::uint64_t generation = 0);
   /// the stiffest binary contact time of the scene (for Δt advice), s
   double min_contact_time() const { return min_contact_time_; }
 
  private:
-  ForceStats evaluate_polygons(const World& w, const std::vector<PairKey>& cand, ContactSet& cs,
-                               ForceBuffer& f, double dt);
-  ForceStats evaluate_disks(const World& w, const std::vector<PairKey>& cand, ContactSet& cs,
-                            ForceBuffer& f);
+  struct PairForce;
+  struct PairResult;
+  // one candidate: narrow phase and law; false when the pair does not touch
+  bool polygon_pair(const World& w, PairKey key, const ContactSet& cs, std::size_t& hint,
+                    double dt, PairForce& pf, PairResult& pr) const;
+  bool disk_pair(const World& w, PairKey key, PairForce& pf, PairResult& pr) const;
+  void place_shapes(const World& w);
+  ForceStats evaluate_serial(const World& w, const std::vector<PairKey>& cand,
+                             const ContactSet& cs, ForceBuffer& f, double dt);
+  ForceStats evaluate_parallel(const World& w, const std::vector<PairKey>& cand,
+                               const ContactSet& cs, ForceBuffer& f, double dt, bool reindex);
+  // the per-particle index of the candidates (CSR, ascending candidate order per particle)
+  void index_candidates(const std::vector<PairKey>& cand, std::size_t n);
   std::size_t nsp_ = 0;
   std::vector<law::PolyLawParams> poly_;   ///< [si * (nsp+1) + sj], sj = nsp for walls
   std::vector<law::DiskLawParams> disk_;   ///< same layout
@@ -53,15 +68,28 @@ class ContactModel {
   PolyStore shapes_;       ///< world-frame polygons of this step, prepared for the overlap
   PolyStore wall_shapes_;  ///< the walls' polygons, prepared once
   int max_sides_ = 0;      ///< most vertices of any species' polygon
-  /// one candidate pair's outcome, computed in parallel and summed in key order
+  /// one touching pair's force on j (i gets the opposite) and the torques about each centre
+  struct PairForce {
+    double fx = 0, fy = 0, ti = 0, tj = 0;
+  };
+  /// what a touching pair leaves for the contact set and the step's statistics
   struct PairResult {
-    bool touching = false;
     bool degenerate = false;
-    Vec2 s, n, xj;        ///< contact point, normal, j's (image) centre
-    double fn = 0, ft = 0, couple = 0, overlap = 0, h = 0;
+    Vec2 s, n;            ///< contact point, normal
+    double fn = 0, ft = 0, overlap = 0, h = 0;  ///< h: h_eff (polygons) or δ (disks), m
     ContactState state;
   };
-  std::vector<PairResult> pair_out_;
+  std::vector<std::uint8_t> touch_;  ///< per candidate: does the pair touch this step?
+  std::vector<PairForce> pair_f_;    ///< per candidate (touching ones only written)
+  std::vector<PairResult> pair_r_;   ///< per candidate (touching ones only written)
+  // per-particle index: entries (k << 1 | side) of the candidates naming each particle, side 0
+  // as i, 1 as j, in ascending k; rebuilt when the candidate list's generation changes
+  std::vector<std::uint32_t> cand_start_, cand_entry_, fill_;
+  std::uint64_t indexed_generation_ = 0;
+  std::size_t indexed_n_ = 0, indexed_count_ = 0;
+  // the compaction of touching pairs into the contact set, in fixed blocks of candidates
+  std::vector<std::size_t> block_first_;  ///< first contact-set slot of each block
+  std::vector<ForceStats> block_stats_;
   std::vector<PairKey> new_keys_;
   std::vector<ContactState> new_state_;
   std::vector<ContactRecord> new_records_;

@@ -27,18 +27,6 @@ constexpr int kRingCap = 2 * kMaxPolyVerts + 4;
 struct TaggedRing : detail::Ring<kRingCap> {
   std::uint8_t f[kRingCap];  ///< kCross | kEdgeA per vertex
 
-  // append, merging an exact repeat of the previous vertex: crossing marks add up and the
-  // outgoing-edge mark is the newer one (the zero-length edge between them disappears)
-  void push(Vec2 p, std::uint8_t flags) {
-    if (n > 0 && x[n - 1] == p.x && y[n - 1] == p.y) {
-      f[n - 1] = static_cast<std::uint8_t>((f[n - 1] & kCross) | flags);
-      return;
-    }
-    x[n] = p.x;
-    y[n] = p.y;
-    f[n] = flags;
-    ++n;
-  }
   // close the ring: a last vertex repeating the first folds into it
   void close() {
     if (n > 1 && x[n - 1] == x[0] && y[n - 1] == y[0]) {
@@ -48,51 +36,82 @@ struct TaggedRing : detail::Ring<kRingCap> {
   }
 };
 
-// clip `in` to the inside of b's edge from o along e (left of the edge, line included).
+// clip the ring (x, y, flags f; kFresh: a's own vertices, every edge on a's boundary, f unused)
+// to the inside of b's edge from o along e (left of the edge, line included), into `out`.
 // A new vertex on an edge of a's boundary is a crossing; the edge that follows an exit runs
 // along b's edge line and so is not on a's boundary. Returns false, leaving `out` untouched,
 // when the line cuts nothing off (the common case once a has been cut down to a small cap).
-bool clip_tagged(const TaggedRing& in, TaggedRing& out, Vec2 o, Vec2 e) {
-  const int n = in.n;
-  // side of every vertex (> 0 outside); nothing to do when all are inside
+// a's vertices are read in place, with no copy into a ring.
+template <bool kFresh>
+bool clip_tagged(int n, const double* x, const double* y, const std::uint8_t* f,
+                 TaggedRing& out, Vec2 o, Vec2 e) {
+  if (n == 0) return false;
+  // side of vertex i (> 0 outside; NaN counts as neither inside nor outside)
+  auto side = [&](int i) { return (x[i] - o.x) * e.y - (y[i] - o.y) * e.x; };
+  auto flags = [&](int i) -> unsigned { return kFresh ? kEdgeA : f[i]; };
+  int m = 0;  // vertices written
+  // append, merging an exact repeat of the previous vertex: crossing marks add up and the
+  // outgoing-edge mark is the newer one (the zero-length edge between them disappears)
+  auto push = [&](double px, double py, unsigned fl) {
+    if (m > 0 && out.x[m - 1] == px && out.y[m - 1] == py) {
+      out.f[m - 1] = static_cast<std::uint8_t>((out.f[m - 1] & kCross) | fl);
+      return;
+    }
+    out.x[m] = px;
+    out.y[m] = py;
+    out.f[m] = static_cast<std::uint8_t>(fl);
+    ++m;
+  };
+  // sides first: a clip that cuts nothing (most in the general routine) ends here
   double s[kRingCap];
-  double smax = -1.0, smin = 1.0;
+  bool cut = false;
   for (int i = 0; i < n; ++i) {
-    s[i] = (in.x[i] - o.x) * e.y - (in.y[i] - o.y) * e.x;
-    smax = s[i] > smax ? s[i] : smax;
-    smin = s[i] < smin ? s[i] : smin;
+    s[i] = side(i);
+    cut |= s[i] > 0.0;
   }
-  out.n = 0;
-  if (smax <= 0.0) return false;
-  if (smin > 0.0) return true;  // all outside: empty
+  if (!cut) return false;
   // Sutherland–Hodgman pass over the edges p → q
-  Vec2 p = in[n - 1];
-  std::uint8_t fp = in.f[n - 1];
+  double px = x[n - 1], py = y[n - 1];
   double sp = s[n - 1];
+  unsigned fp = flags(n - 1);
   for (int i = 0; i < n; ++i) {
-    const Vec2 q = in[i];
-    const std::uint8_t fq = in.f[i];
+    const double qx = x[i], qy = y[i];
     const double sq = s[i];
-    const std::uint8_t on_a = fp & kEdgeA;
-    const std::uint8_t cross_mark = on_a ? kCross : 0;
+    const unsigned fq = flags(i);
+    const unsigned on_a = fp & kEdgeA;
+    const unsigned cross_mark = on_a ? kCross : 0;
     if (sq <= 0.0) {
       // entering: the crossing point (q itself when q lies on the line), then q
       if (sp > 0.0) {
-        const Vec2 x = sq == 0.0 ? q : p + (q - p) * (sp / (sp - sq));
-        out.push(x, static_cast<std::uint8_t>(cross_mark | on_a));
+        if (sq == 0.0) {
+          push(qx, qy, cross_mark | on_a);
+        } else {
+          const double t = sp / (sp - sq);
+          push(px + (qx - px) * t, py + (qy - py) * t, cross_mark | on_a);
+        }
       }
-      out.push(q, fq);
+      push(qx, qy, fq);
     } else if (sp <= 0.0) {
       // leaving: the crossing point (p itself when p lies on the line)
-      const Vec2 x = sp == 0.0 ? p : p + (q - p) * (sp / (sp - sq));
-      out.push(x, cross_mark);
+      if (sp == 0.0) {
+        push(px, py, cross_mark);
+      } else {
+        const double t = sp / (sp - sq);
+        push(px + (qx - px) * t, py + (qy - py) * t, cross_mark);
+      }
     }
-    p = q;
+    px = qx;
+    py = qy;
     fp = fq;
     sp = sq;
   }
+  out.n = m;
   out.close();
   return true;
+}
+
+bool clip_tagged(const TaggedRing& in, TaggedRing& out, Vec2 o, Vec2 e) {
+  return clip_tagged<false>(in.n, in.x, in.y, in.f, out, o, e);
 }
 
 // mean of the vertices (a cheap interior point of a convex polygon)
@@ -203,11 +222,12 @@ Overlap overlap(const Poly& a, const Poly& b) {
 // are bitwise those of overlap(Poly, Poly). What is skipped is provably a no-op there:
 //  - pairs whose bounding circles are apart (every clip sequence then ends empty);
 //  - clips by edge lines that leave every vertex of the current ring strictly inside. After the
-//    facing edge has cut a down to the cap inside b, the cap lies in a disk (centre m, radius
-//    ρ), and the side value of any of its vertices against edge k is at most
-//    s_k(m) + ρ·|e_k|; when that is negative by more than a round-off margin, clip_tagged would
-//    find smax < 0 and return false. A clip that does cut only shrinks the ring (its new
-//    vertices lie on old edges), so the disk stays a bound for the rest of the loop.
+//    facing edge has cut a down to the cap inside b, the cap lies in a box (centre c, half-widths
+//    hx, hy), and the side value of any of its vertices against edge k is at most
+//    s_k(c) + |e_k.y|·hx + |e_k.x|·hy; when that is negative by more than a round-off margin,
+//    clip_tagged would find no vertex outside and return false. A clip that does cut only
+//    shrinks the ring (its new vertices lie on old edges), so the box stays a bound for the rest
+//    of the loop.
 Overlap overlap(const PolyRef& a, const PolyRef& b) {
   if (a.n < 3 || b.n < 3) return {};
   const Vec2 dc = b.mean - a.mean;
@@ -224,42 +244,44 @@ Overlap overlap(const PolyRef& a, const PolyRef& b) {
       k0 = k;
     }
   }
+  // the first clip reads a in place; only when it cuts nothing off does a become the ring
   TaggedRing r1, r2;
-  r1.n = a.n;
-  for (int i = 0; i < a.n; ++i) {
-    r1.x[i] = a.x[i];
-    r1.y[i] = a.y[i];
-    r1.f[i] = kEdgeA;
-  }
   TaggedRing* cur = &r1;
   TaggedRing* nxt = &r2;
-  if (clip_tagged(*cur, *nxt, {b.x[k0], b.y[k0]}, {b.ex[k0], b.ey[k0]})) std::swap(cur, nxt);
+  if (!clip_tagged<true>(a.n, a.x, a.y, nullptr, r1, {b.x[k0], b.y[k0]}, {b.ex[k0], b.ey[k0]})) {
+    r1.n = a.n;
+    for (int i = 0; i < a.n; ++i) {
+      r1.x[i] = a.x[i];
+      r1.y[i] = a.y[i];
+      r1.f[i] = kEdgeA;
+    }
+  }
   if (cur->n == 0) return {};
-  // a disk around the cap: vertex mean m, radius ρ (rounded up)
+  // a box around the cap: centre (cx, cy), half-widths hx, hy (no division or square root on
+  // the way from the first clip to the next, which wait for this)
   const int nc = cur->n;
-  double mx = 0.0, my = 0.0;
-  for (int i = 0; i < nc; ++i) {
-    mx += cur->x[i];
-    my += cur->y[i];
+  double x0 = cur->x[0], x1 = x0, y0 = cur->y[0], y1 = y0;
+  for (int i = 1; i < nc; ++i) {
+    x0 = std::min(x0, cur->x[i]);
+    x1 = std::max(x1, cur->x[i]);
+    y0 = std::min(y0, cur->y[i]);
+    y1 = std::max(y1, cur->y[i]);
   }
-  mx /= nc;
-  my /= nc;
-  double rho2 = 0.0;
-  for (int i = 0; i < nc; ++i) {
-    const double dx = cur->x[i] - mx, dy = cur->y[i] - my;
-    rho2 = std::max(rho2, dx * dx + dy * dy);
-  }
-  const double rho = std::sqrt(rho2) * (1.0 + 1e-12);
-  // which of the other edge lines may cut the cap: s_k(m) + ρ·|e_k| ≥ −margin. Round-off of
-  // the side values is ~1e-16 of (|m − o_k| + ρ)·|e_k|, and |m − o_k| ≤ |m − mean_b| + radius_b:
-  // the margin is wide.
-  const double ml1 = std::abs(mx - b.mean.x) + std::abs(my - b.mean.y);
-  const double margin = 1e-9 * (ml1 + 2.0 * b.radius + rho) * b.len;
-  const double thr = -margin - rho * b.len;
+  const double cx = 0.5 * (x0 + x1), cy = 0.5 * (y0 + y1);
+  const double hx = 0.5 * (x1 - x0), hy = 0.5 * (y1 - y0);
+  // which of the other edge lines may cut the cap: s_k(c) + |e_k.y|·hx + |e_k.x|·hy ≥ −margin.
+  // Round-off of the side values is ~1e-16 of |x − o_k|₁·|e_k|, with |x − o_k|₁ ≤
+  // |c − mean_b|₁ + hx + hy + 2·radius_b; that of the centre, the half-widths and the new
+  // vertices of later clips ~1e-16 of |c|₁: the margin is wide, also far from the origin.
+  const double cl1 = std::abs(cx - b.mean.x) + std::abs(cy - b.mean.y);
+  const double margin =
+      (1e-9 * (cl1 + 2.0 * b.radius + hx + hy) + 1e-14 * (std::abs(cx) + std::abs(cy))) * b.len;
   // as a bit mask, rotated so that bit 0 is the edge after k0 (clip_all's order)
   std::uint64_t cut = 0;
   for (int k = 0; k < b.n; ++k) {
-    const bool may_cut = !((mx - b.x[k]) * b.ey[k] - (my - b.y[k]) * b.ex[k] < thr);  // NaN: clip
+    const double reach = std::abs(b.ey[k]) * hx + std::abs(b.ex[k]) * hy + margin;
+    const double sc = (cx - b.x[k]) * b.ey[k] - (cy - b.y[k]) * b.ex[k];
+    const bool may_cut = !(sc + reach < 0.0);  // NaN: clip
     cut |= static_cast<std::uint64_t>(may_cut) << k;
   }
   const int k1 = k0 + 1 == b.n ? 0 : k0 + 1;

@@ -15,19 +15,43 @@ void PolyStore::resize(std::size_t count, int max_n) {
   meta_.resize(count);
 }
 
-// c + rotate(v, cos θ, sin θ), as place()
+// c + rotate(v, cos θ, sin θ), as place(); edges and mean as finish(). The bounding radius
+// comes from the rotated body offsets w_k, without a second pass over the vertices (which
+// would wait for the mean): every vertex v_k = fl(c + w_k) lies within |w_k| + 2⁻⁵³·|c + w_k|₁
+// of c, and c within |m − c|₁ of the mean m, so
+//   max|v_k − m| ≤ (max|w_k| + |m.x − c.x| + |m.y − c.y|)·(1 + 1e-12) + 1e-15·(|c.x| + |c.y|)
+// with a wide allowance for the rounding of these sums (the last term covers placements far
+// from the origin, where the rounding of c + w_k is larger than the body's own).
 void PolyStore::set_placed(std::size_t i, const Poly& body, Vec2 c, double theta) {
   assert(static_cast<std::size_t>(body.n) <= stride_);
+  const int n = body.n;
   const double cs = std::cos(theta), sn = std::sin(theta);
   double* x = data_.data() + i * 4 * stride_;
   double* y = x + stride_;
-  for (int k = 0; k < body.n; ++k) {
-    const Vec2 v = c + rotate(body.v[k], cs, sn);
+  double* ex = y + stride_;
+  double* ey = ex + stride_;
+  double w2 = 0.0;
+  for (int k = 0; k < n; ++k) {
+    const Vec2 w = rotate(body.v[k], cs, sn);
+    const Vec2 v = c + w;
     x[k] = v.x;
     y[k] = v.y;
+    w2 = std::max(w2, norm2(w));
   }
-  n_[i] = body.n;
-  finish(i);
+  n_[i] = n;
+  Vec2 m{};
+  double l2 = 0.0;
+  for (int k = 0; k < n; ++k) {
+    const int k1 = k + 1 == n ? 0 : k + 1;
+    ex[k] = x[k1] - x[k];
+    ey[k] = y[k1] - y[k];
+    l2 = std::max(l2, ex[k] * ex[k] + ey[k] * ey[k]);
+    m += Vec2{x[k], y[k]};
+  }
+  if (n > 0) m = m / static_cast<double>(n);
+  const double r = (std::sqrt(w2) + std::abs(m.x - c.x) + std::abs(m.y - c.y)) * (1.0 + 1e-12) +
+                   1e-15 * (std::abs(c.x) + std::abs(c.y));
+  meta_[i] = {m, r, std::sqrt(l2) * (1.0 + 1e-12)};
 }
 
 void PolyStore::set(std::size_t i, const Poly& p) {

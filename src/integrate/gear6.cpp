@@ -4,6 +4,7 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "core/parallel.hpp"
 #include "integrate/schemes.hpp"
 
 namespace gs {
@@ -59,32 +60,39 @@ void Gear6::rescale(double dt) {
 void Gear6::predict(std::span<const Channel> ch, double dt) {
   layout_.check(ch, "Gear6::predict");
   if (!(dt > 0.0)) throw std::invalid_argument("Gear6::predict: dt must be positive");
-  for (std::size_t c = 0; c < ch.size(); ++c) {
-    const auto& k = ch[c];
-    auto& rr = r_[c];
-    // pick up caller edits since the last correct() (periodic wrap of q, kicks to v)
-    for (std::size_t i = 0; i < k.q.size(); ++i) {
-      double* r = &rr[kN * i];
+  // pick up caller edits since the last correct() (periodic wrap of q, kicks to v)
+  auto pick_up = [this](const Channel& k, double* r) {
+    for (std::size_t i = 0; i < k.q.size(); ++i, r += kN) {
       if (k.q[i] != r[0]) r[0] = k.q[i];
       if (k.v[i] != r[1] / dt_) r[1] = k.v[i] * dt_;
     }
+  };
+  const bool rescaled = dt != dt_;
+  if (rescaled) {
+    for (std::size_t c = 0; c < ch.size(); ++c) pick_up(ch[c], r_[c].data());
+    rescale(dt);
   }
-  if (dt != dt_) rescale(dt);
   for (std::size_t c = 0; c < ch.size(); ++c) {
     const auto& k = ch[c];
-    auto& rr = r_[c];
-    for (std::size_t i = 0; i < k.q.size(); ++i) {
-      double* r = &rr[kN * i];
-      // Taylor step with the Pascal triangle (each line uses the old higher values)
-      r[0] += r[1] + r[2] + r[3] + r[4] + r[5];
-      r[1] += 2.0 * r[2] + 3.0 * r[3] + 4.0 * r[4] + 5.0 * r[5];
-      r[2] += 3.0 * r[3] + 6.0 * r[4] + 10.0 * r[5];
-      r[3] += 4.0 * r[4] + 10.0 * r[5];
-      r[4] += 5.0 * r[5];
-      // the predicted state, where the caller evaluates the forces
-      k.q[i] = r[0];
-      k.v[i] = r[1] / dt_;
-    }
+    double* const rr = r_[c].data();
+    parallel_ranges(k.q.size(), kParallelMinCheap, [&](std::size_t b, std::size_t e) {
+      for (std::size_t i = b; i < e; ++i) {
+        double* r = rr + kN * i;
+        if (!rescaled) {  // the pick-up, as above
+          if (k.q[i] != r[0]) r[0] = k.q[i];
+          if (k.v[i] != r[1] / dt_) r[1] = k.v[i] * dt_;
+        }
+        // Taylor step with the Pascal triangle (each line uses the old higher values)
+        r[0] += r[1] + r[2] + r[3] + r[4] + r[5];
+        r[1] += 2.0 * r[2] + 3.0 * r[3] + 4.0 * r[4] + 5.0 * r[5];
+        r[2] += 3.0 * r[3] + 6.0 * r[4] + 10.0 * r[5];
+        r[3] += 4.0 * r[4] + 10.0 * r[5];
+        r[4] += 5.0 * r[5];
+        // the predicted state, where the caller evaluates the forces
+        k.q[i] = r[0];
+        k.v[i] = r[1] / dt_;
+      }
+    });
   }
 }
 
@@ -94,15 +102,17 @@ void Gear6::correct(std::span<const Channel> ch, double dt) {
   const double h2 = dt_ * dt_ / 2.0;
   for (std::size_t c = 0; c < ch.size(); ++c) {
     const auto& k = ch[c];
-    auto& rr = r_[c];
-    for (std::size_t i = 0; i < k.q.size(); ++i) {
-      double* r = &rr[kN * i];
-      // the acceleration mismatch Δr2 = a·Δt²/2 − r2ᵖ corrects every derivative
-      const double d = k.a[i] * h2 - r[2];
-      for (int j = 0; j < kN; ++j) r[j] += kC[j] * d;
-      k.q[i] = r[0];
-      k.v[i] = r[1] / dt_;
-    }
+    double* const rr = r_[c].data();
+    parallel_ranges(k.q.size(), kParallelMinCheap, [&](std::size_t b, std::size_t e) {
+      for (std::size_t i = b; i < e; ++i) {
+        double* r = rr + kN * i;
+        // the acceleration mismatch Δr2 = a·Δt²/2 − r2ᵖ corrects every derivative
+        const double d = k.a[i] * h2 - r[2];
+        for (int j = 0; j < kN; ++j) r[j] += kC[j] * d;
+        k.q[i] = r[0];
+        k.v[i] = r[1] / dt_;
+      }
+    });
   }
 }
 

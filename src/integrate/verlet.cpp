@@ -3,6 +3,7 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "core/parallel.hpp"
 #include "integrate/schemes.hpp"
 
 namespace gs {
@@ -49,15 +50,17 @@ void VelocityVerlet::predict(std::span<const Channel> ch, double dt) {
   const bool half = fv_ == VerletForceVelocity::HalfStep;
   for (std::size_t c = 0; c < ch.size(); ++c) {
     const auto& k = ch[c];
-    const auto& a = a_[c];
-    auto& vh = vh_[c];
-    for (std::size_t i = 0; i < k.q.size(); ++i) {
-      // kick half a step with a_n, drift a full step
-      vh[i] = k.v[i] + a[i] * dt / 2.0;
-      k.q[i] += vh[i] * dt;
-      // the velocity the forces see: v_n + a_n·Δt (error O(Δt²)) or v_{n+½} (error O(Δt))
-      k.v[i] = half ? vh[i] : k.v[i] + a[i] * dt;
-    }
+    const double* a = a_[c].data();
+    double* vh = vh_[c].data();
+    parallel_ranges(k.q.size(), kParallelMinCheap, [&](std::size_t b, std::size_t e) {
+      for (std::size_t i = b; i < e; ++i) {
+        // kick half a step with a_n, drift a full step
+        vh[i] = k.v[i] + a[i] * dt / 2.0;
+        k.q[i] += vh[i] * dt;
+        // the velocity the forces see: v_n + a_n·Δt (error O(Δt²)) or v_{n+½} (error O(Δt))
+        k.v[i] = half ? vh[i] : k.v[i] + a[i] * dt;
+      }
+    });
   }
 }
 
@@ -66,13 +69,15 @@ void VelocityVerlet::correct(std::span<const Channel> ch, double dt) {
   if (dt != dt_) throw std::invalid_argument("VelocityVerlet::correct: dt differs from predict()");
   for (std::size_t c = 0; c < ch.size(); ++c) {
     const auto& k = ch[c];
-    auto& a = a_[c];
-    const auto& vh = vh_[c];
+    double* a = a_[c].data();
+    const double* vh = vh_[c].data();
     // second half kick with a_{n+1}, which becomes the stored acceleration
-    for (std::size_t i = 0; i < k.q.size(); ++i) {
-      k.v[i] = vh[i] + k.a[i] * dt / 2.0;
-      a[i] = k.a[i];
-    }
+    parallel_ranges(k.q.size(), kParallelMinCheap, [&](std::size_t b, std::size_t e) {
+      for (std::size_t i = b; i < e; ++i) {
+        k.v[i] = vh[i] + k.a[i] * dt / 2.0;
+        a[i] = k.a[i];
+      }
+    });
   }
 }
 

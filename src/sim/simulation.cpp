@@ -2,8 +2,10 @@
 
 #include <cmath>
 #include <sstream>
+#include <type_traits>
 
 #include "core/error.hpp"
+#include "core/parallel.hpp"
 #include "drive/random_force.hpp"
 #include "drive/schedule.hpp"
 
@@ -59,22 +61,99 @@ std::vector<Channel> Simulation::channels() {
   return ch;
 }
 
-// broad phase → narrow phase and laws → body forces → accelerations at the current state
+namespace {
+
+// what the acceleration pass reads and writes, as plain arrays
+struct AccelArrays {
+  const double *fx, *fy, *tq, *inv_mass, *inv_inertia, *mass;
+  const std::uint64_t* keys;
+  double *ax, *ay, *aw;
+  Vec2 g;
+  double sigma;
+  std::int64_t index;
+};
+
+// accelerations of particles [b, e): contact force, gravity and the random kick of the step;
+// returns Σ m·kick over the range (the ring's momentum kick, for its mean)
+template <bool kNoise, bool kRing, bool kSpin>
+double accelerate(const AccelArrays& a, std::size_t b, std::size_t e) {
+  double kick_sum = 0.0;
+  for (std::size_t i = b; i < e; ++i) {
+    const double im = a.inv_mass[i];
+    double ax = a.fx[i] * im + a.g.x;
+    double ay = kRing ? 0.0 : a.fy[i] * im + a.g.y;
+    if constexpr (kNoise) {
+      double z0, z1;
+      noise_normals(a.keys[i], a.index, kRing, z0, z1);
+      const double ex = a.sigma * z0 * im;
+      ax += ex;
+      if constexpr (kRing)
+        kick_sum += ex * a.mass[i];
+      else
+        ay += a.sigma * z1 * im;
+    }
+    a.ax[i] = ax;
+    if constexpr (!kRing) a.ay[i] = ay;
+    if constexpr (kSpin) a.aw[i] = a.tq[i] * a.inv_inertia[i];
+  }
+  return kick_sum;
+}
+
+template <bool kNoise, bool kRing, bool kSpin>
+void accelerate_all(const AccelArrays& a, std::size_t n, std::vector<double>& block_sums) {
+  if constexpr (kNoise && kRing) {
+    // the kicks' mean momentum: sums over fixed blocks, added in block order (T.2.18)
+    block_sums.assign((n + kSumBlock - 1) / kSumBlock, 0.0);
+    parallel_chunks(n, kParallelMinCheap, kSumBlock, [&](std::size_t b, std::size_t e) {
+      for (std::size_t k = b; k < e; k += kSumBlock)
+        block_sums[k / kSumBlock] = accelerate<kNoise, kRing, kSpin>(a, k, std::min(e, k + kSumBlock));
+    });
+    double mean = 0.0;
+    for (double m : block_sums) mean += m;
+    if (n > 0) mean /= static_cast<double>(n);
+    parallel_ranges(n, kParallelMinCheap, [&](std::size_t b, std::size_t e) {
+      for (std::size_t i = b; i < e; ++i) a.ax[i] -= mean * a.inv_mass[i];
+    });
+  } else {
+    parallel_ranges(n, kParallelMinCheap, [&](std::size_t b, std::size_t e) {
+      accelerate<kNoise, kRing, kSpin>(a, b, e);
+    });
+  }
+}
+
+}  // namespace
+
+// broad phase → narrow phase and laws → body forces → accelerations at the current state, in
+// one pass over the particles
 void Simulation::compute_accelerations(std::int64_t index) {
   const std::size_t n = w_.size();
-  broad_->update(w_, candidates_);
-  forces_.reset(n);
-  stats_ = model_.evaluate(w_, candidates_, contacts_, forces_, dt_);
+  const std::vector<PairKey>& cand = broad_->update(w_);
+  stats_ = model_.evaluate(w_, cand, contacts_, forces_, dt_, broad_->generation());
   gravity_ = gravity_at(w_.scene.drive, w_.s.t);
   State& s = w_.s;
-  for (std::size_t i = 0; i < n; ++i) {
-    s.ax[i] = forces_.fx[i] * w_.inv_mass[i] + gravity_.x;
-    s.ay[i] = forces_.fy[i] * w_.inv_mass[i] + gravity_.y;
-    s.aw[i] = forces_.tq[i] * w_.inv_inertia[i];
-  }
-  if (w_.scene.drive.kind == DriveKind::RandomForce) {
-    if (noise_keys_.size() != n) noise_keys_ = random_force_keys(w_.scene.prep.seed, n);
-    add_random_force(w_, noise_keys_, index, w_.scene.drive.D, dt_, s.ax, s.ay);
+  const bool noise = w_.scene.drive.kind == DriveKind::RandomForce;
+  const bool ring = w_.box == BoxKind::Ring1D;  // x only: no ay (and no torques, disks)
+  const bool spin = !forces_.tq.empty();        // polygons: contact torques
+  if (noise && noise_keys_.size() != n) noise_keys_ = random_force_keys(w_.scene.prep.seed, n);
+  const AccelArrays a{forces_.fx.data(), forces_.fy.data(), forces_.tq.data(),
+                      w_.inv_mass.data(), w_.inv_inertia.data(), w_.mass.data(),
+                      noise ? noise_keys_.data() : nullptr, s.ax.data(), s.ay.data(),
+                      s.aw.data(), gravity_,
+                      noise ? std::sqrt(2.0 * w_.scene.drive.D / dt_) : 0.0,  // T.2.16
+                      index};
+  using T = std::true_type;
+  using F = std::false_type;
+  auto go = [&](auto nz, auto rg, auto sp) {
+    accelerate_all<decltype(nz)::value, decltype(rg)::value, decltype(sp)::value>(a, n, kick_);
+  };
+  if (noise) {
+    if (ring) go(T{}, T{}, F{});
+    else if (spin) go(T{}, F{}, T{});
+    else go(T{}, F{}, F{});
+  } else {
+    if (ring) go(F{}, T{}, F{});
+    else if (spin) go(F{}, F{}, T{});
+    else go(F{}, F{}, F{});
   }
 }
 

@@ -69,8 +69,8 @@ class Simulation {
   ContactSet contacts_;
   ForceBuffer forces_;
   ForceStats stats_;
-  std::vector<PairKey> candidates_;
   std::vector<std::uint64_t> noise_keys_;  ///< random force: stream keys per particle (cached)
+  std::vector<double> kick_;  ///< the ring's momentum kicks summed per block, kg·m/s²
   Vec2 gravity_;
   double energy_ref_ = 0.0;    ///< mechanical energy at the start, J (undriven/constant g)
   double energy_slack_ = 0.0;  ///< growth tolerated before it counts as a blow-up, J

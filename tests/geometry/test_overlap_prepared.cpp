@@ -77,6 +77,58 @@ TEST(PreparedOverlap, PlacementIsPlace) {
   }
 }
 
+// the bounding radius of set_placed comes from the body's rotated offsets, not from the placed
+// vertices: it must still hold every vertex (and stay tight) for placements far from the
+// origin, bodies not centred on their vertex mean, and any angle
+TEST(PreparedOverlap, PlacedRadiusIsABound) {
+  RngStream rng(16, 0);
+  PolyStore st;
+  st.resize(1, 16);
+  for (int i = 0; i < 20000; ++i) {
+    const double r = std::pow(10.0, rng.uniform(-4.0, 1.0));
+    const Vec2 off = (i & 1) ? Vec2{rng.uniform(-r, r), rng.uniform(-r, r)} : Vec2{};
+    const Poly body = (i & 2) ? test::random_convex(rng, off, r, 3 + i % 14)
+                              : regular_polygon(3 + i % 14, r, off, rng.uniform(0.0, 6.3));
+    const double far = std::pow(10.0, rng.uniform(-2.0, 6.0));
+    const Vec2 c{rng.uniform(-far, far), rng.uniform(-far, far)};
+    st.set_placed(0, body, c, rng.uniform(-1e3, 1e3));
+    const PolyRef p = st.ref(0);
+    double dmax = 0.0;
+    for (int k = 0; k < p.n; ++k) {
+      // long double: the distance itself without the rounding of a double difference
+      const long double dx = static_cast<long double>(p.x[k]) - p.mean.x;
+      const long double dy = static_cast<long double>(p.y[k]) - p.mean.y;
+      const double d = static_cast<double>(std::sqrt(dx * dx + dy * dy));
+      ASSERT_LE(d, p.radius) << "placement " << i;
+      dmax = std::max(dmax, d);
+    }
+    // not much looser than the farthest vertex: by (1 + √2)× the distance from the placement point
+    // to the vertex mean (zero for the simulation's centred bodies) and round-off
+    const double mc = norm(p.mean - c);
+    EXPECT_LE(p.radius, dmax + 2.5 * mc + 1e-11 * r + 1e-14 * (std::abs(c.x) + std::abs(c.y)));
+  }
+}
+
+// decagon pairs placed far from the origin (1e3 to 1e5 m), where the rounding of the
+// coordinates is large against the decagons: the skipped clips must still be no-ops
+TEST(PreparedOverlap, FarFromOriginBitwise) {
+  RngStream rng(17, 0);
+  const Poly big = regular_polygon(10, kRBig), small = regular_polygon(10, kRSmall);
+  Tally t;
+  for (int i = 0; i < 10000; ++i) {
+    const double far = std::pow(10.0, rng.uniform(3.0, 5.0));
+    const Vec2 ca{rng.uniform(-far, far), rng.uniform(-far, far)};
+    const Vec2 cb = ca + dir(rng.uniform(0.0, 2.0 * kPi)) * ((kRBig + kRSmall) * rng.uniform(0.85, 1.0));
+    PolyStore st;
+    st.resize(2, 10);
+    st.set_placed(0, big, ca, rng.uniform(0.0, 2.0 * kPi));
+    st.set_placed(1, small, cb, rng.uniform(0.0, 2.0 * kPi));
+    expect_same(st.poly(0), st.poly(1), t);
+    if (HasFatalFailure()) return;
+  }
+  EXPECT_GT(t.touching, 7000);
+}
+
 // big–small and equal decagons, random orientations, centre distances from 0 (one inside the
 // other) to past the circumradius sum (near misses)
 TEST(PreparedOverlap, RandomDecagonPairsBitwise) {

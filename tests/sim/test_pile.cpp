@@ -12,6 +12,7 @@
 #include "measure/packing.hpp"
 #include "scene/parse.hpp"
 #include "sim/state_file.hpp"
+#include "world/prepare.hpp"
 #include "test_world.hpp"
 
 namespace gs {
@@ -87,6 +88,28 @@ TEST(Determinism, SameHashForOneAndTwoThreads) {
     return state_hash(sim.world());
   };
   EXPECT_EQ(run(1), run(2));
+}
+
+// the same for Model S: a randomly forced periodic fluid (pair loop, per-particle sums, fused
+// noise) and a 10⁴-disk ring (its kick mean is a blocked sum over 3 blocks)
+std::uint64_t threads_hash(const SceneSpec& s, int threads, std::int64_t steps) {
+  const int before = omp_get_max_threads();
+  omp_set_num_threads(threads);
+  World w = make_world(s);
+  place_particles(w);
+  Simulation sim(std::move(w));
+  sim.run(steps);
+  omp_set_num_threads(before);
+  return state_hash(sim.world());
+}
+
+TEST(Determinism, SameHashForOneAndTwoThreadsDiskFluidAndRing) {
+  SceneSpec fluid = build::disk_gas(3000, 0.5, 0.6, 0.6, 2);
+  fluid.drive.kind = DriveKind::RandomForce;
+  EXPECT_EQ(threads_hash(fluid, 1, 300), threads_hash(fluid, 2, 300));
+  SceneSpec ring = parse_scene_file(std::string(GS_SOURCE_DIR) + "/scenes/rfm1d_reference.toml");
+  ring.species[0].count = 10000;
+  EXPECT_EQ(threads_hash(ring, 1, 300), threads_hash(ring, 2, 300));
 }
 #endif
 

@@ -1,0 +1,75 @@
+// shared rules of the OpenMP loops. Every parallel loop either writes disjoint elements, or
+// combines per-item results in a fixed order that does not depend on the thread count
+// (per-candidate results gathered per particle in candidate order; sums over fixed blocks), so
+// a run's results are bitwise the same on any number of threads. Below the thresholds the
+// same bodies run as plain serial loops (no OpenMP runtime calls at all).
+#pragma once
+#include <cstddef>
+#include <cstdint>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace gs {
+
+/// items of ~100 ns (polygon pairs) worth a parallel region
+inline constexpr std::size_t kParallelMin = 1000;
+/// items of a few ns (disk pairs, elementwise particle loops) worth a parallel region
+inline constexpr std::size_t kParallelMinCheap = 8192;
+
+/// the block length of deterministic blocked sums and scans: results depend on it, never on
+/// the thread count (one block, n <= kSumBlock, is the plain left-to-right sum)
+inline constexpr std::size_t kSumBlock = 4096;
+
+/// will a loop of n items with this threshold run in parallel?
+inline bool run_parallel(std::size_t n, std::size_t threshold) {
+#ifdef _OPENMP
+  return n >= threshold && omp_get_max_threads() > 1 && !omp_in_parallel();
+#else
+  (void)n;
+  (void)threshold;
+  return false;
+#endif
+}
+
+/// body(begin, end) over [0, n): one serial call, or in parallel over contiguous ranges, one
+/// per thread (static schedule)
+template <class Body>
+void parallel_ranges(std::size_t n, std::size_t threshold, Body&& body) {
+#ifdef _OPENMP
+  if (run_parallel(n, threshold)) {
+#pragma omp parallel
+    {
+      const auto t = static_cast<std::size_t>(omp_get_thread_num());
+      const auto nt = static_cast<std::size_t>(omp_get_num_threads());
+      body(n * t / nt, n * (t + 1) / nt);
+    }
+    return;
+  }
+#endif
+  (void)threshold;
+  body(std::size_t{0}, n);
+}
+
+/// body(begin, end) over [0, n) in chunks handed out dynamically (uneven item costs), or one
+/// serial call
+template <class Body>
+void parallel_chunks(std::size_t n, std::size_t threshold, std::size_t chunk, Body&& body) {
+#ifdef _OPENMP
+  if (run_parallel(n, threshold)) {
+    const auto nchunks = static_cast<std::int64_t>((n + chunk - 1) / chunk);
+#pragma omp parallel for schedule(dynamic, 1)
+    for (std::int64_t c = 0; c < nchunks; ++c) {
+      const std::size_t b = static_cast<std::size_t>(c) * chunk;
+      body(b, b + chunk < n ? b + chunk : n);
+    }
+    return;
+  }
+#endif
+  (void)threshold;
+  (void)chunk;
+  body(std::size_t{0}, n);
+}
+
+}  // namespace gs
