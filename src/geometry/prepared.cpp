@@ -28,8 +28,6 @@ void PolyStore::set_placed(std::size_t i, const Poly& body, Vec2 c, double theta
   const double cs = std::cos(theta), sn = std::sin(theta);
   double* x = data_.data() + i * 4 * stride_;
   double* y = x + stride_;
-  double* ex = y + stride_;
-  double* ey = ex + stride_;
   double w2 = 0.0;
   for (int k = 0; k < n; ++k) {
     const Vec2 w = rotate(body.v[k], cs, sn);
@@ -39,16 +37,8 @@ void PolyStore::set_placed(std::size_t i, const Poly& body, Vec2 c, double theta
     w2 = std::max(w2, norm2(w));
   }
   n_[i] = n;
-  Vec2 m{};
   double l2 = 0.0;
-  for (int k = 0; k < n; ++k) {
-    const int k1 = k + 1 == n ? 0 : k + 1;
-    ex[k] = x[k1] - x[k];
-    ey[k] = y[k1] - y[k];
-    l2 = std::max(l2, ex[k] * ex[k] + ey[k] * ey[k]);
-    m += Vec2{x[k], y[k]};
-  }
-  if (n > 0) m = m / static_cast<double>(n);
+  const Vec2 m = edges(i, l2);
   const double r = (std::sqrt(w2) + std::abs(m.x - c.x) + std::abs(m.y - c.y)) * (1.0 + 1e-12) +
                    1e-15 * (std::abs(c.x) + std::abs(c.y));
   meta_[i] = {m, r, std::sqrt(l2) * (1.0 + 1e-12)};
@@ -66,16 +56,16 @@ void PolyStore::set(std::size_t i, const Poly& p) {
   finish(i);
 }
 
-// edge vectors v[k+1] − v[k] (as clip_all and facing_edge), the vertex mean (as vertex_mean:
-// summed from zero in vertex order, then divided by n), the largest distance from it
-void PolyStore::finish(std::size_t i) {
+// edge vectors v[k+1] − v[k] (as clip_all and facing_edge) and the vertex mean (as
+// vertex_mean: summed from zero in vertex order, then divided by n); l2: the longest edge²
+Vec2 PolyStore::edges(std::size_t i, double& l2) {
   const int n = n_[i];
   double* x = data_.data() + i * 4 * stride_;
   double* y = x + stride_;
   double* ex = y + stride_;
   double* ey = ex + stride_;
   Vec2 m{};
-  double l2 = 0.0;
+  l2 = 0.0;
   for (int k = 0; k < n; ++k) {
     const int k1 = k + 1 == n ? 0 : k + 1;
     ex[k] = x[k1] - x[k];
@@ -84,8 +74,17 @@ void PolyStore::finish(std::size_t i) {
     m += Vec2{x[k], y[k]};
   }
   if (n > 0) m = m / static_cast<double>(n);
+  return m;
+}
+
+// edges and mean, then the largest distance of a vertex from the mean
+void PolyStore::finish(std::size_t i) {
+  double l2 = 0.0;
+  const Vec2 m = edges(i, l2);
+  const double* x = data_.data() + i * 4 * stride_;
+  const double* y = x + stride_;
   double r2 = 0.0;
-  for (int k = 0; k < n; ++k) r2 = std::max(r2, norm2(Vec2{x[k], y[k]} - m));
+  for (int k = 0; k < n_[i]; ++k) r2 = std::max(r2, norm2(Vec2{x[k], y[k]} - m));
   // rounded up: the circle must hold every vertex despite the rounding of these sums
   meta_[i] = {m, std::sqrt(r2) * (1.0 + 1e-12), std::sqrt(l2) * (1.0 + 1e-12)};
 }

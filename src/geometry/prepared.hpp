@@ -50,6 +50,7 @@ class PolyStore {
 
  private:
   void finish(std::size_t i);  // edges, mean, radius, longest edge from the vertices
+  Vec2 edges(std::size_t i, double& l2);  // edge vectors; returns the vertex mean
   struct Meta {
     Vec2 mean;
     double radius = 0.0, len = 0.0;

@@ -81,3 +81,32 @@ TEST(ForceSums, DenseDiskFluidMatchesSerialLoop) {
 
 }  // namespace
 }  // namespace gs
+
+namespace gs {
+namespace {
+
+// random placement numbers its grains in lattice order (rows upward, left to right within a
+// hexagonal row), so that neighbours in space are near in memory; the sites stay random
+TEST(Placement, RandomSitesAreNumberedInLatticeOrder) {
+  SceneSpec s = build::disk_gas(5000, 0.3, 0.6, 0.6, 7);
+  World w = make_world(s);
+  place_particles(w);
+  ASSERT_EQ(w.size(), 5000u);
+  std::size_t backwards = 0, row_gaps = 0;
+  double mean_y = 0.0;
+  for (std::size_t i = 0; i < w.size(); ++i) {
+    mean_y += w.s.y[i] / static_cast<double>(w.size());
+    if (i == 0) continue;
+    const bool same_row = w.s.y[i] == w.s.y[i - 1];
+    backwards += same_row ? w.s.x[i] <= w.s.x[i - 1] : w.s.y[i] < w.s.y[i - 1];
+    row_gaps += !same_row;
+  }
+  EXPECT_EQ(backwards, 0u) << "grains out of lattice order";
+  // random sites: at φ = 0.3 of the box the rows are only partly filled, and a row change
+  // skips rows now and then; the grains spread over the whole box (mean height ≈ L/2)
+  EXPECT_GT(row_gaps, 20u);
+  EXPECT_NEAR(mean_y / w.Ly, 0.5, 0.05);
+}
+
+}  // namespace
+}  // namespace gs
