@@ -198,7 +198,6 @@ ForceStats ContactModel::evaluate(const World& w, const std::vector<PairKey>& ca
   const bool poly = w.polygons();
   if (ncand >= (std::size_t{1} << 31))
     throw std::length_error("ContactModel::evaluate: more than 2^31 candidate pairs");
-  if (poly) place_shapes(w);
   f.fx.resize(n);
   f.fy.resize(n);
   f.tq.resize(poly ? n : 0);
@@ -211,6 +210,7 @@ ForceStats ContactModel::evaluate(const World& w, const std::vector<PairKey>& ca
     indexed_n_ = n;
     indexed_count_ = ncand;
   } else {
+    if (poly) place_shapes(w, false);
     st = evaluate_serial(w, cand, cs, f, dt);
   }
   cs.keys.swap(new_keys_);
@@ -221,18 +221,27 @@ ForceStats ContactModel::evaluate(const World& w, const std::vector<PairKey>& ca
   return st;
 }
 
-// world-frame polygons once per step, with their edges and bounding circles
-void ContactModel::place_shapes(const World& w) {
+// world-frame polygons once per step, with their edges and bounding circles; `inside`: called
+// by every thread of a parallel region, which shares the work
+void ContactModel::place_shapes(const World& w, bool inside) {
   const std::size_t n = w.size();
-  shapes_.resize(n, max_sides_);
-  int wall_n = 0;
-  for (const Wall& wl : w.walls) wall_n = std::max(wall_n, wl.poly.n);
-  wall_shapes_.resize(w.walls.size(), wall_n);
-  for (std::size_t k = 0; k < w.walls.size(); ++k) wall_shapes_.set(k, w.walls[k].poly);
-  parallel_ranges(n, kParallelMin, [&](std::size_t b, std::size_t e) {
-    for (std::size_t i = b; i < e; ++i)
+#pragma omp single
+  {
+    shapes_.resize(n, max_sides_);
+    int wall_n = 0;
+    for (const Wall& wl : w.walls) wall_n = std::max(wall_n, wl.poly.n);
+    wall_shapes_.resize(w.walls.size(), wall_n);
+    for (std::size_t k = 0; k < w.walls.size(); ++k) wall_shapes_.set(k, w.walls[k].poly);
+  }
+  if (!inside) {
+    for (std::size_t i = 0; i < n; ++i)
       shapes_.set_placed(i, w.species[w.sp[i]].body, {w.s.x[i], w.s.y[i]}, w.s.th[i]);
-  });
+    return;
+  }
+  const auto nn = static_cast<std::int64_t>(n);
+#pragma omp for schedule(static)
+  for (std::int64_t i = 0; i < nn; ++i)
+    shapes_.set_placed(i, w.species[w.sp[i]].body, {w.s.x[i], w.s.y[i]}, w.s.th[i]);
 }
 
 // the contact's statistics: h_eff (or δ) and the same over the smaller grain's radius
@@ -295,31 +304,53 @@ ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<Pai
   touch_.resize(ncand);
   pair_f_.resize(ncand);
   pair_r_.resize(ncand);
-  // every candidate pair; a chunk's history search resumes where its last one ended
-  parallel_chunks(ncand, 0, poly ? 64 : 512, [&](std::size_t b, std::size_t e) {
-    std::size_t hint = 0;
-    for (std::size_t k = b; k < e; ++k)
-      touch_[k] = poly ? polygon_pair(w, cand[k], cs, hint, dt, pair_f_[k], pair_r_[k])
-                       : disk_pair(w, cand[k], pair_f_[k], pair_r_[k]);
-  });
-  // the touching pairs' places in the contact set, block by block
+  // one parallel region: polygons placed → every candidate pair (a chunk's history search
+  // resumes where its last one ended) → touching pairs counted per block and compacted into
+  // the contact set → each particle's forces, its pairs in candidate order, from zero
+  const std::size_t chunk = poly ? 64 : 512;
+  const auto nchunks = static_cast<std::int64_t>((ncand + chunk - 1) / chunk);
   const std::size_t nblocks = (ncand + kSumBlock - 1) / kSumBlock;
+  const auto nb = static_cast<std::int64_t>(nblocks);
+  const auto nn = static_cast<std::int64_t>(n);
   block_first_.resize(nblocks);
   block_stats_.assign(nblocks, {});
-  std::size_t total = 0;
-  for (std::size_t b = 0; b < nblocks; ++b) {
-    block_first_[b] = total;
-    const std::size_t k1 = std::min(ncand, (b + 1) * kSumBlock);
-    for (std::size_t k = b * kSumBlock; k < k1; ++k) total += touch_[k];
-  }
-  new_keys_.resize(total);
-  new_records_.resize(total);
-  new_state_.resize(poly ? total : 0);
-  parallel_chunks(nblocks, 2, 1, [&](std::size_t b0, std::size_t b1) {
-    for (std::size_t b = b0; b < b1; ++b) {
+#pragma omp parallel
+  {
+    if (poly) place_shapes(w, true);
+#pragma omp for schedule(dynamic, 1)
+    for (std::int64_t c = 0; c < nchunks; ++c) {
+      const std::size_t k0 = static_cast<std::size_t>(c) * chunk, k1 = std::min(ncand, k0 + chunk);
+      std::size_t hint = 0;
+      for (std::size_t k = k0; k < k1; ++k)
+        touch_[k] = poly ? polygon_pair(w, cand[k], cs, hint, dt, pair_f_[k], pair_r_[k])
+                         : disk_pair(w, cand[k], pair_f_[k], pair_r_[k]);
+    }
+#pragma omp for schedule(static)
+    for (std::int64_t b = 0; b < nb; ++b) {
+      const std::size_t k0 = static_cast<std::size_t>(b) * kSumBlock;
+      const std::size_t k1 = std::min(ncand, k0 + kSumBlock);
+      std::size_t c = 0;
+      for (std::size_t k = k0; k < k1; ++k) c += touch_[k];
+      block_first_[b] = c;
+    }
+#pragma omp single
+    {
+      std::size_t total = 0;
+      for (std::size_t& first : block_first_) {
+        const std::size_t c = first;
+        first = total;
+        total += c;
+      }
+      new_keys_.resize(total);
+      new_records_.resize(total);
+      new_state_.resize(poly ? total : 0);
+    }
+#pragma omp for schedule(static, 1) nowait
+    for (std::int64_t b = 0; b < nb; ++b) {
       std::size_t out = block_first_[b];
-      const std::size_t k1 = std::min(ncand, (b + 1) * kSumBlock);
-      for (std::size_t k = b * kSumBlock; k < k1; ++k) {
+      const std::size_t k0 = static_cast<std::size_t>(b) * kSumBlock;
+      const std::size_t k1 = std::min(ncand, k0 + kSumBlock);
+      for (std::size_t k = k0; k < k1; ++k) {
         if (!touch_[k]) continue;
         const PairKey key = cand[k];
         const PairResult& r = pair_r_[k];
@@ -330,10 +361,8 @@ ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<Pai
         note_overlap(block_stats_[b], w, key, r.h, r.degenerate);
       }
     }
-  });
-  // each particle's forces: its pairs in candidate order, from zero
-  parallel_ranges(n, 0, [&](std::size_t p0, std::size_t p1) {
-    for (std::size_t p = p0; p < p1; ++p) {
+#pragma omp for schedule(static)
+    for (std::int64_t p = 0; p < nn; ++p) {
       double fx = 0.0, fy = 0.0, tq = 0.0;
       for (std::uint32_t e = cand_start_[p]; e < cand_start_[p + 1]; ++e) {
         const std::uint32_t k = cand_entry_[e] >> 1;
@@ -353,7 +382,7 @@ ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<Pai
       f.fy[p] = fy;
       if (poly) f.tq[p] = tq;
     }
-  });
+  }  // omp parallel
   ForceStats st;
   for (const ForceStats& b : block_stats_) {
     st.degenerate += b.degenerate;

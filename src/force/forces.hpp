@@ -52,7 +52,7 @@ class ContactModel {
   bool polygon_pair(const World& w, PairKey key, const ContactSet& cs, std::size_t& hint,
                     double dt, PairForce& pf, PairResult& pr) const;
   bool disk_pair(const World& w, PairKey key, PairForce& pf, PairResult& pr) const;
-  void place_shapes(const World& w);
+  void place_shapes(const World& w, bool inside);
   ForceStats evaluate_serial(const World& w, const std::vector<PairKey>& cand,
                              const ContactSet& cs, ForceBuffer& f, double dt);
   ForceStats evaluate_parallel(const World& w, const std::vector<PairKey>& cand,
