@@ -49,7 +49,14 @@ lammps() {
       -var nsteps "$steps" "$@" -log none)
   fi
   echo "$out" >"$tmp/lammps$ranks.out"
-  python3 -c "print($steps*$n/$(echo "$out" | awk '/^Loop time/ {print $4}'))"
+  local loop
+  loop=$(echo "$out" | awk '/^Loop time/ {print $4}')
+  if [ -z "$loop" ]; then  # LAMMPS stopped (an error): say so, keep the harness going
+    echo "LAMMPS $in on $ranks rank(s) failed: $(echo "$out" | grep -m1 ERROR)" >&2
+    echo nan
+    return 0
+  fi
+  python3 -c "print($steps*$n/$loop)"
 }
 
 # the settled pile after the run, both codes: mean height and kinetic energy (a sanity check
