@@ -16,6 +16,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 export GS_BUILD_DIR=${GS_BUILD_DIR:-build}
+# the spin gransim gives its OpenMP threads (src/main.cpp), for gransim_bench too
+[ -n "${OMP_WAIT_POLICY:-}" ] || export GOMP_SPINCOUNT=${GOMP_SPINCOUNT:-10000000}
 quick=${QUICK:-0}
 bin=$GS_BUILD_DIR/gransim_bench
 t_start=$(date +%s)
