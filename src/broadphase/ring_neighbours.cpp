@@ -36,13 +36,24 @@ class RingNeighbours final : public BroadPhase {
       stale_ = true;
       for (std::size_t k = 0; k < n; ++k) shift_[k] = forward_shift(w, k, (k + 1) % n, L);
     }
-    for (std::size_t k = 0; k < n; ++k) {
-      const std::size_t a = k + 1 == n ? 0 : k + 1;
-      const double dij = w.radius[k] + w.radius[a];
-      const double gap = w.s.x[a] + shift_[k] * L - w.s.x[k];
-      if (gap < -dij || gap >= L - dij) {
-        shift_[k] = forward_shift(w, k, a, L);
-        stale_ = true;
+    // first a branch-free pass that only asks whether any gap left its window (it vectorises;
+    // almost every step the answer is no), then the fix-up where one did
+    const double* x = w.s.x.data();
+    const double* r = w.radius.data();
+    const int* sh = shift_.data();
+    bool out = false;
+    for (std::size_t k = 0; k + 1 < n; ++k) {
+      const double dij = r[k] + r[k + 1];
+      const double gap = x[k + 1] + sh[k] * L - x[k];
+      out |= (gap < -dij) | (gap >= L - dij);
+    }
+    if (out || !in_window(w, n - 1, 0, L)) {
+      for (std::size_t k = 0; k < n; ++k) {
+        const std::size_t a = k + 1 == n ? 0 : k + 1;
+        if (!in_window(w, k, a, L)) {
+          shift_[k] = forward_shift(w, k, a, L);
+          stale_ = true;
+        }
       }
     }
     if (stale_) {
@@ -53,6 +64,13 @@ class RingNeighbours final : public BroadPhase {
   }
 
  private:
+  // does pair k = (behind, ahead) still have its forward gap in [−d, L − d) with its shift?
+  bool in_window(const World& w, std::size_t behind, std::size_t ahead, double L) const {
+    const double dij = w.radius[behind] + w.radius[ahead];
+    const double gap = w.s.x[ahead] + shift_[behind] * L - w.s.x[behind];
+    return !(gap < -dij || gap >= L - dij);
+  }
+
   // the image s of `ahead` that makes it the forward neighbour of `behind`
   static int forward_shift(const World& w, std::size_t behind, std::size_t ahead, double L) {
     const double gap = w.s.x[ahead] - w.s.x[behind];
