@@ -25,18 +25,8 @@ inline void noise_normals(std::uint64_t key, std::int64_t step, bool ring, doubl
   z1 = ring ? 0.0 : r.normal_fast();
 }
 
-/// the ring's symmetrisation (T.2.18): subtract the mean kick ⟨η⟩ from every particle, given
-/// each particle's kick acceleration; the mean is a blocked sum (kSumBlock), bitwise
-/// independent of the thread count
-void symmetrise_ring_kicks(const World& w, const std::vector<double>& kick,
-                           std::vector<double>& ax);
-
-/// add the noise accelerations η/M of step `step` to (ax, ay); ring: x only, symmetrised (T.2.18)
-void add_random_force(const World& w, std::uint64_t seed, std::int64_t step, double D, double dt,
-                      std::vector<double>& ax, std::vector<double>& ay);
-/// the same with the keys of random_force_keys(seed, w.size()) (bitwise the same values)
-void add_random_force(const World& w, const std::vector<std::uint64_t>& keys, std::int64_t step,
-                      double D, double dt, std::vector<double>& ax, std::vector<double>& ay);
+// the kicks are applied in Simulation's acceleration pass (sim/simulation.cpp), fused with the
+// contact forces and gravity; the ring's symmetrisation η_i → η_i − ⟨η⟩ (T.2.18) is there too
 
 /// subtract the centre-of-mass velocity (2D drift control, every K steps)
 void remove_com_velocity(World& w);
