@@ -107,10 +107,12 @@ void BM_DecagonPrepare(benchmark::State& state) {
     c[i] = {rng.uniform(0.0, 0.48), rng.uniform(0.0, 1.2)};
     th[i] = rng.uniform(-20.0, 20.0);
   }
+  const gs::BodyExtent eb = gs::body_extent(big), es = gs::body_extent(small);
   gs::PolyStore st;
   st.resize(kCount, 10);
   for (auto _ : state) {
-    for (int i = 0; i < kCount; ++i) st.set_placed(i, (i & 1) ? small : big, c[i], th[i]);
+    for (int i = 0; i < kCount; ++i)
+      st.set_placed(i, (i & 1) ? small : big, (i & 1) ? es : eb, c[i], th[i]);
     benchmark::DoNotOptimize(st.ref(kCount - 1).radius);
     benchmark::ClobberMemory();
   }

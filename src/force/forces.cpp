@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "contact/narrow.hpp"
 #include "core/error.hpp"
@@ -39,7 +41,16 @@ std::size_t history_index(const std::vector<PairKey>& keys, PairKey key, std::si
 ContactModel::ContactModel(const World& w) : nsp_(w.species.size()) {
   const std::size_t stride = nsp_ + 1;
   poly_.resize(nsp_ * stride);
+  poly_pc_.resize(nsp_ * stride);
   disk_.resize(nsp_ * stride);
+  // Model P's pair constants stand for every grain of a species: check that they may
+  for (std::size_t i = 0; i < (w.polygons() ? w.size() : 0); ++i) {
+    const Species& k = w.species[w.sp[i]];
+    if (w.radius[i] != k.radius || w.mass[i] != k.mass || w.inv_mass[i] != 1.0 / k.mass ||
+        w.inv_inertia[i] != (k.inertia > 0 ? 1.0 / k.inertia : 0.0))
+      throw std::logic_error("ContactModel: grain " + std::to_string(i) +
+                             " has a radius, mass or inertia other than its species'");
+  }
   hdot_fd_ = w.scene.model.hdot_finite_difference;
   rocking_ = w.scene.model.rocking_damping;
   min_contact_time_ = 1e300;
@@ -52,6 +63,7 @@ ContactModel::ContactModel(const World& w) : nsp_(w.species.size()) {
       const double mi = si.mass, mj = wall ? 0.0 : w.species[b].mass;
       const double m12 = wall ? mi : mi * mj / (mi + mj);
       poly_[a * stride + b] = poly_params(ma, mb);
+      poly_pc_[a * stride + b] = poly_pair_const(w, a, b, poly_[a * stride + b]);
       // Model S: dashpots from the target restitutions (T.2.6, T.2.12)
       law::DiskLawParams d;
       d.ks = 0.5 * (ma.ks + mb.ks);
@@ -74,7 +86,38 @@ ContactModel::ContactModel(const World& w) : nsp_(w.species.size()) {
       min_contact_time_ = std::min(min_contact_time_, tc);
     }
   }
-  for (const Species& sp : w.species) max_sides_ = std::max(max_sides_, sp.body.n);
+  for (const Species& sp : w.species) {
+    max_sides_ = std::max(max_sides_, sp.body.n);
+    extent_.push_back(body_extent(sp.body));
+  }
+}
+
+// the mass and size constants of Model P for species a against species b (b = nsp: a wall),
+// by the expressions the per-grain values (World::add_particle) would give
+ContactModel::PolyPairConst ContactModel::poly_pair_const(const World& w, std::size_t a,
+                                                          std::size_t b,
+                                                          const law::PolyLawParams& p) const {
+  const bool wall = b == nsp_;
+  const Species& si = w.species[a];
+  const double ri = si.radius;
+  const double inv_ii = si.inertia > 0 ? 1.0 / si.inertia : 0.0;
+  PolyPairConst c;
+  double inv_m_par = 1.0 / si.mass + ri * ri * inv_ii;
+  if (wall) {
+    c.l = ri;
+    c.m_perp = si.mass;
+  } else {
+    const Species& sj = w.species[b];
+    const double rj = sj.radius;
+    const double inv_ij = sj.inertia > 0 ? 1.0 / sj.inertia : 0.0;
+    c.l = ri * rj / (ri + rj);
+    c.m_perp = si.mass * sj.mass / (si.mass + sj.mass);
+    inv_m_par += 1.0 / sj.mass + rj * rj * inv_ij;
+  }
+  c.m_par = 1.0 / inv_m_par;
+  c.damp_n = p.gamma * std::sqrt(p.E * c.m_perp);
+  c.damp_t = std::sqrt((2.0 / 7.0) * p.E * c.m_par);
+  return c;
 }
 
 // Model P (SPEC 2.2): overlap-area normal force with Cundall–Strack friction
@@ -111,20 +154,10 @@ bool ContactModel::polygon_pair(const World& w, PairKey key, const ContactSet& c
   if (hint < old_keys.size() && old_keys[hint] == key) state = cs.state[hint];
 
   // geometry of the pair (P.29–P.33): l, m⊥, m∥
-  const std::size_t si = w.sp[i];
-  const law::PolyLawParams& p = poly_[si * stride + (wall ? nsp_ : w.sp[j])];
-  const double ri = w.radius[i];
-  double l, m_perp, inv_m_par = w.inv_mass[i] + ri * ri * w.inv_inertia[i];
-  if (wall) {
-    l = ri;
-    m_perp = w.mass[i];
-  } else {
-    const double rj = w.radius[j];
-    l = ri * rj / (ri + rj);
-    m_perp = w.mass[i] * w.mass[j] / (w.mass[i] + w.mass[j]);
-    inv_m_par += w.inv_mass[j] + rj * rj * w.inv_inertia[j];
-  }
-  const double m_par = 1.0 / inv_m_par;
+  const std::size_t pk = w.sp[i] * stride + (wall ? nsp_ : w.sp[j]);
+  const law::PolyLawParams& p = poly_[pk];
+  const PolyPairConst& pc = poly_pc_[pk];
+  const double l = pc.l;
 
   // relative velocity of i against j at the contact point
   const Vec2 ri_s = g.s - xi;
@@ -138,16 +171,16 @@ bool ContactModel::polygon_pair(const World& w, PairKey key, const ContactSet& c
   const double hdot = hdot_fd_ ? (h - state.h_prev) / dt  // h_prev = 0 before first touch
                                : g.chord * vn / l;
   state.h_prev = h;
-  const double fn = law::poly_normal_force(p, h, hdot, m_perp);
+  const double fn = law::poly_normal_force_damped(p, h, hdot, pc.damp_n);
   // tangential force (P.35–P.36); the force on i opposes its sliding: −F∥·t
-  const double ft = law::cundall_strack(p, state.spring, vt, fn, m_par, dt);
+  const double ft = law::cundall_strack_damped(p, state.spring, vt, fn, pc.damp_t, dt);
 
   // the same dashpot spread along the contact line: its moment about s damps relative
   // rotation, ∫ x·(γ√(E m⊥)/l)·ω_rel·x dx = γ√(E m⊥)·L³/(12 l)·ω_rel (only while pressing)
   double couple = 0.0;
   if (rocking_ && fn > 0.0) {
     const double w_rel = w.s.w[i] - (wall ? 0.0 : w.s.w[j]);
-    couple = p.gamma * std::sqrt(p.E * m_perp) * g.chord * g.chord * g.chord / (12.0 * l) * w_rel;
+    couple = pc.damp_n * g.chord * g.chord * g.chord / (12.0 * l) * w_rel;
   }
   // j gets +fn·n + ft·t, i the opposite; torques about each centre
   const Vec2 F = g.n * fn + perp(g.n) * ft;
@@ -233,15 +266,17 @@ void ContactModel::place_shapes(const World& w, bool inside) {
     wall_shapes_.resize(w.walls.size(), wall_n);
     for (std::size_t k = 0; k < w.walls.size(); ++k) wall_shapes_.set(k, w.walls[k].poly);
   }
+  auto place = [&](std::size_t i) {
+    const int k = w.sp[i];
+    shapes_.set_placed(i, w.species[k].body, extent_[k], {w.s.x[i], w.s.y[i]}, w.s.th[i]);
+  };
   if (!inside) {
-    for (std::size_t i = 0; i < n; ++i)
-      shapes_.set_placed(i, w.species[w.sp[i]].body, {w.s.x[i], w.s.y[i]}, w.s.th[i]);
+    for (std::size_t i = 0; i < n; ++i) place(i);
     return;
   }
   const auto nn = static_cast<std::int64_t>(n);
 #pragma omp for schedule(static)
-  for (std::int64_t i = 0; i < nn; ++i)
-    shapes_.set_placed(i, w.species[w.sp[i]].body, {w.s.x[i], w.s.y[i]}, w.s.th[i]);
+  for (std::int64_t i = 0; i < nn; ++i) place(static_cast<std::size_t>(i));
 }
 
 // the contact's statistics: h_eff (or δ) and the same over the smaller grain's radius

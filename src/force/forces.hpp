@@ -53,6 +53,9 @@ class ContactModel {
                     double dt, PairForce& pf, PairResult& pr) const;
   bool disk_pair(const World& w, PairKey key, PairForce& pf, PairResult& pr) const;
   void place_shapes(const World& w, bool inside);
+  struct PolyPairConst;
+  PolyPairConst poly_pair_const(const World& w, std::size_t a, std::size_t b,
+                                const law::PolyLawParams& p) const;
   ForceStats evaluate_serial(const World& w, const std::vector<PairKey>& cand,
                              const ContactSet& cs, ForceBuffer& f, double dt);
   ForceStats evaluate_parallel(const World& w, const std::vector<PairKey>& cand,
@@ -61,6 +64,14 @@ class ContactModel {
   void index_candidates(const std::vector<PairKey>& cand, std::size_t n);
   std::size_t nsp_ = 0;
   std::vector<law::PolyLawParams> poly_;   ///< [si * (nsp+1) + sj], sj = nsp for walls
+  /// Model P constants of a (species, species) or (species, wall) pair: the quantities of
+  /// P.29–P.36 that depend on masses and radii only (every grain of a species has its values)
+  struct PolyPairConst {
+    double l = 0, m_perp = 0, m_par = 0;  ///< l (m), m⊥ and m∥ (kg)
+    double damp_n = 0;                    ///< γ·√(E·m⊥), kg/s
+    double damp_t = 0;                    ///< √((2/7)·E·m∥), kg/s
+  };
+  std::vector<PolyPairConst> poly_pc_;     ///< same layout as poly_
   std::vector<law::DiskLawParams> disk_;   ///< same layout
   bool hdot_fd_ = false;
   bool rocking_ = true;
@@ -68,6 +79,7 @@ class ContactModel {
   PolyStore shapes_;       ///< world-frame polygons of this step, prepared for the overlap
   PolyStore wall_shapes_;  ///< the walls' polygons, prepared once
   int max_sides_ = 0;      ///< most vertices of any species' polygon
+  std::vector<BodyExtent> extent_;  ///< per species: its body's extent, for the placement
   /// one touching pair's force on j (i gets the opposite) and the torques about each centre
   struct PairForce {
     double fx = 0, fy = 0, ti = 0, tj = 0;

@@ -15,33 +15,62 @@ void PolyStore::resize(std::size_t count, int max_n) {
   meta_.resize(count);
 }
 
-// c + rotate(v, cos θ, sin θ), as place(); edges and mean as finish(). The bounding radius
-// comes from the rotated body offsets w_k, without a second pass over the vertices (which
-// would wait for the mean): every vertex v_k = fl(c + w_k) lies within |w_k| + 2⁻⁵³·|c + w_k|₁
-// of c, and c within |m − c|₁ of the mean m, so
-//   max|v_k − m| ≤ (max|w_k| + |m.x − c.x| + |m.y − c.y|)·(1 + 1e-12) + 1e-15·(|c.x| + |c.y|)
-// with a wide allowance for the rounding of these sums (the last term covers placements far
-// from the origin, where the rounding of c + w_k is larger than the body's own).
-void PolyStore::set_placed(std::size_t i, const Poly& body, Vec2 c, double theta) {
+BodyExtent body_extent(const Poly& body) {
+  double r2 = 0.0, l2 = 0.0;
+  for (int k = 0; k < body.n; ++k) {
+    r2 = std::max(r2, norm2(body.v[k]));
+    l2 = std::max(l2, norm2(body.v[k + 1 == body.n ? 0 : k + 1] - body.v[k]));
+  }
+  return {std::sqrt(r2), std::sqrt(l2)};
+}
+
+// c + rotate(v, cos θ, sin θ), as place(); edges and mean as finish(), in straight loops over
+// the vertex arrays. The bounds come from the body's extent, not from the placed vertices
+// (which would need a second pass waiting for the mean):
+//  - radius: the rotated offset w_k = fl(rotate(v_k)) has |w_k| ≤ |v_k|·(1 + 5·2⁻⁵³); the vertex
+//    fl(c + w_k) lies within |w_k| + 2⁻⁵³·|c + w_k|₁ of c, and c within |m − c|₁ of the mean m:
+//      max|vertex − m| ≤ (reach + |m.x − c.x| + |m.y − c.y|)·(1 + 1e-12) + 1e-15·(|c.x| + |c.y|)
+//    with a wide allowance for the rounding of these sums (the last term covers placements far
+//    from the origin, where the rounding of c + w_k is larger than the body's own);
+//  - longest edge: an edge differs from the rotated body edge by the rounding of the rotation
+//    (relative 1e-15) and of the two vertices (2⁻⁵³·|c + w|₁ each), hence
+//      len ≤ (len_body + 1e-15·(|c.x| + |c.y| + 2·reach))·(1 + 1e-12).
+void PolyStore::set_placed(std::size_t i, const Poly& body, const BodyExtent& ext, Vec2 c,
+                           double theta) {
   assert(static_cast<std::size_t>(body.n) <= stride_);
   const int n = body.n;
   const double cs = std::cos(theta), sn = std::sin(theta);
-  double* x = data_.data() + i * 4 * stride_;
-  double* y = x + stride_;
-  double w2 = 0.0;
+  double* const x = data_.data() + i * 4 * stride_;
+  double* const y = x + stride_;
+  double* const ex = y + stride_;
+  double* const ey = ex + stride_;
   for (int k = 0; k < n; ++k) {
-    const Vec2 w = rotate(body.v[k], cs, sn);
-    const Vec2 v = c + w;
-    x[k] = v.x;
-    y[k] = v.y;
-    w2 = std::max(w2, norm2(w));
+    const double bx = body.v[k].x, by = body.v[k].y;
+    x[k] = c.x + (cs * bx - sn * by);
+    y[k] = c.y + (sn * bx + cs * by);
+  }
+  for (int k = 0; k + 1 < n; ++k) {
+    ex[k] = x[k + 1] - x[k];
+    ey[k] = y[k + 1] - y[k];
+  }
+  double mx = 0.0, my = 0.0;
+  for (int k = 0; k < n; ++k) {
+    mx += x[k];
+    my += y[k];
   }
   n_[i] = n;
-  double l2 = 0.0;
-  const Vec2 m = edges(i, l2);
-  const double r = (std::sqrt(w2) + std::abs(m.x - c.x) + std::abs(m.y - c.y)) * (1.0 + 1e-12) +
-                   1e-15 * (std::abs(c.x) + std::abs(c.y));
-  meta_[i] = {m, r, std::sqrt(l2) * (1.0 + 1e-12)};
+  if (n == 0) {
+    meta_[i] = {};
+    return;
+  }
+  ex[n - 1] = x[0] - x[n - 1];
+  ey[n - 1] = y[0] - y[n - 1];
+  const Vec2 m{mx / static_cast<double>(n), my / static_cast<double>(n)};
+  const double c1 = std::abs(c.x) + std::abs(c.y);
+  const double r = (ext.reach + std::abs(m.x - c.x) + std::abs(m.y - c.y)) * (1.0 + 1e-12) +
+                   1e-15 * c1;
+  const double len = (ext.len + 1e-15 * (c1 + 2.0 * ext.reach)) * (1.0 + 1e-12);
+  meta_[i] = {m, r, len};
 }
 
 void PolyStore::set(std::size_t i, const Poly& p) {

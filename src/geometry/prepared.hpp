@@ -22,13 +22,24 @@ struct PolyRef {
   double len = 0.0;            ///< the longest edge (rounded up), m
 };
 
+/// what placing a body needs beyond its vertices: sizes that no placement changes
+struct BodyExtent {
+  double reach = 0.0;  ///< the largest distance of a vertex from the body origin, m
+  double len = 0.0;    ///< the longest edge, m
+};
+BodyExtent body_extent(const Poly& body);
+
 /// prepared polygons in one flat array (structure of arrays per polygon, fixed stride)
 class PolyStore {
  public:
   /// room for `count` polygons of at most `max_n` vertices (contents undefined until set)
   void resize(std::size_t count, int max_n);
-  /// polygon i := body placed at c with orientation θ (the same arithmetic as place())
-  void set_placed(std::size_t i, const Poly& body, Vec2 c, double theta);
+  /// polygon i := body placed at c with orientation θ (the same arithmetic as place());
+  /// `ext` = body_extent(body), computed once per body by callers that place it often
+  void set_placed(std::size_t i, const Poly& body, const BodyExtent& ext, Vec2 c, double theta);
+  void set_placed(std::size_t i, const Poly& body, Vec2 c, double theta) {
+    set_placed(i, body, body_extent(body), c, theta);
+  }
   /// polygon i := p (world coordinates)
   void set(std::size_t i, const Poly& p);
   /// a view of polygon i (valid until the next resize)

@@ -1,4 +1,5 @@
 // sixth-order Gear predictor–corrector for second-order equations (SPEC 2.3)
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -13,6 +14,25 @@ namespace {
 // corrector coefficients for q'' = a(q, q') with velocity-dependent forces (SPEC 2.3)
 constexpr double kC[6] = {3.0 / 16.0, 251.0 / 360.0, 1.0, 11.0 / 18.0, 1.0 / 6.0, 1.0 / 60.0};
 constexpr int kN = 6;  // values per degree of freedom
+
+// per-DOF loops run in parallel from this many DOFs on: six derivatives per DOF make them
+// dearer than the plain particle loops (kParallelMinCheap)
+constexpr std::size_t kParallelMinGear = kParallelMin;
+
+// body(channel, r0…r5, begin, end) over every channel's DOFs, in parallel ranges (one region)
+template <class Body>
+void for_channels(std::span<const Channel> ch, std::vector<std::vector<double>>& r, Body&& body) {
+  std::size_t nmax = 0;
+  for (const Channel& k : ch) nmax = std::max(nmax, k.q.size());
+  parallel_ranges(nmax, kParallelMinGear, [&](std::size_t b, std::size_t e) {
+    for (std::size_t c = 0; c < ch.size(); ++c) {
+      const std::size_t n = ch[c].q.size();
+      double* const r0 = r[c].data();
+      body(c, r0, r0 + n, r0 + 2 * n, r0 + 3 * n, r0 + 4 * n, r0 + 5 * n, std::min(b, n),
+           std::min(e, n));
+    }
+  });
+}
 }  // namespace
 
 // start: r0 = q, r1 = v·Δt, r2 = a·Δt²/2, higher derivatives unknown and set to zero
@@ -23,13 +43,24 @@ void Gear6::init(std::span<const Channel> ch, double dt) {
   r_.assign(ch.size(), {});
   for (std::size_t c = 0; c < ch.size(); ++c) {
     const auto& k = ch[c];
+    const std::size_t n = k.q.size();
     auto& r = r_[c];
-    r.assign(kN * k.q.size(), 0.0);
-    for (std::size_t i = 0; i < k.q.size(); ++i) {
-      r[kN * i + 0] = k.q[i];
-      r[kN * i + 1] = k.v[i] * dt;
-      r[kN * i + 2] = k.a[i] * dt * dt / 2.0;
+    r.assign(kN * n, 0.0);
+    for (std::size_t i = 0; i < n; ++i) {
+      r[i] = k.q[i];
+      r[n + i] = k.v[i] * dt;
+      r[2 * n + i] = k.a[i] * dt * dt / 2.0;
     }
+  }
+  note_velocities();
+}
+
+void Gear6::note_velocities() {
+  vw_.assign(r_.size(), {});
+  for (std::size_t c = 0; c < r_.size(); ++c) {
+    const std::size_t n = r_[c].size() / kN;
+    vw_[c].resize(n);
+    for (std::size_t i = 0; i < n; ++i) vw_[c][i] = r_[c][n + i] / dt_;
   }
 }
 
@@ -39,18 +70,20 @@ void Gear6::set_derivative(std::size_t c, int k, std::span<const double> d) {
     throw std::invalid_argument("Gear6::set_derivative: bad channel, order or length");
   double scale = 1.0;
   for (int j = 1; j <= k; ++j) scale *= dt_ / j;
-  for (std::size_t i = 0; i < d.size(); ++i) r_[c][kN * i + k] = d[i] * scale;
+  const std::size_t n = d.size();
+  for (std::size_t i = 0; i < n; ++i) r_[c][k * n + i] = d[i] * scale;
 }
 
 // a new Δt: r_k scales as Δt^k
 void Gear6::rescale(double dt) {
   const double s = dt / dt_;
   for (auto& r : r_) {
-    for (std::size_t i = 0; i < r.size(); i += kN) {
+    const std::size_t n = r.size() / kN;
+    for (std::size_t i = 0; i < n; ++i) {
       double f = 1.0;
       for (int k = 1; k < kN; ++k) {
         f *= s;
-        r[i + k] *= f;
+        r[k * n + i] *= f;
       }
     }
   }
@@ -60,67 +93,86 @@ void Gear6::rescale(double dt) {
 void Gear6::predict(std::span<const Channel> ch, double dt) {
   layout_.check(ch, "Gear6::predict");
   if (!(dt > 0.0)) throw std::invalid_argument("Gear6::predict: dt must be positive");
-  // pick up caller edits since the last correct() (periodic wrap of q, kicks to v)
-  auto pick_up = [this](const Channel& k, double* r) {
-    for (std::size_t i = 0; i < k.q.size(); ++i, r += kN) {
-      if (k.q[i] != r[0]) r[0] = k.q[i];
-      if (k.v[i] != r[1] / dt_) r[1] = k.v[i] * dt_;
-    }
-  };
+  // pick up caller edits since the last correct() (periodic wrap of q, kicks to v): v counts
+  // as edited when it differs from r1/Δt, which vw_ holds
   const bool rescaled = dt != dt_;
   if (rescaled) {
-    for (std::size_t c = 0; c < ch.size(); ++c) pick_up(ch[c], r_[c].data());
+    for (std::size_t c = 0; c < ch.size(); ++c) {
+      const auto& k = ch[c];
+      const std::size_t n = k.q.size();
+      double* r = r_[c].data();
+      for (std::size_t i = 0; i < n; ++i) {
+        if (k.q[i] != r[i]) r[i] = k.q[i];
+        if (k.v[i] != vw_[c][i]) r[n + i] = k.v[i] * dt_;
+      }
+    }
     rescale(dt);
   }
-  for (std::size_t c = 0; c < ch.size(); ++c) {
-    const auto& k = ch[c];
-    double* const rr = r_[c].data();
-    parallel_ranges(k.q.size(), kParallelMinCheap, [&](std::size_t b, std::size_t e) {
-      for (std::size_t i = b; i < e; ++i) {
-        double* r = rr + kN * i;
-        if (!rescaled) {  // the pick-up, as above
-          if (k.q[i] != r[0]) r[0] = k.q[i];
-          if (k.v[i] != r[1] / dt_) r[1] = k.v[i] * dt_;
-        }
-        // Taylor step with the Pascal triangle (each line uses the old higher values)
-        r[0] += r[1] + r[2] + r[3] + r[4] + r[5];
-        r[1] += 2.0 * r[2] + 3.0 * r[3] + 4.0 * r[4] + 5.0 * r[5];
-        r[2] += 3.0 * r[3] + 6.0 * r[4] + 10.0 * r[5];
-        r[3] += 4.0 * r[4] + 10.0 * r[5];
-        r[4] += 5.0 * r[5];
-        // the predicted state, where the caller evaluates the forces
-        k.q[i] = r[0];
-        k.v[i] = r[1] / dt_;
+  const double h = dt_;
+  for_channels(ch, r_, [&](std::size_t c, double* r0, double* r1, double* r2, double* r3,
+                           double* r4, double* r5, std::size_t b, std::size_t e) {
+    double* const q = ch[c].q.data();
+    double* const v = ch[c].v.data();
+    double* const vw = vw_[c].data();
+    for (std::size_t i = b; i < e; ++i) {
+      double a0 = r0[i], a1 = r1[i];
+      if (!rescaled) {  // the pick-up, as above
+        if (q[i] != a0) a0 = q[i];
+        if (v[i] != vw[i]) a1 = v[i] * h;
       }
-    });
-  }
+      const double a2 = r2[i], a3 = r3[i], a4 = r4[i], a5 = r5[i];
+      // Taylor step with the Pascal triangle (each line uses the old higher values)
+      a0 += a1 + a2 + a3 + a4 + a5;
+      a1 += 2.0 * a2 + 3.0 * a3 + 4.0 * a4 + 5.0 * a5;
+      r2[i] = a2 + (3.0 * a3 + 6.0 * a4 + 10.0 * a5);
+      r3[i] = a3 + (4.0 * a4 + 10.0 * a5);
+      r4[i] = a4 + 5.0 * a5;
+      r0[i] = a0;
+      r1[i] = a1;
+      // the predicted state, where the caller evaluates the forces
+      q[i] = a0;
+      v[i] = vw[i] = a1 / h;
+    }
+  });
 }
 
 void Gear6::correct(std::span<const Channel> ch, double dt) {
   layout_.check(ch, "Gear6::correct");
   if (dt != dt_) throw std::invalid_argument("Gear6::correct: dt differs from predict()");
-  const double h2 = dt_ * dt_ / 2.0;
-  for (std::size_t c = 0; c < ch.size(); ++c) {
-    const auto& k = ch[c];
-    double* const rr = r_[c].data();
-    parallel_ranges(k.q.size(), kParallelMinCheap, [&](std::size_t b, std::size_t e) {
-      for (std::size_t i = b; i < e; ++i) {
-        double* r = rr + kN * i;
-        // the acceleration mismatch Δr2 = a·Δt²/2 − r2ᵖ corrects every derivative
-        const double d = k.a[i] * h2 - r[2];
-        for (int j = 0; j < kN; ++j) r[j] += kC[j] * d;
-        k.q[i] = r[0];
-        k.v[i] = r[1] / dt_;
-      }
-    });
-  }
+  const double h = dt_;
+  const double h2 = h * h / 2.0;
+  for_channels(ch, r_, [&](std::size_t c, double* r0, double* r1, double* r2, double* r3,
+                           double* r4, double* r5, std::size_t b, std::size_t e) {
+    const double* const a = ch[c].a.data();
+    double* const q = ch[c].q.data();
+    double* const v = ch[c].v.data();
+    double* const vw = vw_[c].data();
+    for (std::size_t i = b; i < e; ++i) {
+      // the acceleration mismatch Δr2 = a·Δt²/2 − r2ᵖ corrects every derivative
+      const double d = a[i] * h2 - r2[i];
+      const double a0 = r0[i] + kC[0] * d, a1 = r1[i] + kC[1] * d;
+      r0[i] = a0;
+      r1[i] = a1;
+      r2[i] += kC[2] * d;
+      r3[i] += kC[3] * d;
+      r4[i] += kC[4] * d;
+      r5[i] += kC[5] * d;
+      q[i] = a0;
+      v[i] = vw[i] = a1 / h;
+    }
+  });
 }
 
 // history: header, then the six scaled derivatives of every DOF, channel by channel
 std::vector<double> Gear6::save() const {
   std::vector<double> out;
   layout_.write_header(out, kind(), dt_);
-  for (const auto& r : r_) out.insert(out.end(), r.begin(), r.end());
+  // the checkpoint keeps the six derivatives of each DOF together (the original layout)
+  for (const auto& r : r_) {
+    const std::size_t n = r.size() / kN;
+    for (std::size_t i = 0; i < n; ++i)
+      for (int k = 0; k < kN; ++k) out.push_back(r[k * n + i]);
+  }
   return out;
 }
 
@@ -130,11 +182,13 @@ void Gear6::load(const std::vector<double>& data) {
     throw InputError("checkpoint", "integrator.gear6", "integrator history has wrong length");
   r_.assign(layout_.channels(), {});
   for (std::size_t c = 0; c < layout_.channels(); ++c) {
-    const std::size_t n = kN * layout_.size(c);
-    r_[c].assign(data.begin() + static_cast<std::ptrdiff_t>(off),
-                 data.begin() + static_cast<std::ptrdiff_t>(off + n));
-    off += n;
+    const std::size_t n = layout_.size(c);
+    r_[c].resize(kN * n);
+    for (std::size_t i = 0; i < n; ++i)
+      for (int k = 0; k < kN; ++k) r_[c][k * n + i] = data[off + kN * i + k];
+    off += kN * n;
   }
+  note_velocities();
 }
 
 }  // namespace gs

@@ -52,9 +52,15 @@ class Gear6 final : public Integrator {
 
  private:
   void rescale(double dt);
+  void note_velocities();  // vw_ := r1/Δt, after the history changed outside predict/correct
   ChannelLayout layout_;
-  double dt_ = 0.0;                     ///< the Δt the derivatives are scaled with, s
-  std::vector<std::vector<double>> r_;  ///< per channel, 6 scaled derivatives per DOF, units
+  double dt_ = 0.0;  ///< the Δt the derivatives are scaled with, s
+  /// per channel, the 6 scaled derivatives r_k = Δt^k/k!·q⁽ᵏ⁾, derivative-major
+  /// (r_k of DOF i at k·n + i) so that the per-DOF loops vectorise, units
+  std::vector<std::vector<double>> r_;
+  /// per channel, the velocities last written (r1/Δt): a caller's edit of v shows as a
+  /// difference without dividing again
+  std::vector<std::vector<double>> vw_;
 };
 
 /// what velocity velocity Verlet shows the force evaluation
