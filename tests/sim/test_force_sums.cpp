@@ -79,6 +79,72 @@ TEST(ForceSums, DenseDiskFluidMatchesSerialLoop) {
   expect_serial_sums(w, BroadPhaseKind::CellGrid);
 }
 
+// the serial disk loop picks the touching pairs by a branch-free pass first when few touched
+// last step (the contact set is small against the candidates); with a large contact set it
+// visits every candidate. Both must give the same contacts and forces, bit for bit: a periodic
+// gas, a walled box with disks on the walls, and the 1D ring
+void expect_same_disk_paths(const World& w, std::size_t min_contacts) {
+  auto bp = make_broadphase(BroadPhaseKind::Auto, w);
+  const std::vector<PairKey>& cand = bp->update(w);
+  ContactModel model(w);
+  ContactSet sparse, packed;  // sparse: no contacts last step; packed: as many as candidates
+  packed.keys.assign(cand.size(), PairKey{0});
+  ForceBuffer f1, f2;
+  model.evaluate(w, cand, sparse, f1, w.scene.integrator.dt, bp->generation());
+  model.evaluate(w, cand, packed, f2, w.scene.integrator.dt, bp->generation());
+  ASSERT_GE(sparse.keys.size(), min_contacts);
+  ASSERT_LT(3 * sparse.keys.size(), cand.size()) << "not a sparse scene: the test needs one";
+  EXPECT_EQ(sparse.keys, packed.keys);
+  EXPECT_EQ(f1.fx, f2.fx);
+  EXPECT_EQ(f1.fy, f2.fy);
+  ASSERT_EQ(sparse.records.size(), packed.records.size());
+  for (std::size_t k = 0; k < sparse.records.size(); ++k) {
+    EXPECT_EQ(sparse.records[k].fn, packed.records[k].fn);
+    EXPECT_EQ(sparse.records[k].ft, packed.records[k].ft);
+  }
+  std::vector<double> fx, fy;
+  serial_sums(w, sparse, fx, fy);
+  EXPECT_EQ(fx, f1.fx);
+  EXPECT_EQ(fy, f1.fy);
+}
+
+TEST(ForceSums, DiskPrefilterKeepsThePairs) {
+  {  // periodic gas at φ = 0.3, randomly forced out of its lattice: contacts across the
+     // boundary too
+    SceneSpec s = build::disk_gas(3000, 0.3, 0.6, 0.6, 5);
+    s.drive.kind = DriveKind::RandomForce;
+    World w0 = make_world(s);
+    place_particles(w0);
+    Simulation sim(std::move(w0));
+    sim.run(400);
+    const World& w = sim.world();
+    expect_same_disk_paths(w, 10);
+  }
+  {  // walled box: a loose column of disks shifted onto the left wall and the floor
+    SceneSpec s = build::disk_gas(400, 0.3, 0.6, 0.6, 6);
+    s.box.kind = BoxKind::Walls;
+    World w = make_world(s);
+    place_particles(w);
+    const double r0 = w.radius[0];
+    std::size_t on_wall = 0;
+    for (std::size_t i = 0; i < w.size(); ++i) {
+      w.s.x[i] -= 0.9 * r0 * (w.s.x[i] < 3 * r0);
+      w.s.y[i] -= 0.9 * r0 * (w.s.y[i] < 3 * r0);
+      on_wall += w.s.x[i] < r0 || w.s.y[i] < r0;
+    }
+    ASSERT_GT(on_wall, 0u);
+    expect_same_disk_paths(w, on_wall);
+  }
+  {  // the 1D ring
+    World w = make_world(parse_scene_file(std::string(GS_SOURCE_DIR) + "/scenes/rfm1d_reference.toml"));
+    place_particles(w);
+    // every tenth disk's forward neighbour moved to overlap it by a quarter diameter
+    for (std::size_t i = 0; i + 1 < w.size(); i += 10)
+      w.s.x[i + 1] = w.s.x[i] + 1.5 * w.radius[i];
+    expect_same_disk_paths(w, w.size() / 10);
+  }
+}
+
 }  // namespace
 }  // namespace gs
 
