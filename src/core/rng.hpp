@@ -71,8 +71,9 @@ struct RngStream {
   /// a standard normal by the ziggurat method: exact, and ~10× cheaper than Box–Muller because
   /// 98.8% of draws need one 64-bit value and no transcendental function. The layer index (low
   /// 7 bits) and the signed 32-bit abscissa (high bits) come from disjoint bits of each value.
-  double normal_fast() {
-    const ZigguratTables& t = ZigguratTables::get();
+  double normal_fast() { return normal_fast(ZigguratTables::get()); }
+  /// the same with the tables at hand (hot loops fetch them once)
+  double normal_fast(const ZigguratTables& t) {
     for (;;) {
       const std::uint64_t u = next_u64();
       const auto hz = static_cast<std::int32_t>(static_cast<std::uint32_t>(u >> 32));

@@ -15,14 +15,15 @@ namespace gs {
 std::vector<std::uint64_t> random_force_keys(std::uint64_t seed, std::size_t n);
 
 /// the standard normals of one particle's kick at step `step`, from its stream key: stream
-/// (seed, particle), counter a function of the step alone; the ring draws z0 only
-inline void noise_normals(std::uint64_t key, std::int64_t step, bool ring, double& z0,
-                          double& z1) {
+/// (seed, particle), counter a function of the step alone; the ring draws z0 only.
+/// t = ZigguratTables::get(), fetched once by the caller
+inline void noise_normals(const ZigguratTables& t, std::uint64_t key, std::int64_t step,
+                          bool ring, double& z0, double& z1) {
   RngStream r;
   r.key = key;
   r.counter = static_cast<std::uint64_t>(step) << 8;  // 256 values per step: ample for 2 normals
-  z0 = r.normal_fast();
-  z1 = ring ? 0.0 : r.normal_fast();
+  z0 = r.normal_fast(t);
+  z1 = ring ? 0.0 : r.normal_fast(t);
 }
 
 // the kicks are applied in Simulation's acceleration pass (sim/simulation.cpp), fused with the

@@ -78,13 +78,14 @@ struct AccelArrays {
 template <bool kNoise, bool kRing, bool kSpin>
 double accelerate(const AccelArrays& a, std::size_t b, std::size_t e) {
   double kick_sum = 0.0;
+  const ZigguratTables& zt = ZigguratTables::get();
   for (std::size_t i = b; i < e; ++i) {
     const double im = a.inv_mass[i];
     double ax = a.fx[i] * im + a.g.x;
     double ay = kRing ? 0.0 : a.fy[i] * im + a.g.y;
     if constexpr (kNoise) {
       double z0, z1;
-      noise_normals(a.keys[i], a.index, kRing, z0, z1);
+      noise_normals(zt, a.keys[i], a.index, kRing, z0, z1);
       const double ex = a.sigma * z0 * im;
       ax += ex;
       if constexpr (kRing)
