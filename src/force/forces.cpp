@@ -379,39 +379,36 @@ ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<Pai
   touch_.resize(ncand);
   pair_f_.resize(ncand);
   pair_r_.resize(ncand);
-  // one parallel region: polygons placed → every candidate pair (a chunk's history search
-  // resumes where its last one ended) → touching pairs counted per block and compacted into
-  // the contact set → each particle's forces, its pairs in candidate order, from zero
+  // one parallel region: polygons placed → every candidate pair, chunk by chunk (a chunk's
+  // history search resumes where its last one ended), each chunk counting its touching pairs
+  // → the chunks' first slots (a prefix sum) → each chunk's touching pairs compacted into the
+  // contact set, in candidate order whatever the chunking → each particle's forces, its pairs
+  // in candidate order, from zero
   const std::size_t chunk = poly ? 64 : 512;
-  const auto nchunks = static_cast<std::int64_t>((ncand + chunk - 1) / chunk);
-  const std::size_t nblocks = (ncand + kSumBlock - 1) / kSumBlock;
-  const auto nb = static_cast<std::int64_t>(nblocks);
+  const std::size_t nchunks = (ncand + chunk - 1) / chunk;
+  const auto nc = static_cast<std::int64_t>(nchunks);
   const auto nn = static_cast<std::int64_t>(n);
-  block_first_.resize(nblocks);
-  block_stats_.assign(nblocks, {});
+  chunk_first_.resize(nchunks);
+  chunk_stats_.assign(nchunks, {});
 #pragma omp parallel
   {
     if (poly) place_shapes(w, true);
 #pragma omp for schedule(dynamic, 1)
-    for (std::int64_t c = 0; c < nchunks; ++c) {
+    for (std::int64_t c = 0; c < nc; ++c) {
       const std::size_t k0 = static_cast<std::size_t>(c) * chunk, k1 = std::min(ncand, k0 + chunk);
-      std::size_t hint = 0;
-      for (std::size_t k = k0; k < k1; ++k)
-        touch_[k] = poly ? polygon_pair(w, cand[k], cs, hint, dt, pair_f_[k], pair_r_[k])
-                         : disk_pair(w, cand[k], pair_f_[k], pair_r_[k]);
-    }
-#pragma omp for schedule(static)
-    for (std::int64_t b = 0; b < nb; ++b) {
-      const std::size_t k0 = static_cast<std::size_t>(b) * kSumBlock;
-      const std::size_t k1 = std::min(ncand, k0 + kSumBlock);
-      std::size_t c = 0;
-      for (std::size_t k = k0; k < k1; ++k) c += touch_[k];
-      block_first_[b] = c;
+      std::size_t hint = 0, touching = 0;
+      for (std::size_t k = k0; k < k1; ++k) {
+        const bool t = poly ? polygon_pair(w, cand[k], cs, hint, dt, pair_f_[k], pair_r_[k])
+                            : disk_pair(w, cand[k], pair_f_[k], pair_r_[k]);
+        touch_[k] = t;
+        touching += t;
+      }
+      chunk_first_[static_cast<std::size_t>(c)] = touching;
     }
 #pragma omp single
     {
       std::size_t total = 0;
-      for (std::size_t& first : block_first_) {
+      for (std::size_t& first : chunk_first_) {
         const std::size_t c = first;
         first = total;
         total += c;
@@ -420,11 +417,10 @@ ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<Pai
       new_records_.resize(total);
       new_state_.resize(poly ? total : 0);
     }
-#pragma omp for schedule(static, 1) nowait
-    for (std::int64_t b = 0; b < nb; ++b) {
-      std::size_t out = block_first_[b];
-      const std::size_t k0 = static_cast<std::size_t>(b) * kSumBlock;
-      const std::size_t k1 = std::min(ncand, k0 + kSumBlock);
+#pragma omp for schedule(static) nowait
+    for (std::int64_t c = 0; c < nc; ++c) {
+      std::size_t out = chunk_first_[static_cast<std::size_t>(c)];
+      const std::size_t k0 = static_cast<std::size_t>(c) * chunk, k1 = std::min(ncand, k0 + chunk);
       for (std::size_t k = k0; k < k1; ++k) {
         if (!touch_[k]) continue;
         const PairKey key = cand[k];
@@ -433,7 +429,7 @@ ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<Pai
         new_records_[out] = {key, r.s, r.n, r.fn, r.ft, r.overlap};
         if (poly) new_state_[out] = r.state;
         ++out;
-        note_overlap(block_stats_[b], w, key, r.h, r.degenerate);
+        note_overlap(chunk_stats_[static_cast<std::size_t>(c)], w, key, r.h, r.degenerate);
       }
     }
 #pragma omp for schedule(static)
@@ -458,8 +454,8 @@ ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<Pai
       if (poly) f.tq[p] = tq;
     }
   }  // omp parallel
-  ForceStats st;
-  for (const ForceStats& b : block_stats_) {
+  ForceStats st;  // maxima and counts: the same whatever the chunking
+  for (const ForceStats& b : chunk_stats_) {
     st.degenerate += b.degenerate;
     st.max_overlap = std::max(st.max_overlap, b.max_overlap);
     st.max_overlap_rel = std::max(st.max_overlap_rel, b.max_overlap_rel);

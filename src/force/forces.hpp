@@ -102,8 +102,8 @@ class ContactModel {
   std::uint64_t indexed_generation_ = 0;
   std::size_t indexed_n_ = 0, indexed_count_ = 0;
   // the compaction of touching pairs into the contact set, in fixed blocks of candidates
-  std::vector<std::size_t> block_first_;  ///< first contact-set slot of each block
-  std::vector<ForceStats> block_stats_;
+  std::vector<std::size_t> chunk_first_;  ///< parallel loop: first contact-set slot of each chunk
+  std::vector<ForceStats> chunk_stats_;
   std::vector<PairKey> new_keys_;
   std::vector<ContactState> new_state_;
   std::vector<ContactRecord> new_records_;

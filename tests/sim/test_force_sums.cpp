@@ -6,12 +6,27 @@
 #include <string>
 #include <vector>
 
+#include "core/parallel.hpp"
 #include "scene/parse.hpp"
 #include "sim/state_file.hpp"
 #include "test_world.hpp"
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 namespace gs {
 namespace {
+
+// two OpenMP threads for the scope (ctest runs with OMP_NUM_THREADS=1, which would leave the
+// parallel path untested); without OpenMP the serial path is all there is
+struct TwoThreads {
+#ifdef _OPENMP
+  int before = omp_get_max_threads();
+  TwoThreads() { omp_set_num_threads(2); }
+  ~TwoThreads() { omp_set_num_threads(before); }
+#endif
+};
 
 // the serial reference: every touching pair in key order, as the force loop once summed them
 void serial_sums(const World& w, const ContactSet& cs, std::vector<double>& fx,
@@ -32,11 +47,16 @@ void serial_sums(const World& w, const ContactSet& cs, std::vector<double>& fx,
 }
 
 void expect_serial_sums(const World& w, BroadPhaseKind bpk) {
+  const TwoThreads two;  // the parallel path (the candidates are above its thresholds)
   auto bp = make_broadphase(bpk, w);
   ContactModel model(w);
   ContactSet cs;
   ForceBuffer f;
   const std::vector<PairKey>& cand = bp->update(w);
+#ifdef _OPENMP
+  ASSERT_TRUE(run_parallel(cand.size(), w.polygons() ? kParallelMin : kParallelMinCheap))
+      << cand.size() << " candidates: below the parallel threshold";
+#endif
   model.evaluate(w, cand, cs, f, w.scene.integrator.dt, bp->generation());
   ASSERT_GT(cs.records.size(), w.size()) << "a dense packing: more contacts than grains";
   ASSERT_EQ(cs.keys.size(), cs.records.size());
@@ -70,8 +90,8 @@ TEST(ForceSums, SettledDecagonPileMatchesSerialLoop) {
 }
 
 TEST(ForceSums, DenseDiskFluidMatchesSerialLoop) {
-  // 2000 disks placed at φ = 0.5, then grown by 30 % (φ = 0.85): most disks touch several
-  SceneSpec s = build::disk_gas(2000, 0.5, 0.6, 0.6, 3);
+  // 6000 disks placed at φ = 0.5, then grown by 30 % (φ = 0.85): most disks touch several
+  SceneSpec s = build::disk_gas(6000, 0.5, 0.6, 0.6, 3);
   World w = make_world(s);
   place_particles(w);
   for (double& r : w.radius) r *= 1.3;
