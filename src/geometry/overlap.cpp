@@ -204,6 +204,103 @@ Overlap finish(const TaggedRing& r, bool want_centroid) {
   return o;
 }
 
+// clip_tagged without its per-vertex branches, for the common case, writing the very ring
+// clip_tagged writes (same side values, crossing arithmetic, vertex order and flags): the
+// vertices inside b's edge line form one run ia..ib (the ring is convex), entered by the
+// crossing on edge ia−1 → ia and left by the one on edge ib → ib+1. Whatever clip_tagged
+// treats specially (a vertex on the line or NaN, two runs from round-off, an exact repeat that
+// it would merge) is left to it (kGeneral).
+enum class Cap { kEmpty, kWhole, kRing, kGeneral };
+struct CapRing {
+  Cap kind = Cap::kGeneral;
+  int c1 = -1, c2 = -1;  ///< ring indices of the entering and leaving crossings, ring order
+};
+template <bool kFresh>
+CapRing run_clip(int n, const double* x, const double* y, const std::uint8_t* f, Vec2 o, Vec2 e,
+                 TaggedRing& out) {
+  if (n == 0) return {};
+  double s[kRingCap];
+  std::uint64_t in = 0, other = 0;
+  for (int i = 0; i < n; ++i) {
+    s[i] = (x[i] - o.x) * e.y - (y[i] - o.y) * e.x;
+    in |= static_cast<std::uint64_t>(s[i] < 0.0) << i;
+    other |= static_cast<std::uint64_t>(!(s[i] < 0.0) && !(s[i] > 0.0)) << i;  // 0 or NaN
+  }
+  if (other != 0) return {};
+  const std::uint64_t full = (std::uint64_t{1} << n) - 1;  // n < 64
+  if (in == 0) return {Cap::kEmpty};
+  if (in == full) return {Cap::kWhole};
+  const std::uint64_t prev = ((in << 1) | (in >> (n - 1))) & full;  // bit i: vertex i − 1 in
+  const std::uint64_t next = ((in >> 1) | (in << (n - 1))) & full;  // bit i: vertex i + 1 in
+  const std::uint64_t starts = in & ~prev;
+  if ((starts & (starts - 1)) != 0) return {};  // two runs (round-off)
+  const int ia = std::countr_zero(starts), ib = std::countr_zero(in & ~next);
+  auto flags = [&](int i) -> unsigned { return kFresh ? kEdgeA : f[i]; };
+  int m = 0;
+  bool repeat = false;
+  auto put = [&](double px, double py, unsigned fl) {
+    repeat |= m > 0 && out.x[m - 1] == px && out.y[m - 1] == py;
+    out.x[m] = px;
+    out.y[m] = py;
+    out.f[m] = static_cast<std::uint8_t>(fl);
+    ++m;
+  };
+  // the crossing on edge p → q, as clip_tagged interpolates and marks it
+  auto crossing = [&](int p, int q, unsigned fl) {
+    const double t = s[p] / (s[p] - s[q]);
+    put(x[p] + (x[q] - x[p]) * t, y[p] + (y[q] - y[p]) * t, fl);
+  };
+  auto run = [&](int from, int to) {
+    for (int i = from; i <= to; ++i) put(x[i], y[i], flags(i));
+  };
+  const int pa = ia == 0 ? n - 1 : ia - 1;
+  const unsigned on_a_in = flags(pa) & kEdgeA, on_a_out = flags(ib) & kEdgeA;
+  auto enter = [&] { crossing(pa, ia, (on_a_in ? kCross : 0u) | on_a_in); };
+  auto leave = [&] { crossing(ib, ib + 1 == n ? 0 : ib + 1, on_a_out ? kCross : 0u); };
+  // clip_tagged's order: edges p → q for q = 0, 1, …, n − 1
+  CapRing r{Cap::kRing};
+  if (ia > ib) {  // the run wraps past vertex 0
+    run(0, ib);
+    r.c2 = m;
+    leave();
+    r.c1 = m;
+    enter();
+    run(ia, n - 1);
+  } else if (ib == n - 1) {  // the leaving crossing lies on edge n − 1 → 0, visited first
+    r.c2 = m;
+    leave();
+    r.c1 = m;
+    enter();
+    run(ia, ib);
+  } else {
+    r.c1 = m;
+    enter();
+    run(ia, ib);
+    r.c2 = m;
+    leave();
+  }
+  out.n = m;
+  // an exact repeat (clip_tagged merges it), also of the last vertex with the first
+  if (repeat || (out.x[m - 1] == out.x[0] && out.y[m - 1] == out.y[0])) return {};
+  return r;
+}
+
+// does any of the edge lines of b in the mask (bit j: edge k1 + j) have a vertex of the ring
+// strictly outside? The side values are clip_tagged's, so "no" means that every one of those
+// clips would return false.
+bool cuts_any(const TaggedRing& r, const PolyRef& b, int k1, std::uint64_t mask) {
+  while (mask != 0) {
+    const int j = std::countr_zero(mask);
+    mask &= mask - 1;
+    const int k = k1 + j < b.n ? k1 + j : k1 + j - b.n;
+    const double ox = b.x[k], oy = b.y[k], ex = b.ex[k], ey = b.ey[k];
+    bool out = false;
+    for (int i = 0; i < r.n; ++i) out |= (r.x[i] - ox) * ey - (r.y[i] - oy) * ex > 0.0;
+    if (out) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 Poly intersect(const Poly& a, const Poly& b) {
@@ -244,11 +341,16 @@ Overlap overlap(const PolyRef& a, const PolyRef& b) {
       k0 = k;
     }
   }
-  // the first clip reads a in place; only when it cuts nothing off does a become the ring
+  // the first clip reads a in place (the common case without clip_tagged's branches); only
+  // when it cuts nothing off does a become the ring
   TaggedRing r1, r2;
   TaggedRing* cur = &r1;
   TaggedRing* nxt = &r2;
-  if (!clip_tagged<true>(a.n, a.x, a.y, nullptr, r1, {b.x[k0], b.y[k0]}, {b.ex[k0], b.ey[k0]})) {
+  const Vec2 o0{b.x[k0], b.y[k0]}, e0{b.ex[k0], b.ey[k0]};
+  const CapRing cap = run_clip<true>(a.n, a.x, a.y, nullptr, o0, e0, r1);
+  if (cap.kind == Cap::kEmpty) return {};
+  if (cap.kind == Cap::kWhole ||
+      (cap.kind == Cap::kGeneral && !clip_tagged<true>(a.n, a.x, a.y, nullptr, r1, o0, e0))) {
     r1.n = a.n;
     for (int i = 0; i < a.n; ++i) {
       r1.x[i] = a.x[i];
@@ -287,11 +389,28 @@ Overlap overlap(const PolyRef& a, const PolyRef& b) {
   const int k1 = k0 + 1 == b.n ? 0 : k0 + 1;
   cut = (cut >> k1) | (cut << (b.n - k1));  // b.n <= kMaxPolyVerts < 64
   cut &= (std::uint64_t{1} << (b.n - 1)) - 1;  // the n − 1 edges after k0
+  // a cap that no remaining edge line really cuts (the box test is loose where the cap lies
+  // along a long edge) needs no more clips: test its vertices exactly as clip_tagged would
+  if (cap.kind == Cap::kRing && cut != 0 && !cuts_any(*cur, b, k1, cut)) cut = 0;
+  if (cut == 0 && cap.kind == Cap::kRing) {
+    // the cap is the intersection: finish() with its two known crossings, in ring order
+    Overlap ov;
+    const double a2 = detail::twice_area(*cur);
+    ov.area = a2 > 0.0 ? 0.5 * a2 : 0.0;
+    ov.crossings = 2;
+    ov.c1 = (*cur)[std::min(cap.c1, cap.c2)];
+    ov.c2 = (*cur)[std::max(cap.c1, cap.c2)];
+    return ov;
+  }
   while (cut != 0 && cur->n > 0) {
     const int j = std::countr_zero(cut);
     cut &= cut - 1;
     const int k = k1 + j < b.n ? k1 + j : k1 + j - b.n;
-    if (clip_tagged(*cur, *nxt, {b.x[k], b.y[k]}, {b.ex[k], b.ey[k]})) std::swap(cur, nxt);
+    const Vec2 o{b.x[k], b.y[k]}, e{b.ex[k], b.ey[k]};
+    const Cap c = run_clip<false>(cur->n, cur->x, cur->y, cur->f, o, e, *nxt).kind;
+    if (c == Cap::kEmpty) return {};
+    if (c == Cap::kRing || (c == Cap::kGeneral && clip_tagged(*cur, *nxt, o, e)))
+      std::swap(cur, nxt);
   }
   return finish(*cur, false);
 }
