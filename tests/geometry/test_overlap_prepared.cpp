@@ -215,5 +215,32 @@ TEST(PreparedOverlap, RandomConvexPairsBitwise) {
   EXPECT_GT(t.touching, 2000);
 }
 
+// polygons with a vertex repeated (a zero-length edge) are flagged, and the prepared overlap
+// leaves them to the general clips, which merge the repeat: still bitwise the general result
+TEST(PreparedOverlap, RepeatedVertexBitwise) {
+  RngStream rng(18, 0);
+  PolyStore st;
+  st.resize(1, 12);
+  st.set(0, regular_polygon(10, kRBig));
+  EXPECT_TRUE(st.ref(0).distinct);
+  Tally t;
+  for (int i = 0; i < 4000; ++i) {
+    const Poly d = regular_polygon(10, kRBig, {0.0, 0.0}, rng.uniform(0.0, 2.0 * kPi));
+    Poly a;
+    const int rep = i % 10;
+    for (int k = 0; k < d.n; ++k) {
+      a.push(d.v[k]);
+      if (k == rep) a.push(d.v[k]);  // vertex rep twice
+    }
+    st.set(0, a);
+    ASSERT_FALSE(st.ref(0).distinct);
+    const Vec2 cb = dir(rng.uniform(0.0, 2.0 * kPi)) * ((kRBig + kRSmall) * rng.uniform(0.85, 1.0));
+    const Poly b = regular_polygon(10, kRSmall, cb, rng.uniform(0.0, 2.0 * kPi));
+    expect_same(a, b, t);
+    if (HasFatalFailure()) return;
+  }
+  EXPECT_GT(t.touching, 2000);
+}
+
 }  // namespace
 }  // namespace gs
