@@ -6,10 +6,6 @@
 #include <cassert>
 #include <cmath>
 
-#if defined(__SSE2__)
-#include <immintrin.h>
-#endif
-
 namespace gs {
 
 void PolyStore::resize(std::size_t count, int max_n) {
@@ -20,18 +16,12 @@ void PolyStore::resize(std::size_t count, int max_n) {
 }
 
 BodyExtent body_extent(const Poly& body) {
-  BodyExtent e;
   double r2 = 0.0, l2 = 0.0;
   for (int k = 0; k < body.n; ++k) {
     r2 = std::max(r2, norm2(body.v[k]));
     l2 = std::max(l2, norm2(body.v[k + 1 == body.n ? 0 : k + 1] - body.v[k]));
-    e.vx[k] = body.v[k].x;
-    e.vy[k] = body.v[k].y;
   }
-  e.reach = std::sqrt(r2);
-  e.len = std::sqrt(l2);
-  e.n = body.n;
-  return e;
+  return {std::sqrt(r2), std::sqrt(l2)};
 }
 
 // c + rotate(v, cos θ, sin θ), as place(); edges and mean as finish(), in straight loops over
@@ -47,53 +37,21 @@ BodyExtent body_extent(const Poly& body) {
 //      len ≤ (len_body + 1e-15·(|c.x| + |c.y| + 2·reach))·(1 + 1e-12).
 void PolyStore::set_placed(std::size_t i, const Poly& body, const BodyExtent& ext, Vec2 c,
                            double theta) {
-  assert(static_cast<std::size_t>(body.n) <= stride_ && ext.n == body.n);
-  (void)body;
-  const int n = ext.n;
+  assert(static_cast<std::size_t>(body.n) <= stride_);
+  const int n = body.n;
   const double cs = std::cos(theta), sn = std::sin(theta);
   double* const x = data_.data() + i * 4 * stride_;
   double* const y = x + stride_;
   double* const ex = y + stride_;
   double* const ey = ex + stride_;
-  const double* const bx = ext.vx;
-  const double* const by = ext.vy;
-  int k = 0;
-  bool zero = false;  // an edge of length zero (two equal consecutive vertices)
-#if defined(__SSE2__)
-  // two vertices at a time, each lane the scalar loop's operations in its order
-  {
-    const __m128d vc = _mm_set1_pd(cs), vs = _mm_set1_pd(sn);
-    const __m128d cx = _mm_set1_pd(c.x), cy = _mm_set1_pd(c.y);
-    for (; k + 2 <= n; k += 2) {
-      const __m128d px = _mm_loadu_pd(bx + k), py = _mm_loadu_pd(by + k);
-      _mm_storeu_pd(x + k, _mm_add_pd(cx, _mm_sub_pd(_mm_mul_pd(vc, px), _mm_mul_pd(vs, py))));
-      _mm_storeu_pd(y + k, _mm_add_pd(cy, _mm_add_pd(_mm_mul_pd(vs, px), _mm_mul_pd(vc, py))));
-    }
+  for (int k = 0; k < n; ++k) {
+    const double bx = body.v[k].x, by = body.v[k].y;
+    x[k] = c.x + (cs * bx - sn * by);
+    y[k] = c.y + (sn * bx + cs * by);
   }
-#endif
-  for (; k < n; ++k) {
-    x[k] = c.x + (cs * bx[k] - sn * by[k]);
-    y[k] = c.y + (sn * bx[k] + cs * by[k]);
-  }
-  k = 0;
-#if defined(__SSE2__)
-  {
-    const __m128d z = _mm_setzero_pd();
-    __m128d zz = _mm_setzero_pd();
-    for (; k + 3 <= n; k += 2) {  // edges k, k + 1 need vertices up to k + 2
-      const __m128d dx = _mm_sub_pd(_mm_loadu_pd(x + k + 1), _mm_loadu_pd(x + k));
-      const __m128d dy = _mm_sub_pd(_mm_loadu_pd(y + k + 1), _mm_loadu_pd(y + k));
-      _mm_storeu_pd(ex + k, dx);
-      _mm_storeu_pd(ey + k, dy);
-      zz = _mm_or_pd(zz, _mm_and_pd(_mm_cmpeq_pd(dx, z), _mm_cmpeq_pd(dy, z)));
-    }
-    zero = _mm_movemask_pd(zz) != 0;
-  }
-#endif
-  for (; k + 1 < n; ++k) {
+  for (int k = 0; k + 1 < n; ++k) {
     ex[k] = x[k + 1] - x[k];
     ey[k] = y[k + 1] - y[k];
-    zero |= (ex[k] == 0.0) & (ey[k] == 0.0);
   }
   double mx = 0.0, my = 0.0;
   for (int k = 0; k < n; ++k) {
@@ -112,8 +70,7 @@ void PolyStore::set_placed(std::size_t i, const Poly& body, const BodyExtent& ex
   const double r = (ext.reach + std::abs(m.x - c.x) + std::abs(m.y - c.y)) * (1.0 + 1e-12) +
                    1e-15 * c1;
   const double len = (ext.len + 1e-15 * (c1 + 2.0 * ext.reach)) * (1.0 + 1e-12);
-  zero |= (ex[n - 1] == 0.0) & (ey[n - 1] == 0.0);
-  meta_[i] = {m, r, len, !zero};
+  meta_[i] = {m, r, len};
 }
 
 void PolyStore::set(std::size_t i, const Poly& p) {
@@ -130,7 +87,7 @@ void PolyStore::set(std::size_t i, const Poly& p) {
 
 // edge vectors v[k+1] − v[k] (as clip_all and facing_edge) and the vertex mean (as
 // vertex_mean: summed from zero in vertex order, then divided by n); l2: the longest edge²
-Vec2 PolyStore::edges(std::size_t i, double& l2, bool& zero) {
+Vec2 PolyStore::edges(std::size_t i, double& l2) {
   const int n = n_[i];
   double* x = data_.data() + i * 4 * stride_;
   double* y = x + stride_;
@@ -138,13 +95,11 @@ Vec2 PolyStore::edges(std::size_t i, double& l2, bool& zero) {
   double* ey = ex + stride_;
   Vec2 m{};
   l2 = 0.0;
-  zero = false;
   for (int k = 0; k < n; ++k) {
     const int k1 = k + 1 == n ? 0 : k + 1;
     ex[k] = x[k1] - x[k];
     ey[k] = y[k1] - y[k];
     l2 = std::max(l2, ex[k] * ex[k] + ey[k] * ey[k]);
-    zero |= (ex[k] == 0.0) & (ey[k] == 0.0);
     m += Vec2{x[k], y[k]};
   }
   if (n > 0) m = m / static_cast<double>(n);
@@ -154,14 +109,13 @@ Vec2 PolyStore::edges(std::size_t i, double& l2, bool& zero) {
 // edges and mean, then the largest distance of a vertex from the mean
 void PolyStore::finish(std::size_t i) {
   double l2 = 0.0;
-  bool zero = false;
-  const Vec2 m = edges(i, l2, zero);
+  const Vec2 m = edges(i, l2);
   const double* x = data_.data() + i * 4 * stride_;
   const double* y = x + stride_;
   double r2 = 0.0;
   for (int k = 0; k < n_[i]; ++k) r2 = std::max(r2, norm2(Vec2{x[k], y[k]} - m));
   // rounded up: the circle must hold every vertex despite the rounding of these sums
-  meta_[i] = {m, std::sqrt(r2) * (1.0 + 1e-12), std::sqrt(l2) * (1.0 + 1e-12), !zero};
+  meta_[i] = {m, std::sqrt(r2) * (1.0 + 1e-12), std::sqrt(l2) * (1.0 + 1e-12)};
 }
 
 Poly PolyStore::poly(std::size_t i) const {

@@ -20,18 +20,12 @@ struct PolyRef {
   Vec2 mean;                   ///< vertex mean (the interior point overlap() uses), m
   double radius = 0.0;         ///< a circle about `mean` holding every vertex (rounded up), m
   double len = 0.0;            ///< the longest edge (rounded up), m
-  bool distinct = true;        ///< no two consecutive vertices are equal (no zero edge)
 };
 
-/// what placing a body needs, computed once: sizes that no placement changes, and the body's
-/// vertices as plain coordinate arrays (the placement's loops run over them two or four at a
-/// time)
+/// what placing a body needs beyond its vertices: sizes that no placement changes
 struct BodyExtent {
   double reach = 0.0;  ///< the largest distance of a vertex from the body origin, m
   double len = 0.0;    ///< the longest edge, m
-  int n = 0;           ///< vertices
-  double vx[kMaxPolyVerts] = {};  ///< body-frame vertex abscissae, m
-  double vy[kMaxPolyVerts] = {};  ///< body-frame vertex ordinates, m
 };
 BodyExtent body_extent(const Poly& body);
 
@@ -59,7 +53,6 @@ class PolyStore {
     r.mean = meta_[i].mean;
     r.radius = meta_[i].radius;
     r.len = meta_[i].len;
-    r.distinct = meta_[i].distinct;
     return r;
   }
   /// polygon i as a Poly (for the general routines)
@@ -68,12 +61,10 @@ class PolyStore {
 
  private:
   void finish(std::size_t i);  // edges, mean, radius, longest edge from the vertices
-  // edge vectors; returns the vertex mean; l2: the longest edge², zero: is an edge zero?
-  Vec2 edges(std::size_t i, double& l2, bool& zero);
+  Vec2 edges(std::size_t i, double& l2);  // edge vectors; returns the vertex mean
   struct Meta {
     Vec2 mean;
     double radius = 0.0, len = 0.0;
-    bool distinct = true;
   };
   std::size_t stride_ = 0;
   std::vector<double> data_;  ///< per polygon: x, y, ex, ey, each `stride_` long
