@@ -127,7 +127,7 @@ struct DriveSpec {
   // relaxation once the largest speed has stayed below quench_speed for quench_hold
   bool quench = false;
   double quench_speed = 0.05;  ///< m/s
-  double quench_hold = 0.1;    ///< s
+  double quench_hold = 0.3;    ///< s
   // taps
   int taps = 0;          ///< number of taps (0 = run for duration)
   /// run-time protocol clock, not a scene key: the schedules run on t − clock_origin and give

@@ -171,7 +171,7 @@ width = 0.48
   EXPECT_FALSE(s.drive.early_rest);
   EXPECT_FALSE(s.drive.quench);  // opt-in (docs/tapping.md)
   EXPECT_EQ(s.drive.quench_speed, 0.05);
-  EXPECT_EQ(s.drive.quench_hold, 0.1);
+  EXPECT_EQ(s.drive.quench_hold, 0.3);
   EXPECT_EQ(s.output.discard_taps, 10);  // SPEC 2.5
   EXPECT_EQ(s.output.test_rect[2], 0.44);
   EXPECT_EQ(s.resolved.at("integrator.kind"), "\"gear6\"");
