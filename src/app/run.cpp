@@ -41,10 +41,12 @@ void print_banner(const SceneSpec& scene, const Simulation& sim, const ProtocolC
                std::string(to_string(scene.integrator.kind)).c_str(), sim.broadphase().name(),
                sim.model().min_contact_time());
   if (is_tapping(scene.drive))
-    std::fprintf(stderr, "gransim: %s, settle %g s, then %d taps of T = %g s (excitation %g s)%s\n",
+    std::fprintf(stderr,
+                 "gransim: %s, settle %g s, then %d taps of T = %g s (excitation %g s)%s%s\n",
                  std::string(scene_name(scene.drive.kind)).c_str(), scene.prep.settle_time,
                  scene.drive.taps, drive_period(scene.drive), excitation_length(scene.drive),
-                 scene.drive.early_rest ? ", early rest on" : "");
+                 scene.drive.early_rest ? ", early rest on" : "",
+                 scene.drive.quench ? ", quench on" : "");
 }
 
 ByteReader extra(const Checkpoint& c, const std::string& key) {

@@ -81,6 +81,7 @@ void write_run_json(const RunSession& rs, int code, const std::string& failure, 
        << "  \"taps_done\": " << taps_done << ",\n"
        << "  \"early_ends\": " << clock.early_ends() << ",\n"
        << "  \"time_saved_s\": " << clock.time_saved() << ",\n"
+       << "  \"quench_events\": " << clock.quench_events() << ",\n"
        << "  \"wall_time_settling_s\": " << settled << ",\n"
        << "  \"wall_time_per_tap_s\": "
        << (taps_done > 0 ? (wall - settled) / static_cast<double>(taps_done) : 0.0) << ",\n";
@@ -142,7 +143,8 @@ int run_session(RunSession& rs) {
   try {
     for (std::int64_t k = 0; !finished(); ++k) {
       sim.step();
-      clock.after_step(sim.world());  // may end a relaxation early (moves the clock origin)
+      // may end a relaxation early (moves the clock origin) or ask for a quench's reset
+      if (clock.after_step(sim.world()) == ClockEvent::Quench) sim.zero_velocities();
       if (rs.wall_settled < 0 && !settling()) rs.wall_settled = wall_now();
       for (auto& o : rs.observers) o->after_step(sim);
       const std::int64_t step = sim.world().s.step;

@@ -93,7 +93,7 @@ void run_tapping(const StudySizes& z, const StudyCase& c, StudyOutcome& o) {
   while (!clock.done(sim.world())) {
     sim.step();
     ++o.steps;
-    clock.after_step(sim.world());
+    if (clock.after_step(sim.world()) == ClockEvent::Quench) sim.zero_velocities();
     const World& cw = sim.world();
     if (!excitation_starts_next(cw.scene.drive, cw.s.t, o.dt)) continue;
     // the row of tap k: the pile after k pulses (k = 0: settled); the first `discard` dropped

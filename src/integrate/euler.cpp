@@ -1,4 +1,5 @@
 // semi-implicit (symplectic) Euler: kick with the force at the current state, then drift
+#include <algorithm>
 #include <stdexcept>
 
 #include "core/error.hpp"
@@ -31,6 +32,12 @@ void SemiImplicitEuler::correct(std::span<const Channel> ch, double dt) {
       k.q[i] += k.v[i] * dt;
     }
   }
+}
+
+// kinetic damping: no history, only v
+void SemiImplicitEuler::zero_velocities(std::span<const Channel> ch) {
+  layout_.check(ch, "SemiImplicitEuler::zero_velocities");
+  for (const Channel& k : ch) std::fill(k.v.begin(), k.v.end(), 0.0);
 }
 
 // history: the header only (layout and Δt)

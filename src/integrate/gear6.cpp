@@ -163,6 +163,22 @@ void Gear6::correct(std::span<const Channel> ch, double dt) {
   });
 }
 
+// kinetic damping: the grains at rest where they are. r1 and the unknown higher derivatives
+// go to zero as in init(); r2 already holds a·Δt²/2 of the last force evaluation
+void Gear6::zero_velocities(std::span<const Channel> ch) {
+  layout_.check(ch, "Gear6::zero_velocities");
+  for (std::size_t c = 0; c < ch.size(); ++c) {
+    const std::size_t n = ch[c].q.size();
+    double* const r = r_[c].data();
+    for (std::size_t i = 0; i < n; ++i) {
+      // a caller's edit of q since the last correct() is kept, as predict() would
+      if (ch[c].q[i] != r[i]) r[i] = ch[c].q[i];
+      r[n + i] = r[3 * n + i] = r[4 * n + i] = r[5 * n + i] = 0.0;
+      ch[c].v[i] = vw_[c][i] = 0.0;
+    }
+  }
+}
+
 // history: header, then the six scaled derivatives of every DOF, channel by channel
 std::vector<double> Gear6::save() const {
   std::vector<double> out;

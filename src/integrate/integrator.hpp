@@ -54,6 +54,10 @@ class Integrator {
   virtual void predict(std::span<const Channel> ch, double dt) = 0;
   /// given a at the predicted state, produce the final q, v at t + dt
   virtual void correct(std::span<const Channel> ch, double dt) = 0;
+  /// between steps: set every velocity of ch to zero and restart the history from rest at
+  /// the current positions, as init() would with v = 0 and the last accelerations (kinetic
+  /// damping, drive.quench). Positions and the stored accelerations are kept
+  virtual void zero_velocities(std::span<const Channel> ch) = 0;
   /// the integrator's internal history as flat doubles (for checkpoints), and back
   virtual std::vector<double> save() const = 0;
   virtual void load(const std::vector<double>& data) = 0;

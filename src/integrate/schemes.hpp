@@ -37,13 +37,15 @@ class ChannelLayout {
 /// init() sets r3 = r4 = r5 = 0 (the usual start): the O(Δt³) error in r3 leaves an O(Δt²)
 /// velocity error that persists, so the observed global order is 2 (integrator_order());
 /// with exact higher derivatives (set_derivative) the scheme is fifth order.
-/// A new Δt rescales r_k by (Δt_new/Δt_old)^k.
+/// A new Δt rescales r_k by (Δt_new/Δt_old)^k. zero_velocities() sets r1 = r3 = r4 = r5 = 0 and
+/// keeps r0 and r2 (= a·Δt²/2 after correct()): the state init() gives a grain at rest.
 class Gear6 final : public Integrator {
  public:
   IntegratorKind kind() const override { return IntegratorKind::Gear6; }
   void init(std::span<const Channel> ch, double dt) override;
   void predict(std::span<const Channel> ch, double dt) override;
   void correct(std::span<const Channel> ch, double dt) override;
+  void zero_velocities(std::span<const Channel> ch) override;
   std::vector<double> save() const override;
   void load(const std::vector<double>& data) override;
   /// after init(): set the k-th time derivative (k = 2…5) of channel c, in units/s^k,
@@ -83,6 +85,7 @@ class VelocityVerlet final : public Integrator {
   void init(std::span<const Channel> ch, double dt) override;
   void predict(std::span<const Channel> ch, double dt) override;
   void correct(std::span<const Channel> ch, double dt) override;
+  void zero_velocities(std::span<const Channel> ch) override;
   std::vector<double> save() const override;
   void load(const std::vector<double>& data) override;
 
@@ -113,6 +116,7 @@ class PositionVerlet final : public Integrator {
   void init(std::span<const Channel> ch, double dt) override;
   void predict(std::span<const Channel> ch, double dt) override;
   void correct(std::span<const Channel> ch, double dt) override;
+  void zero_velocities(std::span<const Channel> ch) override;
   std::vector<double> save() const override;
   void load(const std::vector<double>& data) override;
 
@@ -133,6 +137,7 @@ class SemiImplicitEuler final : public Integrator {
   void init(std::span<const Channel> ch, double dt) override;
   void predict(std::span<const Channel> ch, double dt) override;
   void correct(std::span<const Channel> ch, double dt) override;
+  void zero_velocities(std::span<const Channel> ch) override;
   std::vector<double> save() const override;
   void load(const std::vector<double>& data) override;
 

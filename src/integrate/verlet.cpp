@@ -1,4 +1,5 @@
 // velocity Verlet and position (Störmer) Verlet (T.2.3)
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -99,6 +100,12 @@ void VelocityVerlet::correct(std::span<const Channel> ch, double dt) {
   }
 }
 
+// kinetic damping: v_n = 0; the next kick starts from a_n as at the start
+void VelocityVerlet::zero_velocities(std::span<const Channel> ch) {
+  layout_.check(ch, "VelocityVerlet::zero_velocities");
+  for (const Channel& k : ch) std::fill(k.v.begin(), k.v.end(), 0.0);
+}
+
 // history: header, then a_n per channel
 std::vector<double> VelocityVerlet::save() const {
   std::vector<double> out;
@@ -185,6 +192,19 @@ void PositionVerlet::correct(std::span<const Channel> ch, double dt) {
       a[i] = k.a[i];
       vn[i] = (qn[i] - qp[i]) / dt + a[i] * dt / 2.0;
       k.v[i] = vn[i];
+    }
+  }
+}
+
+// kinetic damping: v_n = 0 and q_{n−1} rebuilt from it as at the start (a shifted q kept)
+void PositionVerlet::zero_velocities(std::span<const Channel> ch) {
+  layout_.check(ch, "PositionVerlet::zero_velocities");
+  for (std::size_t c = 0; c < ch.size(); ++c) {
+    const auto& k = ch[c];
+    for (std::size_t i = 0; i < k.q.size(); ++i) {
+      qn_[c][i] = k.q[i];
+      vn_[c][i] = k.v[i] = 0.0;
+      qp_[c][i] = k.q[i] + a_[c][i] * dt_ * dt_ / 2.0;
     }
   }
 }

@@ -290,7 +290,8 @@ void read_drive(const Ctx& ctx, const TableReader& top, SceneSpec& s) {
   TableReader r(
       ctx, table_or_empty(sub_table(top, "drive")), "drive",
       {"kind", "g", "gx", "gy", "g_p", "t1", "period", "f", "relax", "D", "com_removal_every",
-       "early_rest", "rest_speed", "rest_energy", "rest_hold", "taps"});
+       "early_rest", "rest_speed", "rest_energy", "rest_hold", "quench", "quench_speed",
+       "quench_hold", "taps"});
   DriveSpec& d = s.drive;
   // closed boxes fall under gravity by default; periodic boxes and rings are undriven
   d.kind = r.choice("kind", s.box.kind == BoxKind::Walls ? DriveKind::Gravity : DriveKind::None);
@@ -322,6 +323,10 @@ void read_drive(const Ctx& ctx, const TableReader& top, SceneSpec& s) {
   d.rest_speed = r.number("rest_speed", d.rest_speed, Range::positive());
   d.rest_energy = r.number("rest_energy", d.rest_energy, Range::positive());
   d.rest_hold = r.number("rest_hold", d.rest_hold, Range::non_negative());
+  // kinetic damping of the ringing pile once its contact network froze (drive/protocol.hpp)
+  d.quench = r.boolean("quench", d.quench);
+  d.quench_speed = r.number("quench_speed", d.quench_speed, Range::positive());
+  d.quench_hold = r.number("quench_hold", d.quench_hold, Range::non_negative());
   // taps only exist for the tapping protocols
   d.taps = static_cast<int>(r.integer("taps", 0, 0, kIntMax));
   if (d.taps > 0 && d.kind != DriveKind::NegativeG && d.kind != DriveKind::RotatingG)

@@ -123,6 +123,11 @@ struct DriveSpec {
   double rest_speed = 1e-3;    ///< m/s
   double rest_energy = 1e-6;   ///< J
   double rest_hold = 0.1;      ///< s
+  // quench: kinetic damping (zero every velocity at each kinetic-energy peak) during a
+  // relaxation once the largest speed has stayed below quench_speed for quench_hold
+  bool quench = false;
+  double quench_speed = 0.05;  ///< m/s
+  double quench_hold = 0.3;    ///< s
   // taps
   int taps = 0;          ///< number of taps (0 = run for duration)
   /// run-time protocol clock, not a scene key: the schedules run on t − clock_origin and give

@@ -134,6 +134,9 @@ std::vector<Block> emit(const SceneSpec& s) {
   dr.num("rest_speed", d.rest_speed);
   dr.num("rest_energy", d.rest_energy);
   dr.num("rest_hold", d.rest_hold);
+  dr.flag("quench", d.quench);
+  dr.num("quench_speed", d.quench_speed);
+  dr.num("quench_hold", d.quench_hold);
   dr.integer("taps", d.taps);
   // [health]
   Block& h = out.emplace_back(Block{"[health]", "health", {}});

@@ -1,5 +1,6 @@
 #include "sim/simulation.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <type_traits>
@@ -175,6 +176,17 @@ void Simulation::step() {
     health_check();
     w_.rewrap();  // periodic: keep |x| within 32 box lengths (image shifts fit in 8 bits)
   }
+}
+
+// every grain at rest where it is; the channels' velocities through the integrator (which keeps
+// its history consistent), the rest (ω of grains that do not rotate) directly
+void Simulation::zero_velocities() {
+  auto ch = channels();
+  integ_->zero_velocities(ch);
+  State& s = w_.s;
+  std::fill(s.vx.begin(), s.vx.end(), 0.0);
+  std::fill(s.vy.begin(), s.vy.end(), 0.0);
+  std::fill(s.w.begin(), s.w.end(), 0.0);
 }
 
 // non-finite state, overlaps beyond the scene threshold, or energy growing without driving

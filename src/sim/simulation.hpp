@@ -35,6 +35,9 @@ class Simulation {
   const BroadPhase& broadphase() const { return *broad_; }
   Integrator& integrator() { return *integ_; }
   const Integrator& integrator() const { return *integ_; }
+  /// kinetic damping between steps (drive.quench): every velocity and angular velocity to zero
+  /// and the integrator's history restarted from rest at the current positions
+  void zero_velocities();
   /// checkpoint restore (sim/simulation_restore.cpp): replace the persistent contact set
   void restore_contacts(ContactSet c);
   double dt() const { return dt_; }

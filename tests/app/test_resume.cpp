@@ -91,6 +91,12 @@ TEST_P(KillResume, SigkillAtRandomMomentsThenResumeIsBitwise) {
   ASSERT_TRUE(ref.exited && ref.code == 0) << ref.output;
   const auto want = outputs(tmp / "ref");
   ASSERT_TRUE(want.count("series.csv") && want.count("state.csv"));
+  // the quench case must exercise the quench
+  if (c.label.find("quench") != std::string::npos) {
+    const std::string js = slurp(tmp / "ref" / "run.json");
+    EXPECT_NE(js.find("\"quench_events\": "), std::string::npos) << js;
+    EXPECT_EQ(js.find("\"quench_events\": 0,"), std::string::npos) << "no quench in " << js;
+  }
 
   // kill at random moments between 15% and 85% of the run (fixed seed: reproducible)
   std::mt19937 rng(20261121u + static_cast<unsigned>(c.threads[0]));
@@ -136,6 +142,12 @@ const std::vector<std::string> kTapping = {
     kSource + "/scenes/tap_small_negative_g.toml", "--set", "species[0].count=40", "--set",
     "species[1].count=50", "--set", "drive.taps=3", "--set", "preparation.settle_time=0.6",
     "--set", "output.checkpoint_steps=3000"};
+// the same pile with the quench on: its state (armed, last kinetic energy, rising) is in the
+// clock's checkpoint entry, and a resumed run must reset at the same steps
+std::vector<std::string> with_quench(std::vector<std::string> a) {
+  a.insert(a.end(), {"--set", "drive.quench=true"});
+  return a;
+}
 const std::vector<std::string> kRfm = {
     kSource + "/scenes/rfm2d_reference.toml", "--set", "scene.duration=0.03", "--set",
     "rfm.discard_time=0.01", "--set", "rfm.sample_every=500", "--set",
@@ -143,6 +155,7 @@ const std::vector<std::string> kRfm = {
 
 INSTANTIATE_TEST_SUITE_P(Scenes, KillResume,
                          ::testing::Values(Case{"tap1", kTapping, "1"}, Case{"tap2", kTapping, "2"},
+                                           Case{"tapquench1", with_quench(kTapping), "1"},
                                            Case{"rfm1", kRfm, "1"}, Case{"rfm2", kRfm, "2"}),
                          [](const auto& info) { return info.param.label; });
 

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 #include "drive/protocol.hpp"
 #include "drive/schedule.hpp"
@@ -174,7 +175,7 @@ TEST(ProtocolClock, EarlyRestEndsARelaxationAfterTheHoldTime) {
   for (long n = 1; n <= 1500 && ended_at < 0; ++n) {
     w.s.t = static_cast<double>(n) * dt;
     w.s.vx[0] = w.s.t < 1.0 - 1e-9 ? 0.5 : 2e-4;  // moving, then below 1 mm/s
-    if (clock.after_step(w)) ended_at = w.s.t;
+    if (clock.after_step(w) == ClockEvent::RestEnded) ended_at = w.s.t;
   }
   ASSERT_GT(ended_at, 0.0);
   EXPECT_NEAR(ended_at, 1.1, 1.5 * dt);
@@ -203,11 +204,133 @@ TEST(ProtocolClock, EarlyRestNeedsTheWholeHoldInsideARelaxation) {
       w.s.t = static_cast<double>(n) * dt;
       // at rest all along, except one fast step every 0.08 s (shorter than the hold)
       w.s.vx[0] = n % 80 == 0 ? 0.01 : 0.0;
-      ends += clock.after_step(w);
+      ends += clock.after_step(w) == ClockEvent::RestEnded;
     }
     EXPECT_EQ(ends, 0);
     EXPECT_EQ(w.scene.drive.clock_origin, origin);
   }
+}
+
+// the quench on one grain in a harmonic well x'' = −ω²(x − x0) (ω = 4π: a KE peak every
+// 0.125 s), stepped by hand; on ClockEvent::Quench the test zeroes the velocity as the run does.
+// Script: fast (0.3 m/s, the flight) until t = 1 s, then released at rest 2 mm from x0
+// (largest speed 25 mm/s); optionally a kick of 0.1 m/s at t = 2 s
+struct Well {
+  double x0 = 0.05, omega = 4.0 * M_PI;
+  std::vector<double> events;  ///< times of the Quench events
+  double x_after_first = 0.0;  ///< |x − x0| just after the first reset, m
+};
+
+SceneSpec quench_scene(bool on) {
+  SceneSpec s = early_rest_scene(false);
+  s.drive.quench = on;
+  s.drive.quench_speed = 0.05;
+  s.drive.quench_hold = 0.05;
+  return s;
+}
+
+// steps n in [from, to) of the script with clock c on world w
+void well_steps(ProtocolClock& c, World& w, Well& well, long from, long to, bool kick,
+                double dt) {
+  for (long n = from; n < to; ++n) {
+    w.s.t = static_cast<double>(n) * dt;
+    if (w.s.t < 1.0 - 1e-9) {
+      w.s.vx[0] = 0.3;
+      w.s.x[0] = well.x0 + 2e-3;
+    } else {
+      if (std::abs(w.s.t - 1.0) < dt / 2) w.s.vx[0] = 0.0;  // released at rest
+      if (kick && std::abs(w.s.t - 2.0) < dt / 2) w.s.vx[0] += 0.1;
+      // symplectic Euler in the well
+      w.s.vx[0] -= well.omega * well.omega * (w.s.x[0] - well.x0) * dt;
+      w.s.x[0] += w.s.vx[0] * dt;
+    }
+    if (c.after_step(w) == ClockEvent::Quench) {
+      w.s.vx[0] = 0.0;
+      if (well.events.empty()) well.x_after_first = std::abs(w.s.x[0] - well.x0);
+      well.events.push_back(w.s.t);
+    }
+  }
+}
+
+TEST(ProtocolClock, QuenchArmsAfterTheHoldAndResetsAtTheKineticEnergyPeak) {
+  for (bool on : {true, false}) {
+    const SceneSpec s = quench_scene(on);
+    World w = one_grain(s);
+    ProtocolClock clock(s);
+    clock.start(w);
+    Well well;
+    well_steps(clock, w, well, 1, 2900, false, s.integrator.dt);
+    if (!on) {
+      EXPECT_TRUE(well.events.empty());
+      continue;
+    }
+    // released at t = 1 s at rest: armed from 1.05 s, the first peak at x0 a quarter period
+    // (0.125 s) after the release; the reset leaves the grain at rest within a step of x0
+    ASSERT_FALSE(well.events.empty());
+    EXPECT_NEAR(well.events.front(), 1.125, 2.5 * s.integrator.dt);
+    EXPECT_LT(well.x_after_first, 0.05 * 2e-3);
+    EXPECT_EQ(clock.quench_events(), static_cast<std::int64_t>(well.events.size()));
+    for (double t : well.events) EXPECT_GT(t, 1.05);
+    EXPECT_EQ(clock.early_ends(), 0);  // early_rest off: the quench alone never ends a period
+  }
+}
+
+TEST(ProtocolClock, QuenchIsDisarmedByAFastGrainAndIdleInAnExcitation) {
+  const SceneSpec s = quench_scene(true);
+  World w = one_grain(s);
+  ProtocolClock clock(s);
+  clock.start(w);
+  Well well;
+  // a kick at t = 2 s to 0.1 m/s: faster than quench_speed for most of each cycle, never slow
+  // for the hold at a peak: no reset after it, the grain keeps swinging
+  well_steps(clock, w, well, 1, 2990, true, s.integrator.dt);
+  ASSERT_FALSE(well.events.empty());
+  for (double t : well.events) EXPECT_LT(t, 2.0);
+  EXPECT_GT(std::abs(w.s.vx[0]) + well.omega * std::abs(w.s.x[0] - well.x0), 0.09);
+  // into the next pulse and its flight: nothing while exciting, the state is reset
+  const std::size_t before = well.events.size();
+  for (long n = 2990; n < 3100; ++n) {
+    w.s.t = static_cast<double>(n) * s.integrator.dt;
+    w.s.vx[0] = n % 2 ? 1e-3 : 2e-3;  // slow and with peaks, but inside the pulse first
+    if (clock.after_step(w) == ClockEvent::Quench) well.events.push_back(w.s.t);
+  }
+  EXPECT_EQ(well.events.size(), before);
+}
+
+// checkpoint: a clock saved while armed and mid-rise and loaded into a fresh one continues with
+// the same events; a clock state written before the quench existed loads with it idle
+TEST(ProtocolClock, QuenchStateSurvivesSaveAndLoad) {
+  const SceneSpec s = quench_scene(true);
+  const double dt = s.integrator.dt;
+  World w1 = one_grain(s);
+  ProtocolClock c1(s);
+  c1.start(w1);
+  Well a;
+  well_steps(c1, w1, a, 1, 1100, false, dt);  // armed at 1.05 s, rising to the 1.125 s peak
+  ByteWriter out;
+  c1.save(out);
+  World w2 = w1;
+  ProtocolClock c2(s);
+  ByteReader in{out.out, 0, "test"};
+  c2.load(in);
+  EXPECT_TRUE(in.at_end());
+  Well b = a;
+  well_steps(c1, w1, a, 1100, 2900, false, dt);
+  well_steps(c2, w2, b, 1100, 2900, false, dt);
+  EXPECT_EQ(a.events, b.events);
+  EXPECT_EQ(c1.quench_events(), c2.quench_events());
+  EXPECT_EQ(w1.s.x[0], w2.s.x[0]);
+  // the four early-rest fields alone (an older checkpoint)
+  ByteWriter old;
+  old.f64(-1.0);
+  old.i64(-1);
+  old.i64(3);
+  old.f64(1.5);
+  ProtocolClock c3(s);
+  ByteReader in3{old.out, 0, "old"};
+  c3.load(in3);
+  EXPECT_EQ(c3.early_ends(), 3);
+  EXPECT_EQ(c3.quench_events(), 0);
 }
 
 // the run ends after the step that measures the last tap

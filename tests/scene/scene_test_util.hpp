@@ -96,6 +96,9 @@ early_rest = true
 rest_speed = 2e-3
 rest_energy = 3e-6
 rest_hold = 0.2
+quench = true
+quench_speed = 0.04
+quench_hold = 0.08
 taps = 300
 
 [health]
@@ -213,6 +216,9 @@ inline void expect_same(const SceneSpec& a, const SceneSpec& b) {
   EXPECT_EQ(d.rest_speed, e.rest_speed);
   EXPECT_EQ(d.rest_energy, e.rest_energy);
   EXPECT_EQ(d.rest_hold, e.rest_hold);
+  EXPECT_EQ(d.quench, e.quench);
+  EXPECT_EQ(d.quench_speed, e.quench_speed);
+  EXPECT_EQ(d.quench_hold, e.quench_hold);
   EXPECT_EQ(d.taps, e.taps);
   EXPECT_EQ(a.health.max_overlap, b.health.max_overlap);
   EXPECT_EQ(a.health.check_every, b.health.check_every);

@@ -93,6 +93,9 @@ TEST(SceneParse, FullSceneGivesTheWrittenValues) {
   EXPECT_EQ(s.drive.rest_speed, 2e-3);
   EXPECT_EQ(s.drive.rest_energy, 3e-6);
   EXPECT_EQ(s.drive.rest_hold, 0.2);
+  EXPECT_TRUE(s.drive.quench);
+  EXPECT_EQ(s.drive.quench_speed, 0.04);
+  EXPECT_EQ(s.drive.quench_hold, 0.08);
   EXPECT_EQ(s.drive.taps, 300);
 
   EXPECT_EQ(s.health.max_overlap, 0.1);
@@ -122,9 +125,10 @@ TEST(SceneParse, ResolvedListsEveryKey) {
   EXPECT_EQ(r.at("output.test_rect"), "[0.05, 0.06, 0.43, 0.44]");
   EXPECT_EQ(r.at("drive.taps"), "300");
   // 7 keys per material, 8 per species (with mass) / 7 (without), and the fixed sections:
-  // scene 3, model 5, box 6, preparation 5, integrator 3, drive 16, health 3, output 7,
+  // scene 3, model 5, box 6, preparation 5, integrator 3, drive 19, health 3, output 7,
   // render 25
-  EXPECT_EQ(r.size(), 3u + 5 + 2 * 7 + 7 + 8 + 6 + 5 + 3 + 16 + 3 + 7 + 25);
+  EXPECT_EQ(r.size(), 3u + 5 + 2 * 7 + 7 + 8 + 6 + 5 + 3 + 19 + 3 + 7 + 25);
+  EXPECT_EQ(r.at("drive.quench"), "true");
 }
 
 // defaults: a minimal Model P scene takes the documented defaults (spec.hpp, SPEC 2)
@@ -164,6 +168,10 @@ width = 0.48
   EXPECT_EQ(s.drive.g_p, 6.0);
   EXPECT_EQ(s.drive.t1, 0.1);  // (P.37)
   EXPECT_EQ(s.drive.period, 3.0);
+  EXPECT_FALSE(s.drive.early_rest);
+  EXPECT_FALSE(s.drive.quench);  // opt-in (docs/tapping.md)
+  EXPECT_EQ(s.drive.quench_speed, 0.05);
+  EXPECT_EQ(s.drive.quench_hold, 0.3);
   EXPECT_EQ(s.output.discard_taps, 10);  // SPEC 2.5
   EXPECT_EQ(s.output.test_rect[2], 0.44);
   EXPECT_EQ(s.resolved.at("integrator.kind"), "\"gear6\"");
