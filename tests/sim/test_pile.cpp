@@ -18,14 +18,7 @@
 namespace gs {
 namespace {
 
-std::uint64_t state_hash(const World& w) {
-  std::uint64_t h = 1469598103934665603ULL;  // FNV-1a over the bytes of the state arrays
-  for (const auto* v : {&w.s.x, &w.s.y, &w.s.th, &w.s.vx, &w.s.vy, &w.s.w}) {
-    const auto* p = reinterpret_cast<const unsigned char*>(v->data());
-    for (std::size_t k = 0; k < v->size() * sizeof(double); ++k) h = (h ^ p[k]) * 1099511628211ULL;
-  }
-  return h;
-}
+using testing::state_hash;
 
 // velocity Verlet at the paper's Δt: Gear 6 at Δt = 5e-5 s sits at the edge of its stability
 // region for these contacts (ω·Δt ≈ 0.3 for a small grain with four contacts; Gear 6 with the

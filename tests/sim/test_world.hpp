@@ -1,6 +1,7 @@
 // a small fixture so physics tests read like short stories
 #pragma once
 #include <cmath>
+#include <cstdint>
 #include <memory>
 
 #include "sim/builders.hpp"
@@ -8,6 +9,16 @@
 #include "world/prepare.hpp"
 
 namespace gs::testing {
+
+/// FNV-1a over the bytes of the state arrays (positions, angles, velocities)
+inline std::uint64_t state_hash(const World& w) {
+  std::uint64_t h = 1469598103934665603ULL;
+  for (const auto* v : {&w.s.x, &w.s.y, &w.s.th, &w.s.vx, &w.s.vy, &w.s.w}) {
+    const auto* p = reinterpret_cast<const unsigned char*>(v->data());
+    for (std::size_t k = 0; k < v->size() * sizeof(double); ++k) h = (h ^ p[k]) * 1099511628211ULL;
+  }
+  return h;
+}
 
 /// a Simulation built from a scene; explicit particles may be added before start()
 struct TestWorld {
