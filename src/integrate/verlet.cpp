@@ -78,7 +78,7 @@ void VelocityVerlet::predict(std::span<const Channel> ch, double dt) {
   const bool half = fv_ == VerletForceVelocity::HalfStep;
   for (std::size_t c = 0; c < ch.size(); ++c) {
     const auto& k = ch[c];
-    double* a = a_[c].data();
+    const double* a = a_[c].data();
     double* vh = vh_[c].data();
     parallel_ranges(k.q.size(), kParallelMinCheap, [&](std::size_t b, std::size_t e) {
       vv_predict(b, e, dt, half, a, vh, k.q.data(), k.v.data());
