@@ -25,6 +25,14 @@ namespace {
 std::atomic<bool> g_stop{false};
 extern "C" void on_stop_signal(int) { g_stop = true; }
 
+// x rounded down to three significant digits: a suggested limit that, printed and passed back,
+// is itself within the limit
+double round_down(double x) {
+  if (!(x > 0.0) || !std::isfinite(x)) return x;
+  const double scale = std::pow(10.0, std::floor(std::log10(x)) - 2.0);
+  return std::floor(x / scale) * scale;
+}
+
 std::string default_out(const std::string& name) {
   char buf[32];
   const std::time_t now = std::time(nullptr);
@@ -86,7 +94,8 @@ int run_command(const RunOptions& opt) {
     std::ostringstream m;
     m << "dt = " << dt << " s is " << dt / tc << " of the stiffest contact time (" << tc
       << " s); at more than 1/5 the contacts are not resolved and the integration is unstable. "
-      << "Use dt <= " << tc / 20.0 << " s, or pass --allow-unstable to run it anyway";
+      << "Use dt <= " << round_down(tc / 5.0) << " s (dt <= " << round_down(tc / 20.0)
+      << " s resolves each contact with 20 steps), or pass --allow-unstable to run it anyway";
     throw InputError(scene.path, "integrator.dt", m.str());
   }
   const std::string out = opt.out.empty() ? default_out(scene.name) : opt.out;

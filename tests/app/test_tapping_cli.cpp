@@ -211,6 +211,28 @@ TEST_F(TappingCli, BadParamExitsTwoWithAClearMessage) {
   EXPECT_EQ(sh(gransim("sweep " + scene_ + out)).code, 2);
 }
 
+// a Δt beyond 1/5 of the contact time (here 0.29 t_c) is refused with exit 2, naming the key,
+// and the limit it suggests (t_c/5 = 1.3778e-4 s for these grains on the wall, rounded down to
+// 1.37e-4 s) is itself accepted
+TEST_F(TappingCli, TooLargeStepIsRefusedWithASuggestionThatRuns) {
+  const std::string out = " --quiet --set drive.taps=1 --set preparation.settle_time=0.01";
+  Result r = sh(gransim("run " + scene_ + " --out " + (dir_ / "big").string() +
+                        " --set integrator.dt=2e-4" + out));
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("integrator.dt"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir_ / "big"));
+  const std::size_t at = r.output.find("Use dt <= ");
+  ASSERT_NE(at, std::string::npos) << r.output;
+  const double suggested = std::strtod(r.output.c_str() + at + 10, nullptr);
+  EXPECT_NEAR(suggested, 1.37e-4, 1e-12) << r.output;  // t_c/5 rounded down to 3 digits
+  std::ostringstream dt;
+  dt.precision(17);
+  dt << suggested;
+  r = sh(gransim("run " + scene_ + " --out " + (dir_ / "ok").string() +
+                 " --set integrator.dt=" + dt.str() + out));
+  EXPECT_EQ(r.code, 0) << r.output;
+}
+
 TEST_F(TappingCli, AnalyzeRefusesDirectoriesWithoutTaps) {
   fs::create_directories(dir_ / "empty");
   Result r = sh(gransim("analyze " + (dir_ / "empty").string()));
