@@ -66,6 +66,8 @@ void write_run_json(const RunSession& rs, int code, const std::string& failure, 
      << "  \"sessions\": " << rs.sessions << ",\n"
      << "  \"particle_steps_per_s\": " << rate << ",\n"
      << "  \"broad_phase\": \"" << sim.broadphase().name() << "\",\n"
+     << "  \"omp_threads\": " << rs.team.threads << ",\n"
+     << "  \"omp_cpus\": " << rs.team.cpus << ",\n"
      << "  \"contact_time_s\": " << sim.model().min_contact_time() << ",\n"
      << "  \"degenerate_contacts\": " << sim.contacts().degenerate << ",\n"
      << "  \"settle_time_s\": " << scene.prep.settle_time << ",\n";

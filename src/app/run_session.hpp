@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "app/openmp_team.hpp"
 #include "drive/protocol.hpp"
 #include "output/csv.hpp"
 #include "scene/spec.hpp"
@@ -27,6 +28,7 @@ struct RunSession {
   double wall_before = 0.0;       ///< wall time of earlier sessions of this run, s
   double wall_settled = -1.0;     ///< wall time when settling ended (−1: not yet), s
   int sessions = 1;               ///< 1 + number of resumes
+  OpenMpTeam team = openmp_team();  ///< the threads and CPUs this session runs on
 };
 
 /// the series.csv columns

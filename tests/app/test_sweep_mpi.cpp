@@ -41,7 +41,7 @@ std::string slurp(const fs::path& p) {
 
 // run.json and sweep.json without what depends on the machine's speed (wall times, rates)
 std::string without_wall_times(const std::string& text) {
-  static const std::regex wall(R"re("(wall_time\w*|particle_steps_per_s)": [-+.0-9e]+)re");
+  static const std::regex wall(R"re("(wall_time\w*|particle_steps_per_s|omp_\w+)": [-+.0-9e]+)re");
   return std::regex_replace(text, wall, "\"$1\": -");
 }
 
