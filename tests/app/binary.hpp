@@ -2,6 +2,7 @@
 // and stderr into one log file; optionally send a signal after a delay (kill-and-resume tests)
 #pragma once
 #include <fcntl.h>
+#include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
@@ -138,6 +139,17 @@ test_rect = [0.01, 0.01, 0.09, 0.05]
 discard_taps = 2
 series_every = 500
 )";
+}
+
+/// a fresh empty directory for the running gtest test: <tmp>/<prefix>_<pid>_<test name>
+inline std::filesystem::path fresh_test_dir(const std::string& prefix) {
+  namespace fs = std::filesystem;
+  const char* test = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+  const fs::path d =
+      fs::temp_directory_path() / (prefix + "_" + std::to_string(::getpid()) + "_" + test);
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
 }
 
 }  // namespace gs::testing

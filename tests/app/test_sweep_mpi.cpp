@@ -60,11 +60,7 @@ std::string mpi_unavailable() {
 class SweepMpi : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("gs_test_sweep_mpi_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    dir_ = testing::fresh_test_dir("gs_test_sweep_mpi");
     scene_ = (dir_ / "tiny.toml").string();
     std::ofstream(scene_) << testing::tiny_tapping_scene(4);
   }

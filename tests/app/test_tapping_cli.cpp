@@ -71,11 +71,7 @@ const std::string kTinyScene = testing::tiny_tapping_scene(22);
 class TappingCli : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("gs_test_tapping_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    dir_ = testing::fresh_test_dir("gs_test_tapping");
     scene_ = (dir_ / "tiny.toml").string();
     std::ofstream(scene_) << kTinyScene;
   }

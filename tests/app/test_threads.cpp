@@ -40,11 +40,7 @@ int allowed_cpus() {
 class Threads : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("gs_threads_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    dir_ = testing::fresh_test_dir("gs_threads");
   }
   void TearDown() override { fs::remove_all(dir_); }
 
