@@ -19,7 +19,8 @@ constexpr int kN = 6;  // values per degree of freedom
 // dearer than the plain particle loops (kParallelMinCheap)
 constexpr std::size_t kParallelMinGear = kParallelMin;
 
-// body(channel, r0…r5, begin, end) over every channel's DOFs, in parallel ranges (one region)
+// body(channel, r, begin, end) over every channel's DOFs, in parallel ranges (one region);
+// r: the channel's history, DOF i's six values at r[kN·i…kN·i + 5]
 template <class Body>
 void for_channels(std::span<const Channel> ch, std::vector<std::vector<double>>& r, Body&& body) {
   std::size_t nmax = 0;
@@ -27,9 +28,7 @@ void for_channels(std::span<const Channel> ch, std::vector<std::vector<double>>&
   parallel_ranges(nmax, kParallelMinGear, [&](std::size_t b, std::size_t e) {
     for (std::size_t c = 0; c < ch.size(); ++c) {
       const std::size_t n = ch[c].q.size();
-      double* const r0 = r[c].data();
-      body(c, r0, r0 + n, r0 + 2 * n, r0 + 3 * n, r0 + 4 * n, r0 + 5 * n, std::min(b, n),
-           std::min(e, n));
+      body(c, r[c].data(), std::min(b, n), std::min(e, n));
     }
   });
 }
@@ -47,9 +46,9 @@ void Gear6::init(std::span<const Channel> ch, double dt) {
     auto& r = r_[c];
     r.assign(kN * n, 0.0);
     for (std::size_t i = 0; i < n; ++i) {
-      r[i] = k.q[i];
-      r[n + i] = k.v[i] * dt;
-      r[2 * n + i] = k.a[i] * dt * dt / 2.0;
+      r[kN * i] = k.q[i];
+      r[kN * i + 1] = k.v[i] * dt;
+      r[kN * i + 2] = k.a[i] * dt * dt / 2.0;
     }
   }
   note_velocities();
@@ -60,7 +59,7 @@ void Gear6::note_velocities() {
   for (std::size_t c = 0; c < r_.size(); ++c) {
     const std::size_t n = r_[c].size() / kN;
     vw_[c].resize(n);
-    for (std::size_t i = 0; i < n; ++i) vw_[c][i] = r_[c][n + i] / dt_;
+    for (std::size_t i = 0; i < n; ++i) vw_[c][i] = r_[c][kN * i + 1] / dt_;
   }
 }
 
@@ -71,7 +70,7 @@ void Gear6::set_derivative(std::size_t c, int k, std::span<const double> d) {
   double scale = 1.0;
   for (int j = 1; j <= k; ++j) scale *= dt_ / j;
   const std::size_t n = d.size();
-  for (std::size_t i = 0; i < n; ++i) r_[c][k * n + i] = d[i] * scale;
+  for (std::size_t i = 0; i < n; ++i) r_[c][kN * i + static_cast<std::size_t>(k)] = d[i] * scale;
 }
 
 // a new Δt: r_k scales as Δt^k
@@ -83,7 +82,7 @@ void Gear6::rescale(double dt) {
       double f = 1.0;
       for (int k = 1; k < kN; ++k) {
         f *= s;
-        r[k * n + i] *= f;
+        r[kN * i + static_cast<std::size_t>(k)] *= f;
       }
     }
   }
@@ -102,33 +101,33 @@ void Gear6::predict(std::span<const Channel> ch, double dt) {
       const std::size_t n = k.q.size();
       double* r = r_[c].data();
       for (std::size_t i = 0; i < n; ++i) {
-        if (k.q[i] != r[i]) r[i] = k.q[i];
-        if (k.v[i] != vw_[c][i]) r[n + i] = k.v[i] * dt_;
+        if (k.q[i] != r[kN * i]) r[kN * i] = k.q[i];
+        if (k.v[i] != vw_[c][i]) r[kN * i + 1] = k.v[i] * dt_;
       }
     }
     rescale(dt);
   }
   const double h = dt_;
-  for_channels(ch, r_, [&](std::size_t c, double* r0, double* r1, double* r2, double* r3,
-                           double* r4, double* r5, std::size_t b, std::size_t e) {
+  for_channels(ch, r_, [&](std::size_t c, double* r, std::size_t b, std::size_t e) {
     double* const q = ch[c].q.data();
     double* const v = ch[c].v.data();
     double* const vw = vw_[c].data();
     for (std::size_t i = b; i < e; ++i) {
-      double a0 = r0[i], a1 = r1[i];
+      double* const x = r + kN * i;
+      double a0 = x[0], a1 = x[1];
       if (!rescaled) {  // the pick-up, as above
         if (q[i] != a0) a0 = q[i];
         if (v[i] != vw[i]) a1 = v[i] * h;
       }
-      const double a2 = r2[i], a3 = r3[i], a4 = r4[i], a5 = r5[i];
+      const double a2 = x[2], a3 = x[3], a4 = x[4], a5 = x[5];
       // Taylor step with the Pascal triangle (each line uses the old higher values)
       a0 += a1 + a2 + a3 + a4 + a5;
       a1 += 2.0 * a2 + 3.0 * a3 + 4.0 * a4 + 5.0 * a5;
-      r2[i] = a2 + (3.0 * a3 + 6.0 * a4 + 10.0 * a5);
-      r3[i] = a3 + (4.0 * a4 + 10.0 * a5);
-      r4[i] = a4 + 5.0 * a5;
-      r0[i] = a0;
-      r1[i] = a1;
+      x[2] = a2 + (3.0 * a3 + 6.0 * a4 + 10.0 * a5);
+      x[3] = a3 + (4.0 * a4 + 10.0 * a5);
+      x[4] = a4 + 5.0 * a5;
+      x[0] = a0;
+      x[1] = a1;
       // the predicted state, where the caller evaluates the forces
       q[i] = a0;
       v[i] = vw[i] = a1 / h;
@@ -141,22 +140,22 @@ void Gear6::correct(std::span<const Channel> ch, double dt) {
   if (dt != dt_) throw std::invalid_argument("Gear6::correct: dt differs from predict()");
   const double h = dt_;
   const double h2 = h * h / 2.0;
-  for_channels(ch, r_, [&](std::size_t c, double* r0, double* r1, double* r2, double* r3,
-                           double* r4, double* r5, std::size_t b, std::size_t e) {
+  for_channels(ch, r_, [&](std::size_t c, double* r, std::size_t b, std::size_t e) {
     const double* const a = ch[c].a.data();
     double* const q = ch[c].q.data();
     double* const v = ch[c].v.data();
     double* const vw = vw_[c].data();
     for (std::size_t i = b; i < e; ++i) {
+      double* const x = r + kN * i;
       // the acceleration mismatch Δr2 = a·Δt²/2 − r2ᵖ corrects every derivative
-      const double d = a[i] * h2 - r2[i];
-      const double a0 = r0[i] + kC[0] * d, a1 = r1[i] + kC[1] * d;
-      r0[i] = a0;
-      r1[i] = a1;
-      r2[i] += kC[2] * d;
-      r3[i] += kC[3] * d;
-      r4[i] += kC[4] * d;
-      r5[i] += kC[5] * d;
+      const double d = a[i] * h2 - x[2];
+      const double a0 = x[0] + kC[0] * d, a1 = x[1] + kC[1] * d;
+      x[0] = a0;
+      x[1] = a1;
+      x[2] += kC[2] * d;
+      x[3] += kC[3] * d;
+      x[4] += kC[4] * d;
+      x[5] += kC[5] * d;
       q[i] = a0;
       v[i] = vw[i] = a1 / h;
     }
@@ -172,8 +171,9 @@ void Gear6::zero_velocities(std::span<const Channel> ch) {
     double* const r = r_[c].data();
     for (std::size_t i = 0; i < n; ++i) {
       // a caller's edit of q since the last correct() is kept, as predict() would
-      if (ch[c].q[i] != r[i]) r[i] = ch[c].q[i];
-      r[n + i] = r[3 * n + i] = r[4 * n + i] = r[5 * n + i] = 0.0;
+      double* const x = r + kN * i;
+      if (ch[c].q[i] != x[0]) x[0] = ch[c].q[i];
+      x[1] = x[3] = x[4] = x[5] = 0.0;
       ch[c].v[i] = vw_[c][i] = 0.0;
     }
   }
@@ -183,12 +183,8 @@ void Gear6::zero_velocities(std::span<const Channel> ch) {
 std::vector<double> Gear6::save() const {
   std::vector<double> out;
   layout_.write_header(out, kind(), dt_);
-  // the checkpoint keeps the six derivatives of each DOF together (the original layout)
-  for (const auto& r : r_) {
-    const std::size_t n = r.size() / kN;
-    for (std::size_t i = 0; i < n; ++i)
-      for (int k = 0; k < kN; ++k) out.push_back(r[k * n + i]);
-  }
+  // the six derivatives of each DOF together, as in memory
+  for (const auto& r : r_) out.insert(out.end(), r.begin(), r.end());
   return out;
 }
 
@@ -199,9 +195,8 @@ void Gear6::load(const std::vector<double>& data) {
   r_.assign(layout_.channels(), {});
   for (std::size_t c = 0; c < layout_.channels(); ++c) {
     const std::size_t n = layout_.size(c);
-    r_[c].resize(kN * n);
-    for (std::size_t i = 0; i < n; ++i)
-      for (int k = 0; k < kN; ++k) r_[c][k * n + i] = data[off + kN * i + k];
+    const auto first = data.begin() + static_cast<std::ptrdiff_t>(off);
+    r_[c].assign(first, first + static_cast<std::ptrdiff_t>(kN * n));
     off += kN * n;
   }
   note_velocities();

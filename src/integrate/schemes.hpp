@@ -57,8 +57,9 @@ class Gear6 final : public Integrator {
   void note_velocities();  // vw_ := r1/Δt, after the history changed outside predict/correct
   ChannelLayout layout_;
   double dt_ = 0.0;  ///< the Δt the derivatives are scaled with, s
-  /// per channel, the 6 scaled derivatives r_k = Δt^k/k!·q⁽ᵏ⁾, derivative-major
-  /// (r_k of DOF i at k·n + i) so that the per-DOF loops vectorise, units
+  /// per channel, the 6 scaled derivatives r_k = Δt^k/k!·q⁽ᵏ⁾, DOF-major (r_k of DOF i at
+  /// 6·i + k): a thread's DOFs are one block, so two threads meet at one place per channel
+  /// (docs/threads.md), units
   std::vector<std::vector<double>> r_;
   /// per channel, the velocities last written (r1/Δt): a caller's edit of v shows as a
   /// difference without dividing again
