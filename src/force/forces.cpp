@@ -410,7 +410,7 @@ ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<Pai
     // candidates come sorted by their first particle, so a thread's pairs are mostly those of
     // the particles it placed, and its slots stay in its own cache from step to step. (Chunks
     // handed out dynamically made a 2-thread pile step slower than one thread on a VM whose
-    // cores exchange a cache line in ~230 ns: docs/speed-accuracy.md.)
+    // cores exchange a cache line in ~230 ns: docs/threads.md.)
 #pragma omp for schedule(static)
     for (std::int64_t c = 0; c < nc; ++c) {
       const std::size_t k0 = static_cast<std::size_t>(c) * chunk, k1 = std::min(ncand, k0 + chunk);
