@@ -6,6 +6,7 @@
 
 #include "core/error.hpp"
 #include "core/parallel.hpp"
+#include "integrate/channel_loop.hpp"
 #include "integrate/schemes.hpp"
 
 namespace gs {
@@ -19,19 +20,6 @@ constexpr int kN = 6;  // values per degree of freedom
 // dearer than the plain particle loops (kParallelMinCheap)
 constexpr std::size_t kParallelMinGear = kParallelMin;
 
-// body(channel, r, begin, end) over every channel's DOFs, in parallel ranges (one region);
-// r: the channel's history, DOF i's six values at r[kN·i…kN·i + 5]
-template <class Body>
-void for_channels(std::span<const Channel> ch, std::vector<std::vector<double>>& r, Body&& body) {
-  std::size_t nmax = 0;
-  for (const Channel& k : ch) nmax = std::max(nmax, k.q.size());
-  parallel_ranges(nmax, kParallelMinGear, [&](std::size_t b, std::size_t e) {
-    for (std::size_t c = 0; c < ch.size(); ++c) {
-      const std::size_t n = ch[c].q.size();
-      body(c, r[c].data(), std::min(b, n), std::min(e, n));
-    }
-  });
-}
 }  // namespace
 
 // start: r0 = q, r1 = v·Δt, r2 = a·Δt²/2, higher derivatives unknown and set to zero
@@ -108,7 +96,8 @@ void Gear6::predict(std::span<const Channel> ch, double dt) {
     rescale(dt);
   }
   const double h = dt_;
-  for_channels(ch, r_, [&](std::size_t c, double* r, std::size_t b, std::size_t e) {
+  for_channels(ch, kParallelMinGear, [&](std::size_t c, std::size_t b, std::size_t e) {
+    double* const r = r_[c].data();  // DOF i's six values at r[kN·i…kN·i + 5]
     double* const q = ch[c].q.data();
     double* const v = ch[c].v.data();
     double* const vw = vw_[c].data();
@@ -140,7 +129,8 @@ void Gear6::correct(std::span<const Channel> ch, double dt) {
   if (dt != dt_) throw std::invalid_argument("Gear6::correct: dt differs from predict()");
   const double h = dt_;
   const double h2 = h * h / 2.0;
-  for_channels(ch, r_, [&](std::size_t c, double* r, std::size_t b, std::size_t e) {
+  for_channels(ch, kParallelMinGear, [&](std::size_t c, std::size_t b, std::size_t e) {
+    double* const r = r_[c].data();  // DOF i's six values at r[kN·i…kN·i + 5]
     const double* const a = ch[c].a.data();
     double* const q = ch[c].q.data();
     double* const v = ch[c].v.data();

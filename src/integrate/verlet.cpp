@@ -5,6 +5,7 @@
 
 #include "core/error.hpp"
 #include "core/parallel.hpp"
+#include "integrate/channel_loop.hpp"
 #include "integrate/schemes.hpp"
 
 namespace gs {
@@ -51,20 +52,6 @@ void vv_correct(std::size_t b, std::size_t e, double dt, double* __restrict a,
     a[i] = an[i];
   }
 }
-// body(c, b, e) for every channel c over particles [b, e) ∩ [0, size of c): all channels in
-// one parallel region (one fork and join per pass, not one per channel), each thread on the
-// same particles in every channel and every step
-template <class Body>
-void for_channels(std::span<const Channel> ch, Body&& body) {
-  std::size_t nmax = 0;
-  for (const Channel& k : ch) nmax = std::max(nmax, k.q.size());
-  parallel_ranges(nmax, kParallelMinCheap, [&](std::size_t b, std::size_t e) {
-    for (std::size_t c = 0; c < ch.size(); ++c) {
-      const std::size_t n = ch[c].q.size();
-      body(c, std::min(b, n), std::min(e, n));
-    }
-  });
-}
 void check_dt(double dt, const char* who) {
   if (!(dt > 0.0)) throw std::invalid_argument(std::string(who) + ": dt must be positive");
 }
@@ -90,7 +77,7 @@ void VelocityVerlet::predict(std::span<const Channel> ch, double dt) {
   check_dt(dt, "VelocityVerlet::predict");
   dt_ = dt;
   const bool half = fv_ == VerletForceVelocity::HalfStep;
-  for_channels(ch, [&](std::size_t c, std::size_t b, std::size_t e) {
+  for_channels(ch, kParallelMinCheap, [&](std::size_t c, std::size_t b, std::size_t e) {
     vv_predict(b, e, dt, half, a_[c].data(), vh_[c].data(), ch[c].q.data(), ch[c].v.data());
   });
 }
@@ -99,7 +86,7 @@ void VelocityVerlet::correct(std::span<const Channel> ch, double dt) {
   layout_.check(ch, "VelocityVerlet::correct");
   if (dt != dt_) throw std::invalid_argument("VelocityVerlet::correct: dt differs from predict()");
   // second half kick with a_{n+1}, which becomes the stored acceleration
-  for_channels(ch, [&](std::size_t c, std::size_t b, std::size_t e) {
+  for_channels(ch, kParallelMinCheap, [&](std::size_t c, std::size_t b, std::size_t e) {
     vv_correct(b, e, dt, a_[c].data(), vh_[c].data(), ch[c].v.data(), ch[c].a.data());
   });
 }
