@@ -4,6 +4,7 @@
 // a run's results are bitwise the same on any number of threads. Below the thresholds the
 // same bodies run as plain serial loops (no OpenMP runtime calls at all).
 #pragma once
+#include <chrono>
 #include <cstddef>
 #include <cstdint>
 
@@ -30,6 +31,39 @@ inline bool run_parallel(std::size_t n, std::size_t threshold) {
   (void)n;
   (void)threshold;
   return false;
+#endif
+}
+
+/// this thread's number in its team, the team's size, the threads a new region would get
+/// (0, 1, 1 without OpenMP)
+inline int team_thread() {
+#ifdef _OPENMP
+  return omp_get_thread_num();
+#else
+  return 0;
+#endif
+}
+inline int team_size() {
+#ifdef _OPENMP
+  return omp_get_num_threads();
+#else
+  return 1;
+#endif
+}
+inline int max_team_size() {
+#ifdef _OPENMP
+  return omp_get_max_threads();
+#else
+  return 1;
+#endif
+}
+/// wall-clock seconds (for timing a thread's share of a loop)
+inline double wall_seconds() {
+#ifdef _OPENMP
+  return omp_get_wtime();
+#else
+  return static_cast<double>(std::chrono::steady_clock::now().time_since_epoch().count()) *
+         std::chrono::steady_clock::period::num / std::chrono::steady_clock::period::den;
 #endif
 }
 

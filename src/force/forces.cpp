@@ -397,23 +397,29 @@ ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<Pai
   // → the chunks' first slots (a prefix sum) → each chunk's touching pairs compacted into the
   // contact set, in candidate order whatever the chunking → each particle's forces, its pairs
   // in candidate order, from zero
-  const std::size_t chunk = poly ? 64 : 512;
+  const std::size_t chunk = poly ? 16 : 512;
   const std::size_t nchunks = (ncand + chunk - 1) / chunk;
-  const auto nc = static_cast<std::int64_t>(nchunks);
   const auto nn = static_cast<std::int64_t>(n);
   chunk_first_.resize(nchunks);
   chunk_stats_.assign(nchunks, {});
+  balance_.plan(nchunks, max_team_size());
+  bool balanced = true;  // did the team have the planned size (else: equal ranges, no timing)
 #pragma omp parallel
   {
     if (poly) place_shapes(w, true);
-    // contiguous ranges of chunks, the same ranges every step and in the compaction below:
-    // candidates come sorted by their first particle, so a thread's pairs are mostly those of
-    // the particles it placed, and its slots stay in its own cache from step to step. (Chunks
-    // handed out dynamically made a 2-thread pile step slower than one thread on a VM whose
-    // cores exchange a cache line in ~230 ns: docs/threads.md.)
-#pragma omp for schedule(static)
-    for (std::int64_t c = 0; c < nc; ++c) {
-      const std::size_t k0 = static_cast<std::size_t>(c) * chunk, k1 = std::min(ncand, k0 + chunk);
+    // contiguous ranges of chunks, one per thread, in the pair loop and in the compaction
+    // below: candidates come sorted by their first particle, so a thread's pairs are mostly
+    // those of the particles it placed, and its slots stay in its own cache from step to step.
+    // (Chunks handed out dynamically made a 2-thread pile step slower than one thread on a VM
+    // whose cores exchange a cache line in ~230 ns: docs/threads.md.) The split points follow
+    // the measured cost (RangeBalancer): where the grains touch more, a chunk costs more.
+    const int tid = team_thread(), nt = team_size();
+    const bool planned = static_cast<std::size_t>(nt) == balance_.threads();
+    const std::size_t c_begin = planned ? balance_.begin(tid) : nchunks * tid / nt;
+    const std::size_t c_end = planned ? balance_.end(tid) : nchunks * (tid + 1) / nt;
+    const double t_start = wall_seconds();
+    for (std::size_t c = c_begin; c < c_end; ++c) {
+      const std::size_t k0 = c * chunk, k1 = std::min(ncand, k0 + chunk);
       std::size_t hint = 0, touching = 0;
       for (std::size_t k = k0; k < k1; ++k) {
         const bool t = poly ? polygon_pair(w, cand[k], cs, hint, dt, pair_f_[k], pair_r_[k])
@@ -421,8 +427,11 @@ ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<Pai
         touch_[k] = t;
         touching += t;
       }
-      chunk_first_[static_cast<std::size_t>(c)] = touching;
+      chunk_first_[c] = touching;
     }
+    if (planned) balance_.record(tid, wall_seconds() - t_start);
+    else balanced = false;  // every thread writes the same value
+#pragma omp barrier
 #pragma omp single
     {
       std::size_t total = 0;
@@ -435,10 +444,9 @@ ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<Pai
       new_records_.resize(total);
       new_state_.resize(poly ? total : 0);
     }
-#pragma omp for schedule(static) nowait
-    for (std::int64_t c = 0; c < nc; ++c) {
-      std::size_t out = chunk_first_[static_cast<std::size_t>(c)];
-      const std::size_t k0 = static_cast<std::size_t>(c) * chunk, k1 = std::min(ncand, k0 + chunk);
+    for (std::size_t c = c_begin; c < c_end; ++c) {
+      std::size_t out = chunk_first_[c];
+      const std::size_t k0 = c * chunk, k1 = std::min(ncand, k0 + chunk);
       for (std::size_t k = k0; k < k1; ++k) {
         if (!touch_[k]) continue;
         const PairKey key = cand[k];
@@ -447,7 +455,7 @@ ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<Pai
         new_records_[out] = {key, r.s, r.n, r.fn, r.ft, r.overlap};
         if (poly) new_state_[out] = r.state;
         ++out;
-        note_overlap(chunk_stats_[static_cast<std::size_t>(c)], w, key, r.h, r.degenerate);
+        note_overlap(chunk_stats_[c], w, key, r.h, r.degenerate);
       }
     }
 #pragma omp for schedule(static)
@@ -472,6 +480,7 @@ ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<Pai
       if (poly) f.tq[p] = tq;
     }
   }  // omp parallel
+  if (balanced) balance_.update();
   ForceStats st;  // maxima and counts: the same whatever the chunking
   for (const ForceStats& b : chunk_stats_) {
     st.degenerate += b.degenerate;

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/balance.hpp"
 #include "contact/contact_set.hpp"
 #include "geometry/prepared.hpp"
 #include "force/laws/disk_law.hpp"
@@ -104,6 +105,7 @@ class ContactModel {
   // the compaction of touching pairs into the contact set, in fixed blocks of candidates
   std::vector<std::size_t> chunk_first_;  ///< parallel loop: first contact-set slot of each chunk
   std::vector<ForceStats> chunk_stats_;
+  RangeBalancer balance_;  ///< parallel loop: each thread's range of chunks
   std::vector<PairKey> new_keys_;
   std::vector<ContactState> new_state_;
   std::vector<ContactRecord> new_records_;
