@@ -67,6 +67,23 @@ inline double wall_seconds() {
 #endif
 }
 
+/// a non-owning reference to a callable body(begin, end) over a range of items: no allocation,
+/// for passing a per-range step into a hot loop (the callable must outlive the reference)
+class RangeFn {
+ public:
+  RangeFn() = default;
+  template <class F>
+  explicit RangeFn(F& f)
+      : obj_(const_cast<void*>(static_cast<const void*>(&f))),
+        call_([](void* o, std::size_t b, std::size_t e) { (*static_cast<F*>(o))(b, e); }) {}
+  explicit operator bool() const { return call_ != nullptr; }
+  void operator()(std::size_t b, std::size_t e) const { call_(obj_, b, e); }
+
+ private:
+  void* obj_ = nullptr;
+  void (*call_)(void*, std::size_t, std::size_t) = nullptr;
+};
+
 /// body(begin, end) over [0, n): one serial call, or in parallel over contiguous ranges, one
 /// per thread (static schedule)
 template <class Body>

@@ -263,7 +263,7 @@ std::size_t ContactModel::select_disk_pairs(const World& w, const std::vector<Pa
 // either way, so the forces are bitwise the same on any number of threads, serial or parallel.
 ForceStats ContactModel::evaluate(const World& w, const std::vector<PairKey>& cand,
                                   ContactSet& cs, ForceBuffer& f, double dt,
-                                  std::uint64_t generation) {
+                                  std::uint64_t generation, RangeFn after) {
   const std::size_t n = w.size();
   const std::size_t ncand = cand.size();
   const bool poly = w.polygons();
@@ -276,13 +276,18 @@ ForceStats ContactModel::evaluate(const World& w, const std::vector<PairKey>& ca
   if (run_parallel(ncand, poly ? kParallelMin : kParallelMinCheap)) {
     const bool reindex = generation == 0 || generation != indexed_generation_ ||
                          n != indexed_n_ || ncand != indexed_count_;
-    st = evaluate_parallel(w, cand, cs, f, dt, reindex);
+    st = evaluate_parallel(w, cand, cs, f, dt, reindex, after);
     indexed_generation_ = generation;
     indexed_n_ = n;
     indexed_count_ = ncand;
   } else {
-    if (poly) place_shapes(w, false);
+    if (poly) {
+      place_walls(w);
+      shapes_.resize(n, max_sides_);
+      place_shapes(w, 0, n);
+    }
     st = evaluate_serial(w, cand, cs, f, dt);
+    if (after) parallel_ranges(n, kParallelMinCheap, after);
   }
   cs.keys.swap(new_keys_);
   cs.state.swap(new_state_);
@@ -292,29 +297,21 @@ ForceStats ContactModel::evaluate(const World& w, const std::vector<PairKey>& ca
   return st;
 }
 
-// world-frame polygons once per step, with their edges and bounding circles; `inside`: called
-// by every thread of a parallel region, which shares the work
-void ContactModel::place_shapes(const World& w, bool inside) {
-  const std::size_t n = w.size();
-#pragma omp single
-  {
-    shapes_.resize(n, max_sides_);
-    int wall_n = 0;
-    for (const Wall& wl : w.walls) wall_n = std::max(wall_n, wl.poly.n);
-    wall_shapes_.resize(w.walls.size(), wall_n);
-    for (std::size_t k = 0; k < w.walls.size(); ++k) wall_shapes_.set(k, w.walls[k].poly);
-  }
-  auto place = [&](std::size_t i) {
+// the walls' polygons (a handful; set every step, so that a scene may move its walls)
+void ContactModel::place_walls(const World& w) {
+  int wall_n = 0;
+  for (const Wall& wl : w.walls) wall_n = std::max(wall_n, wl.poly.n);
+  wall_shapes_.resize(w.walls.size(), wall_n);
+  for (std::size_t k = 0; k < w.walls.size(); ++k) wall_shapes_.set(k, w.walls[k].poly);
+}
+
+// world-frame polygons [b, e) of this step, with their edges and bounding circles (the store
+// sized beforehand)
+void ContactModel::place_shapes(const World& w, std::size_t b, std::size_t e) {
+  for (std::size_t i = b; i < e; ++i) {
     const int k = w.sp[i];
     shapes_.set_placed(i, w.species[k].body, extent_[k], {w.s.x[i], w.s.y[i]}, w.s.th[i]);
-  };
-  if (!inside) {
-    for (std::size_t i = 0; i < n; ++i) place(i);
-    return;
   }
-  const auto nn = static_cast<std::int64_t>(n);
-#pragma omp for schedule(static)
-  for (std::int64_t i = 0; i < nn; ++i) place(static_cast<std::size_t>(i));
 }
 
 // the contact's statistics: h_eff (or δ) and the same over the smaller grain's radius
@@ -384,7 +381,7 @@ ForceStats ContactModel::evaluate_serial(const World& w, const std::vector<PairK
 
 ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<PairKey>& cand,
                                            const ContactSet& cs, ForceBuffer& f, double dt,
-                                           bool reindex) {
+                                           bool reindex, RangeFn after) {
   const std::size_t n = w.size();
   const std::size_t ncand = cand.size();
   const bool poly = w.polygons();
@@ -399,14 +396,26 @@ ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<Pai
   // in candidate order, from zero
   const std::size_t chunk = poly ? 16 : 512;
   const std::size_t nchunks = (ncand + chunk - 1) / chunk;
-  const auto nn = static_cast<std::int64_t>(n);
   chunk_first_.resize(nchunks);
   chunk_stats_.assign(nchunks, {});
   balance_.plan(nchunks, max_team_size());
   bool balanced = true;  // did the team have the planned size (else: equal ranges, no timing)
+  if (poly) {
+    place_walls(w);
+    shapes_.resize(n, max_sides_);
+  }
 #pragma omp parallel
   {
-    if (poly) place_shapes(w, true);
+    // each thread's particles: the ranges of parallel_ranges, as in the integrators' passes,
+    // so that a thread places, sums and accelerates the grains whose state it predicted
+    const std::size_t p_begin = n * static_cast<std::size_t>(team_thread()) /
+                                static_cast<std::size_t>(team_size());
+    const std::size_t p_end = n * static_cast<std::size_t>(team_thread() + 1) /
+                              static_cast<std::size_t>(team_size());
+    if (poly) {
+      place_shapes(w, p_begin, p_end);
+#pragma omp barrier
+    }
     // contiguous ranges of chunks, one per thread, in the pair loop and in the compaction
     // below: candidates come sorted by their first particle, so a thread's pairs are mostly
     // those of the particles it placed, and its slots stay in its own cache from step to step.
@@ -458,8 +467,7 @@ ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<Pai
         note_overlap(chunk_stats_[c], w, key, r.h, r.degenerate);
       }
     }
-#pragma omp for schedule(static)
-    for (std::int64_t p = 0; p < nn; ++p) {
+    for (std::size_t p = p_begin; p < p_end; ++p) {
       double fx = 0.0, fy = 0.0, tq = 0.0;
       for (std::uint32_t e = cand_start_[p]; e < cand_start_[p + 1]; ++e) {
         const std::uint32_t k = cand_entry_[e] >> 1;
@@ -479,6 +487,7 @@ ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<Pai
       f.fy[p] = fy;
       if (poly) f.tq[p] = tq;
     }
+    if (after) after(p_begin, p_end);
   }  // omp parallel
   if (balanced) balance_.update();
   ForceStats st;  // maxima and counts: the same whatever the chunking

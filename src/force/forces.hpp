@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/balance.hpp"
+#include "core/parallel.hpp"
 #include "contact/contact_set.hpp"
 #include "geometry/prepared.hpp"
 #include "force/laws/disk_law.hpp"
@@ -41,8 +42,13 @@ class ContactModel {
   /// (BroadPhase::generation()): an unchanged list reuses its per-particle index; 0 = unknown.
   /// Pairs are evaluated in parallel, then each particle's forces are summed over its pairs in
   /// candidate order, so the result is bitwise the same for any number of threads.
+  /// `after(b, e)`, if given, runs once the forces of particles [b, e) are final, on the
+  /// thread that summed them (each thread its own range, the ranges of parallel_ranges over
+  /// the particles, as the integrators' loops): what depends on a particle's force alone, such
+  /// as its acceleration, is then computed where the force and the integrator's data are.
   ForceStats evaluate(const World& w, const std::vector<PairKey>& candidates, ContactSet& cs,
-                      ForceBuffer& f, double dt, std::uint64_t generation = 0);
+                      ForceBuffer& f, double dt, std::uint64_t generation = 0,
+                      RangeFn after = {});
   /// the stiffest binary contact time of the scene (for Δt advice), s
   double min_contact_time() const { return min_contact_time_; }
 
@@ -53,14 +59,16 @@ class ContactModel {
   bool polygon_pair(const World& w, PairKey key, const ContactSet& cs, std::size_t& hint,
                     double dt, PairForce& pf, PairResult& pr) const;
   bool disk_pair(const World& w, PairKey key, PairForce& pf, PairResult& pr) const;
-  void place_shapes(const World& w, bool inside);
+  void place_walls(const World& w);
+  void place_shapes(const World& w, std::size_t b, std::size_t e);
   struct PolyPairConst;
   PolyPairConst poly_pair_const(const World& w, std::size_t a, std::size_t b,
                                 const law::PolyLawParams& p) const;
   ForceStats evaluate_serial(const World& w, const std::vector<PairKey>& cand,
                              const ContactSet& cs, ForceBuffer& f, double dt);
   ForceStats evaluate_parallel(const World& w, const std::vector<PairKey>& cand,
-                               const ContactSet& cs, ForceBuffer& f, double dt, bool reindex);
+                               const ContactSet& cs, ForceBuffer& f, double dt, bool reindex,
+                               RangeFn after);
   // the per-particle index of the candidates (CSR, ascending candidate order per particle)
   void index_candidates(const std::vector<PairKey>& cand, std::size_t n);
   std::size_t nsp_ = 0;

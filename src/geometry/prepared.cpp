@@ -9,6 +9,9 @@
 namespace gs {
 
 void PolyStore::resize(std::size_t count, int max_n) {
+  // unchanged: nothing written (the hot loop calls this every step; a serial pass over n_
+  // would pull every thread's lines to the calling thread)
+  if (count == n_.size() && static_cast<std::size_t>(std::max(max_n, 0)) == stride_) return;
   stride_ = static_cast<std::size_t>(std::max(max_n, 0));
   data_.resize(count * 4 * stride_);
   n_.assign(count, 0);

@@ -101,26 +101,21 @@ double accelerate(const AccelArrays& a, std::size_t b, std::size_t e) {
   return kick_sum;
 }
 
-template <bool kNoise, bool kRing, bool kSpin>
-void accelerate_all(const AccelArrays& a, std::size_t n, std::vector<double>& block_sums) {
-  if constexpr (kNoise && kRing) {
-    // the kicks' mean momentum: sums over fixed blocks, added in block order (T.2.18)
-    block_sums.assign((n + kSumBlock - 1) / kSumBlock, 0.0);
-    parallel_chunks(n, kParallelMinCheap, kSumBlock, [&](std::size_t b, std::size_t e) {
-      for (std::size_t k = b; k < e; k += kSumBlock)
-        block_sums[k / kSumBlock] = accelerate<kNoise, kRing, kSpin>(a, k, std::min(e, k + kSumBlock));
-    });
-    double mean = 0.0;
-    for (double m : block_sums) mean += m;
-    if (n > 0) mean /= static_cast<double>(n);
-    parallel_ranges(n, kParallelMinCheap, [&](std::size_t b, std::size_t e) {
-      for (std::size_t i = b; i < e; ++i) a.ax[i] -= mean * a.inv_mass[i];
-    });
-  } else {
-    parallel_ranges(n, kParallelMinCheap, [&](std::size_t b, std::size_t e) {
-      accelerate<kNoise, kRing, kSpin>(a, b, e);
-    });
-  }
+// the 1D ring's accelerations with noise: the kicks' mean momentum is removed, summed over
+// fixed blocks and added in block order (T.2.18), so this pass needs every particle's kick
+// before any acceleration is final
+void accelerate_ring_noise(const AccelArrays& a, std::size_t n, std::vector<double>& block_sums) {
+  block_sums.assign((n + kSumBlock - 1) / kSumBlock, 0.0);
+  parallel_chunks(n, kParallelMinCheap, kSumBlock, [&](std::size_t b, std::size_t e) {
+    for (std::size_t k = b; k < e; k += kSumBlock)
+      block_sums[k / kSumBlock] = accelerate<true, true, false>(a, k, std::min(e, k + kSumBlock));
+  });
+  double mean = 0.0;
+  for (double m : block_sums) mean += m;
+  if (n > 0) mean /= static_cast<double>(n);
+  parallel_ranges(n, kParallelMinCheap, [&](std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i) a.ax[i] -= mean * a.inv_mass[i];
+  });
 }
 
 }  // namespace
@@ -130,13 +125,15 @@ void accelerate_all(const AccelArrays& a, std::size_t n, std::vector<double>& bl
 void Simulation::compute_accelerations(std::int64_t index) {
   const std::size_t n = w_.size();
   const std::vector<PairKey>& cand = broad_->update(w_);
-  stats_ = model_.evaluate(w_, cand, contacts_, forces_, dt_, broad_->generation());
   gravity_ = gravity_at(w_.scene.drive, w_.s.t);
   State& s = w_.s;
   const bool noise = w_.scene.drive.kind == DriveKind::RandomForce;
   const bool ring = w_.box == BoxKind::Ring1D;  // x only: no ay (and no torques, disks)
-  const bool spin = !forces_.tq.empty();        // polygons: contact torques
+  const bool spin = w_.polygons();              // polygons: contact torques
   if (noise && noise_keys_.size() != n) noise_keys_ = random_force_keys(w_.scene.prep.seed, n);
+  forces_.tq.resize(spin ? n : 0);  // evaluate() sizes the buffers too; the arrays below need them
+  forces_.fx.resize(n);
+  forces_.fy.resize(n);
   const AccelArrays a{forces_.fx.data(), forces_.fy.data(), forces_.tq.data(),
                       w_.inv_mass.data(), w_.inv_inertia.data(), w_.mass.data(),
                       noise ? noise_keys_.data() : nullptr, s.ax.data(), s.ay.data(),
@@ -145,8 +142,20 @@ void Simulation::compute_accelerations(std::int64_t index) {
                       index};
   using T = std::true_type;
   using F = std::false_type;
+  // each particle's acceleration from its own force: computed inside the force pass by the
+  // thread that summed the force (and predicts and corrects the particle), except the 1D
+  // ring's noise, whose mean kick needs every particle first
   auto go = [&](auto nz, auto rg, auto sp) {
-    accelerate_all<decltype(nz)::value, decltype(rg)::value, decltype(sp)::value>(a, n, kick_);
+    constexpr bool kNz = decltype(nz)::value, kRg = decltype(rg)::value;
+    [[maybe_unused]] constexpr bool kSp = decltype(sp)::value;
+    if constexpr (kNz && kRg) {
+      stats_ = model_.evaluate(w_, cand, contacts_, forces_, dt_, broad_->generation());
+      accelerate_ring_noise(a, n, kick_);
+    } else {
+      auto after = [&a](std::size_t b, std::size_t e) { accelerate<kNz, kRg, kSp>(a, b, e); };
+      stats_ = model_.evaluate(w_, cand, contacts_, forces_, dt_, broad_->generation(),
+                               RangeFn(after));
+    }
   };
   if (noise) {
     if (ring) go(T{}, T{}, F{});
