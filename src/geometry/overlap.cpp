@@ -276,17 +276,24 @@ Overlap overlap(const PolyRef& a, const PolyRef& b) {
   const double cl1 = std::abs(cx - b.mean.x) + std::abs(cy - b.mean.y);
   const double margin =
       (1e-9 * (cl1 + 2.0 * b.radius + hx + hy) + 1e-14 * (std::abs(cx) + std::abs(cy))) * b.len;
-  // as a bit mask, rotated so that bit 0 is the edge after k0 (clip_all's order)
-  std::uint64_t cut = 0;
-  for (int k = 0; k < b.n; ++k) {
+  // as a bit mask, bit j for edge k0 + 1 + j (clip_all's order)
+  auto may_cut = [&](int k) -> std::uint64_t {
     const double reach = std::abs(b.ey[k]) * hx + std::abs(b.ex[k]) * hy + margin;
     const double sc = (cx - b.x[k]) * b.ey[k] - (cy - b.y[k]) * b.ex[k];
-    const bool may_cut = !(sc + reach < 0.0);  // NaN: clip
-    cut |= static_cast<std::uint64_t>(may_cut) << k;
-  }
+    return !(sc + reach < 0.0);  // NaN: clip
+  };
   const int k1 = k0 + 1 == b.n ? 0 : k0 + 1;
-  cut = (cut >> k1) | (cut << (b.n - k1));  // b.n <= kMaxPolyVerts < 64
-  cut &= (std::uint64_t{1} << (b.n - 1)) - 1;  // the n − 1 edges after k0
+  std::uint64_t cut = 0;
+  // a regular b and a cap near the facing edge's midpoint (PolyRef::near): only the two
+  // neighbouring edge lines can cut it
+  const double mx = 0.5 * (b.x[k0] + b.x[k1]), my = 0.5 * (b.y[k0] + b.y[k1]);
+  if (std::abs(cx - mx) + std::abs(cy - my) + hx + hy + margin < b.near) {
+    cut = may_cut(k1) | may_cut(k0 == 0 ? b.n - 1 : k0 - 1) << (b.n - 2);
+  } else {
+    for (int k = 0; k < b.n; ++k) cut |= may_cut(k) << k;
+    cut = (cut >> k1) | (cut << (b.n - k1));  // b.n <= kMaxPolyVerts < 64
+    cut &= (std::uint64_t{1} << (b.n - 1)) - 1;  // the n − 1 edges after k0
+  }
   while (cut != 0 && cur->n > 0) {
     const int j = std::countr_zero(cut);
     cut &= cut - 1;

@@ -18,13 +18,60 @@ void PolyStore::resize(std::size_t count, int max_n) {
   meta_.resize(count);
 }
 
+bool is_regular(int n, const double* x, const double* y) {
+  if (n < 3) return false;
+  // every edge as long as edge 0, every turn (cross product of consecutive edges over the
+  // squared length: the sine of the exterior angle) as turn 0, and that turn positive
+  double l0 = 0.0, t0 = 0.0;
+  for (int k = 0; k < n; ++k) {
+    const int k1 = k + 1 == n ? 0 : k + 1, k2 = k1 + 1 == n ? 0 : k1 + 1;
+    const Vec2 e{x[k1] - x[k], y[k1] - y[k]}, f{x[k2] - x[k1], y[k2] - y[k1]};
+    const double l = norm(e), t = cross(e, f) / (l * norm(f));
+    if (k == 0) {
+      l0 = l;
+      t0 = t;
+      if (!(l0 > 0.0) || !(t0 > 1e-6)) return false;
+    } else if (!(std::abs(l - l0) <= 1e-9 * l0) || !(std::abs(t - t0) <= 1e-9)) {
+      return false;
+    }
+  }
+  return true;
+}
+
+// PolyRef::near of a regular polygon: a point x within distance q of edge k's midpoint M has,
+// against edge j (outward unit normal n_j, apothem ρ about the vertex mean m), the signed
+// distance n_j·(x − m) − ρ ≤ n_j·(M − m) + q − ρ = ρ·(cos Δ − 1) + q, Δ the angle between
+// the normals: ≥ 2·(2π/n) for every edge but k and its neighbours. So q < ρ·(1 − cos(4π/n))
+// keeps x strictly inside those lines (L1 distances bound L2 ones); rounded down by 1e-6 for
+// the polygon's own rounding. Polygons under 5 sides: 0 (every edge is k or a neighbour).
+double near_bound(int n, const double* x, const double* y) {
+  if (n < 5) return 0.0;
+  double mx = 0.0, my = 0.0;
+  for (int k = 0; k < n; ++k) {
+    mx += x[k];
+    my += y[k];
+  }
+  mx /= n;
+  my /= n;
+  double rho = 1e300;  // the smallest apothem
+  for (int k = 0; k < n; ++k) {
+    const int k1 = k + 1 == n ? 0 : k + 1;
+    rho = std::min(rho, std::hypot(0.5 * (x[k] + x[k1]) - mx, 0.5 * (y[k] + y[k1]) - my));
+  }
+  const double pi = 3.14159265358979323846;
+  return rho * (1.0 - std::cos(4.0 * pi / n)) * (1.0 - 1e-6);
+}
+
 BodyExtent body_extent(const Poly& body) {
   double r2 = 0.0, l2 = 0.0;
+  double x[kMaxPolyVerts] = {}, y[kMaxPolyVerts] = {};
   for (int k = 0; k < body.n; ++k) {
     r2 = std::max(r2, norm2(body.v[k]));
     l2 = std::max(l2, norm2(body.v[k + 1 == body.n ? 0 : k + 1] - body.v[k]));
+    x[k] = body.v[k].x;
+    y[k] = body.v[k].y;
   }
-  return {std::sqrt(r2), std::sqrt(l2)};
+  return {std::sqrt(r2), std::sqrt(l2), is_regular(body.n, x, y) ? near_bound(body.n, x, y) : 0.0};
 }
 
 // c + rotate(v, cos θ, sin θ), as place(); edges and mean as finish(), in straight loops over
@@ -73,7 +120,10 @@ void PolyStore::set_placed(std::size_t i, const Poly& body, const BodyExtent& ex
   const double r = (ext.reach + std::abs(m.x - c.x) + std::abs(m.y - c.y)) * (1.0 + 1e-12) +
                    1e-15 * c1;
   const double len = (ext.len + 1e-15 * (c1 + 2.0 * ext.reach)) * (1.0 + 1e-12);
-  meta_[i] = {m, r, len};
+  // near: less the placement's rounding, ~1e-16 of |c|₁ + reach (bodies placed over 10⁶ of
+  // their sizes from the origin get no bound)
+  const double near = c1 <= 1e6 * ext.reach ? ext.near - 1e-14 * (c1 + ext.reach) : 0.0;
+  meta_[i] = {m, r, len, near};
 }
 
 void PolyStore::set(std::size_t i, const Poly& p) {
@@ -118,7 +168,8 @@ void PolyStore::finish(std::size_t i) {
   double r2 = 0.0;
   for (int k = 0; k < n_[i]; ++k) r2 = std::max(r2, norm2(Vec2{x[k], y[k]} - m));
   // rounded up: the circle must hold every vertex despite the rounding of these sums
-  meta_[i] = {m, std::sqrt(r2) * (1.0 + 1e-12), std::sqrt(l2) * (1.0 + 1e-12)};
+  meta_[i] = {m, std::sqrt(r2) * (1.0 + 1e-12), std::sqrt(l2) * (1.0 + 1e-12),
+              is_regular(n_[i], x, y) ? near_bound(n_[i], x, y) : 0.0};
 }
 
 Poly PolyStore::poly(std::size_t i) const {

@@ -3,6 +3,7 @@
 // arrays, so that the overlap of a pair needs no per-pair set-up (SPEC 2.1)
 #pragma once
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "core/vec.hpp"
@@ -20,12 +21,22 @@ struct PolyRef {
   Vec2 mean;                   ///< vertex mean (the interior point overlap() uses), m
   double radius = 0.0;         ///< a circle about `mean` holding every vertex (rounded up), m
   double len = 0.0;            ///< the longest edge (rounded up), m
+  /// regular polygons from 5 sides (equal edges and exterior angles, to 1e-9): every point
+  /// within this L1 distance of an edge's midpoint lies strictly inside every edge line but
+  /// those of that edge and its two neighbours (0: no such bound), m
+  double near = 0.0;
 };
+
+/// is the closed polygon (x, y) of n vertices regular (equal edges and exterior angles)?
+bool is_regular(int n, const double* x, const double* y);
+/// PolyRef::near of the regular polygon (x, y) of n vertices
+double near_bound(int n, const double* x, const double* y);
 
 /// what placing a body needs beyond its vertices: sizes that no placement changes
 struct BodyExtent {
   double reach = 0.0;  ///< the largest distance of a vertex from the body origin, m
   double len = 0.0;    ///< the longest edge, m
+  double near = 0.0;   ///< PolyRef::near of the body, m
 };
 BodyExtent body_extent(const Poly& body);
 
@@ -53,6 +64,7 @@ class PolyStore {
     r.mean = meta_[i].mean;
     r.radius = meta_[i].radius;
     r.len = meta_[i].len;
+    r.near = meta_[i].near;
     return r;
   }
   /// polygon i as a Poly (for the general routines)
@@ -65,6 +77,7 @@ class PolyStore {
   struct Meta {
     Vec2 mean;
     double radius = 0.0, len = 0.0;
+    double near = 0.0;
   };
   std::size_t stride_ = 0;
   std::vector<double> data_;  ///< per polygon: x, y, ex, ey, each `stride_` long
