@@ -90,31 +90,37 @@ void PolyStore::set_placed(std::size_t i, const Poly& body, const BodyExtent& ex
   assert(static_cast<std::size_t>(body.n) <= stride_);
   const int n = body.n;
   const double cs = std::cos(theta), sn = std::sin(theta);
-  double* const x = data_.data() + i * 4 * stride_;
-  double* const y = x + stride_;
-  double* const ex = y + stride_;
-  double* const ey = ex + stride_;
-  for (int k = 0; k < n; ++k) {
-    const double bx = body.v[k].x, by = body.v[k].y;
-    x[k] = c.x + (cs * bx - sn * by);
-    y[k] = c.y + (sn * bx + cs * by);
-  }
-  for (int k = 0; k + 1 < n; ++k) {
-    ex[k] = x[k + 1] - x[k];
-    ey[k] = y[k + 1] - y[k];
-  }
-  double mx = 0.0, my = 0.0;
-  for (int k = 0; k < n; ++k) {
-    mx += x[k];
-    my += y[k];
-  }
+  double* __restrict const x = data_.data() + i * 4 * stride_;
+  double* __restrict const y = x + stride_;
+  double* __restrict const ex = y + stride_;
+  double* __restrict const ey = ex + stride_;
   n_[i] = n;
   if (n == 0) {
     meta_[i] = {};
     return;
   }
-  ex[n - 1] = x[0] - x[n - 1];
-  ey[n - 1] = y[0] - y[n - 1];
+  // one pass: each vertex, the edge that ends at it, the running sums of the mean (in vertex
+  // order from zero, as vertex_mean), all from registers
+  double x0 = c.x + (cs * body.v[0].x - sn * body.v[0].y);
+  double y0 = c.y + (sn * body.v[0].x + cs * body.v[0].y);
+  double mx = 0.0 + x0, my = 0.0 + y0;
+  x[0] = x0;
+  y[0] = y0;
+  double px = x0, py = y0;
+  for (int k = 1; k < n; ++k) {
+    const double bx = body.v[k].x, by = body.v[k].y;
+    const double qx = c.x + (cs * bx - sn * by), qy = c.y + (sn * bx + cs * by);
+    x[k] = qx;
+    y[k] = qy;
+    ex[k - 1] = qx - px;
+    ey[k - 1] = qy - py;
+    mx += qx;
+    my += qy;
+    px = qx;
+    py = qy;
+  }
+  ex[n - 1] = x0 - px;
+  ey[n - 1] = y0 - py;
   const Vec2 m{mx / static_cast<double>(n), my / static_cast<double>(n)};
   const double c1 = std::abs(c.x) + std::abs(c.y);
   const double r = (ext.reach + std::abs(m.x - c.x) + std::abs(m.y - c.y)) * (1.0 + 1e-12) +
