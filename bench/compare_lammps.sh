@@ -6,7 +6,8 @@
 #            (bench/lammps_twin.py writes the gransim scene with it, the LAMMPS data file and the
 #            LAMMPS parameters)
 # Prints particle-steps per second (LAMMPS: its "Loop time"; gransim: run.json, the stepping) for
-# 1 and 2 threads (gransim, OpenMP) / ranks (LAMMPS, MPI) and the ratios; nothing is asserted.
+# 1 and 2 threads (gransim, OpenMP) / ranks (LAMMPS, MPI) and the ratios, and the per-core ratio
+# once more with both codes running at the same time on the two CPUs (paired); nothing is asserted.
 # Environment: STEPS (default 10000; QUICK=1: 2000), GS_BUILD_DIR (default build),
 # GS_BENCH_RESULTS (file to append "key value" lines to, for bench/summary.py),
 # OMP_WAIT_POLICY (default: the runtime's), GS_MPI_ARGS (default "--mca mpi_yield_when_idle 1").
@@ -59,6 +60,31 @@ lammps() {
   python3 -c "print($steps*$n/$loop)"
 }
 
+# paired FILE IN VARS...: per core with the two CPUs' speeds cancelled. Some hosts' vCPUs run
+# at different speeds, and a vCPU's speed drifts by tens of per cent between minutes
+# (docs/threads.md): gransim (1 thread) and LAMMPS (1 rank) run at the same time, one pinned to
+# each of CPUs 0 and 1, then swapped; the ratio is the geometric mean of the two rounds'
+# ratios. Prints "ratio g@0 g@1 l@0 l@1" (particle-steps/s).
+paired() {
+  local file=$1 in=$2
+  shift 2
+  local -A v=()
+  local round gc lc
+  for round in 0 1; do
+    gc=$round; lc=$((1 - round))
+    ( OMP_NUM_THREADS=1 taskset -c "$gc" "$gs" run "$file" --out "$tmp/p$round" --force --quiet \
+        --set scene.duration="$(python3 -c "print($steps*1e-6)")" --set output.final_state=false \
+        2>/dev/null; grep '"particle_steps_per_s"' "$tmp/p$round/run.json" | num >"$tmp/pg$round" ) &
+    ( cd "$tmp" && taskset -c "$lc" lmp -in "$in" -var nsteps "$steps" "$@" -log none \
+        | awk -v n=10000 -v s="$steps" '/^Loop time/ {print s*n/$4}' >"$tmp/pl$round" ) &
+    wait
+    v[g$gc]=$(cat "$tmp/pg$round"); v[l$lc]=$(cat "$tmp/pl$round")
+  done
+  python3 -c "
+g0, g1, l0, l1 = (float(x or 'nan') for x in '${v[g0]} ${v[g1]} ${v[l0]} ${v[l1]}'.split(' '))
+print(((g0 / l1) * (g1 / l0)) ** 0.5, g0, g1, l0, l1)"
+}
+
 # the settled pile after the run, both codes: mean height and kinetic energy (a sanity check
 # that the twins do the same thing; they agree to a few per cent, not bitwise)
 settled_check() {
@@ -96,12 +122,20 @@ for scene in settled fluid; do
     printf '%-46s %16.4g\n' "$scene: LAMMPS gran/hooke/history ($t rank$([ "$t" = 2 ] && echo s))" "${r[l$t]}"
   done
   [ "$scene" = settled ] && { settled_check || true; }
-  python3 - "$scene" "${r[g1]}" "${r[g2]}" "${r[l1]}" "${r[l2]:-nan}" "$results" <<'EOF'
+  r[pair]=nan
+  if [ "$(nproc)" -ge 2 ] && command -v taskset >/dev/null; then
+    read -r r[pair] g0 g1 l0 l1 < <(paired "$file" "$in" "${vars[@]}")
+    printf '  %s, paired (at the same time, CPUs swapped): gransim %.4g / %.4g, LAMMPS %.4g / %.4g on CPU 0 / 1\n' \
+      "$scene" "$g0" "$g1" "$l0" "$l1"
+  fi
+  python3 - "$scene" "${r[g1]}" "${r[g2]}" "${r[l1]}" "${r[l2]:-nan}" "${r[pair]}" "$results" <<'EOF'
 import sys
-s, (g1, g2, l1, l2), res = sys.argv[1], map(float, sys.argv[2:6]), sys.argv[6]
-print(f"  {s}: ratio gransim/LAMMPS per core {g1/l1:.2f}, on 2 cores {g2/l2:.2f}")
+s, (g1, g2, l1, l2, pr), res = sys.argv[1], map(float, sys.argv[2:7]), sys.argv[7]
+print(f"  {s}: ratio gransim/LAMMPS per core {g1/l1:.2f} (one after the other), "
+      f"{pr:.2f} (paired), on 2 cores {g2/l2:.2f}")
 with open(res, "a") as fh:
-    for k, v in (("gransim1", g1), ("gransim2", g2), ("lammps1", l1), ("lammps2", l2)):
+    for k, v in (("gransim1", g1), ("gransim2", g2), ("lammps1", l1), ("lammps2", l2),
+                 ("paired", pr)):
         fh.write(f"lammps.{s}.{k} {v:.6g}\n")
 EOF
 done

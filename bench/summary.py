@@ -90,6 +90,8 @@ for sc, label in (("settled", "10⁴ disks settled under gravity"), ("fluid", "1
         note=f" / {fmt(kv.get(p + 'lammps2'))}")
     row(f"{label}: gransim/LAMMPS per core", ratio(kv.get(p + "gransim1"), kv.get(p + "lammps1")),
         "×", "≥ 2×", ge(2.0))
+    row(f"{label}: gransim/LAMMPS per core, paired (same time, CPUs swapped)", kv.get(p + "paired"),
+        "×", "≥ 2×", ge(2.0))
     row(f"{label}: gransim/LAMMPS on 2 cores", ratio(kv.get(p + "gransim2"), kv.get(p + "lammps2")),
         "×")
 
