@@ -5,6 +5,7 @@
 // thread runs which item never changes a result (every loop that uses this writes per-item
 // slots, combined in a fixed order).
 #pragma once
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <vector>
@@ -13,18 +14,28 @@ namespace gs {
 
 class RangeBalancer {
  public:
-  /// ranges of n items for nt threads: kept from the last step when n and nt are unchanged,
-  /// else equal. Call before the loop, outside the parallel region.
+  /// ranges of n items for nt threads: kept from the last step when n and nt are unchanged;
+  /// a new n (the item list was rebuilt) keeps each split point's fraction of the items, since
+  /// a rebuilt list covers the same work in the same order (the cell grid rebuilds its
+  /// candidate list every few dozen steps while a pile moves); a new nt starts equal. Call
+  /// before the loop, outside the parallel region.
   void plan(std::size_t n, int nt) {
     const auto t = static_cast<std::size_t>(nt < 1 ? 1 : nt);
     if (n == n_ && t + 1 == cut_.size()) return;
+    if (t + 1 == cut_.size() && n_ > 0 && n_ != static_cast<std::size_t>(-1)) {
+      const double scale = static_cast<double>(n) / static_cast<double>(n_);
+      for (double& c : cut_) c *= scale;
+      cut_[t] = static_cast<double>(n);
+    } else {
+      cut_.assign(t + 1, 0.0);
+      for (std::size_t k = 0; k <= t; ++k)
+        cut_[k] = static_cast<double>(n) * static_cast<double>(k) / static_cast<double>(t);
+      time_.assign(t * kPad, 0.0);
+    }
     n_ = n;
-    cut_.assign(t + 1, 0.0);
-    for (std::size_t k = 0; k <= t; ++k)
-      cut_[k] = static_cast<double>(n) * static_cast<double>(k) / static_cast<double>(t);
     bound_.assign(t + 1, 0);
-    for (std::size_t k = 0; k <= t; ++k) bound_[k] = static_cast<std::size_t>(std::llround(cut_[k]));
-    time_.assign(t * kPad, 0.0);
+    for (std::size_t k = 0; k <= t; ++k)
+      bound_[k] = std::min(n, static_cast<std::size_t>(std::llround(cut_[k])));
   }
   std::size_t threads() const { return bound_.empty() ? 0 : bound_.size() - 1; }
   /// thread t's items [begin(t), end(t))

@@ -22,12 +22,22 @@ void SemiImplicitEuler::predict(std::span<const Channel> ch, double dt) {
 }
 
 // v_{n+1} = v_n + a_n·Δt, then q_{n+1} = q_n + v_{n+1}·Δt
-void SemiImplicitEuler::correct(std::span<const Channel> ch, double dt) {
+void SemiImplicitEuler::check_correct(std::span<const Channel> ch, double dt) const {
   layout_.check(ch, "SemiImplicitEuler::correct");
   if (dt != dt_)
     throw std::invalid_argument("SemiImplicitEuler::correct: dt differs from predict()");
+}
+
+void SemiImplicitEuler::correct(std::span<const Channel> ch, double dt) {
+  check_correct(ch, dt);
+  correct_range(ch, 0, static_cast<std::size_t>(-1));
+}
+
+void SemiImplicitEuler::correct_range(std::span<const Channel> ch, std::size_t b,
+                                      std::size_t e) {
+  const double dt = dt_;
   for (const auto& k : ch) {
-    for (std::size_t i = 0; i < k.q.size(); ++i) {
+    for (std::size_t i = b; i < std::min(e, k.q.size()); ++i) {
       k.v[i] += k.a[i] * dt;
       k.q[i] += k.v[i] * dt;
     }

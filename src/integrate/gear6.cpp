@@ -124,16 +124,33 @@ void Gear6::predict(std::span<const Channel> ch, double dt) {
   });
 }
 
-void Gear6::correct(std::span<const Channel> ch, double dt) {
+void Gear6::check_correct(std::span<const Channel> ch, double dt) const {
   layout_.check(ch, "Gear6::correct");
   if (dt != dt_) throw std::invalid_argument("Gear6::correct: dt differs from predict()");
+}
+
+void Gear6::correct(std::span<const Channel> ch, double dt) {
+  check_correct(ch, dt);
+  for_channels(ch, kParallelMinGear, [&](std::size_t c, std::size_t b, std::size_t e) {
+    correct_dofs(ch[c], c, b, e);
+  });
+}
+
+void Gear6::correct_range(std::span<const Channel> ch, std::size_t b, std::size_t e) {
+  for (std::size_t c = 0; c < ch.size(); ++c) {
+    const std::size_t n = ch[c].q.size();
+    correct_dofs(ch[c], c, std::min(b, n), std::min(e, n));
+  }
+}
+
+void Gear6::correct_dofs(const Channel& k, std::size_t c, std::size_t b, std::size_t e) {
   const double h = dt_;
   const double h2 = h * h / 2.0;
-  for_channels(ch, kParallelMinGear, [&](std::size_t c, std::size_t b, std::size_t e) {
+  {
     double* const r = r_[c].data();  // DOF i's six values at r[kN·i…kN·i + 5]
-    const double* const a = ch[c].a.data();
-    double* const q = ch[c].q.data();
-    double* const v = ch[c].v.data();
+    const double* const a = k.a.data();
+    double* const q = k.q.data();
+    double* const v = k.v.data();
     double* const vw = vw_[c].data();
     for (std::size_t i = b; i < e; ++i) {
       double* const x = r + kN * i;
@@ -149,7 +166,7 @@ void Gear6::correct(std::span<const Channel> ch, double dt) {
       q[i] = a0;
       v[i] = vw[i] = a1 / h;
     }
-  });
+  }
 }
 
 // kinetic damping: the grains at rest where they are. r1 and the unknown higher derivatives

@@ -13,6 +13,7 @@
 // - save()/load() are valid between steps; together with the caller's q and v they restore
 //   the run bitwise. load() throws gs::InputError on data that is not this scheme's.
 #pragma once
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -54,6 +55,13 @@ class Integrator {
   virtual void predict(std::span<const Channel> ch, double dt) = 0;
   /// given a at the predicted state, produce the final q, v at t + dt
   virtual void correct(std::span<const Channel> ch, double dt) = 0;
+  /// correct() in two parts, for a caller that corrects each thread's particles where it has
+  /// just computed their accelerations: check_correct() once (it throws what correct() would),
+  /// then correct_range() over ranges [b, e) of particles that together cover every particle
+  /// once (clipped to each channel's length; disjoint ranges may run at the same time). The
+  /// result is bitwise that of correct()
+  virtual void check_correct(std::span<const Channel> ch, double dt) const = 0;
+  virtual void correct_range(std::span<const Channel> ch, std::size_t b, std::size_t e) = 0;
   /// between steps: set every velocity of ch to zero and restart the history from rest at
   /// the current positions, as init() would with v = 0 and the last accelerations (kinetic
   /// damping, drive.quench). Positions and the stored accelerations are kept

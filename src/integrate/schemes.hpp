@@ -45,6 +45,8 @@ class Gear6 final : public Integrator {
   void init(std::span<const Channel> ch, double dt) override;
   void predict(std::span<const Channel> ch, double dt) override;
   void correct(std::span<const Channel> ch, double dt) override;
+  void check_correct(std::span<const Channel> ch, double dt) const override;
+  void correct_range(std::span<const Channel> ch, std::size_t b, std::size_t e) override;
   void zero_velocities(std::span<const Channel> ch) override;
   std::vector<double> save() const override;
   void load(const std::vector<double>& data) override;
@@ -53,6 +55,8 @@ class Gear6 final : public Integrator {
   void set_derivative(std::size_t c, int k, std::span<const double> d);
 
  private:
+  // the corrector on DOFs [b, e) of channel c
+  void correct_dofs(const Channel& k, std::size_t c, std::size_t b, std::size_t e);
   void rescale(double dt);
   void note_velocities();  // vw_ := r1/Δt, after the history changed outside predict/correct
   ChannelLayout layout_;
@@ -86,6 +90,8 @@ class VelocityVerlet final : public Integrator {
   void init(std::span<const Channel> ch, double dt) override;
   void predict(std::span<const Channel> ch, double dt) override;
   void correct(std::span<const Channel> ch, double dt) override;
+  void check_correct(std::span<const Channel> ch, double dt) const override;
+  void correct_range(std::span<const Channel> ch, std::size_t b, std::size_t e) override;
   void zero_velocities(std::span<const Channel> ch) override;
   std::vector<double> save() const override;
   void load(const std::vector<double>& data) override;
@@ -117,6 +123,8 @@ class PositionVerlet final : public Integrator {
   void init(std::span<const Channel> ch, double dt) override;
   void predict(std::span<const Channel> ch, double dt) override;
   void correct(std::span<const Channel> ch, double dt) override;
+  void check_correct(std::span<const Channel> ch, double dt) const override;
+  void correct_range(std::span<const Channel> ch, std::size_t b, std::size_t e) override;
   void zero_velocities(std::span<const Channel> ch) override;
   std::vector<double> save() const override;
   void load(const std::vector<double>& data) override;
@@ -138,6 +146,8 @@ class SemiImplicitEuler final : public Integrator {
   void init(std::span<const Channel> ch, double dt) override;
   void predict(std::span<const Channel> ch, double dt) override;
   void correct(std::span<const Channel> ch, double dt) override;
+  void check_correct(std::span<const Channel> ch, double dt) const override;
+  void correct_range(std::span<const Channel> ch, std::size_t b, std::size_t e) override;
   void zero_velocities(std::span<const Channel> ch) override;
   std::vector<double> save() const override;
   void load(const std::vector<double>& data) override;

@@ -82,13 +82,25 @@ void VelocityVerlet::predict(std::span<const Channel> ch, double dt) {
   });
 }
 
-void VelocityVerlet::correct(std::span<const Channel> ch, double dt) {
+void VelocityVerlet::check_correct(std::span<const Channel> ch, double dt) const {
   layout_.check(ch, "VelocityVerlet::correct");
   if (dt != dt_) throw std::invalid_argument("VelocityVerlet::correct: dt differs from predict()");
+}
+
+void VelocityVerlet::correct(std::span<const Channel> ch, double dt) {
+  check_correct(ch, dt);
   // second half kick with a_{n+1}, which becomes the stored acceleration
   for_channels(ch, kParallelMinCheap, [&](std::size_t c, std::size_t b, std::size_t e) {
-    vv_correct(b, e, dt, a_[c].data(), vh_[c].data(), ch[c].v.data(), ch[c].a.data());
+    vv_correct(b, e, dt_, a_[c].data(), vh_[c].data(), ch[c].v.data(), ch[c].a.data());
   });
+}
+
+void VelocityVerlet::correct_range(std::span<const Channel> ch, std::size_t b, std::size_t e) {
+  for (std::size_t c = 0; c < ch.size(); ++c) {
+    const std::size_t n = ch[c].q.size();
+    vv_correct(std::min(b, n), std::min(e, n), dt_, a_[c].data(), vh_[c].data(), ch[c].v.data(),
+               ch[c].a.data());
+  }
 }
 
 // kinetic damping: v_n = 0; the next kick starts from a_n as at the start
@@ -169,9 +181,18 @@ void PositionVerlet::predict(std::span<const Channel> ch, double dt) {
   dt_ = dt;
 }
 
-void PositionVerlet::correct(std::span<const Channel> ch, double dt) {
+void PositionVerlet::check_correct(std::span<const Channel> ch, double dt) const {
   layout_.check(ch, "PositionVerlet::correct");
   if (dt != dt_) throw std::invalid_argument("PositionVerlet::correct: dt differs from predict()");
+}
+
+void PositionVerlet::correct(std::span<const Channel> ch, double dt) {
+  check_correct(ch, dt);
+  correct_range(ch, 0, static_cast<std::size_t>(-1));
+}
+
+void PositionVerlet::correct_range(std::span<const Channel> ch, std::size_t b, std::size_t e) {
+  const double dt = dt_;
   for (std::size_t c = 0; c < ch.size(); ++c) {
     const auto& k = ch[c];
     const auto& qp = qp_[c];
@@ -179,7 +200,7 @@ void PositionVerlet::correct(std::span<const Channel> ch, double dt) {
     auto& vn = vn_[c];
     auto& a = a_[c];
     // v_{n+1} = (q_{n+2} − q_n)/(2Δt) with q_{n+2} from (T.2.3), written out
-    for (std::size_t i = 0; i < k.q.size(); ++i) {
+    for (std::size_t i = b; i < std::min(e, k.q.size()); ++i) {
       a[i] = k.a[i];
       vn[i] = (qn[i] - qp[i]) / dt + a[i] * dt / 2.0;
       k.v[i] = vn[i];

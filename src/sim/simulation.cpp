@@ -122,7 +122,7 @@ void accelerate_ring_noise(const AccelArrays& a, std::size_t n, std::vector<doub
 
 // broad phase → narrow phase and laws → body forces → accelerations at the current state, in
 // one pass over the particles
-void Simulation::compute_accelerations(std::int64_t index) {
+void Simulation::compute_accelerations(std::int64_t index, std::span<const Channel> correct) {
   const std::size_t n = w_.size();
   const std::vector<PairKey>& cand = broad_->update(w_);
   gravity_ = gravity_at(w_.scene.drive, w_.s.t);
@@ -151,8 +151,12 @@ void Simulation::compute_accelerations(std::int64_t index) {
     if constexpr (kNz && kRg) {
       stats_ = model_.evaluate(w_, cand, contacts_, forces_, dt_, broad_->generation());
       accelerate_ring_noise(a, n, kick_);
+      if (!correct.empty()) integ_->correct(correct, dt_);
     } else {
-      auto after = [&a](std::size_t b, std::size_t e) { accelerate<kNz, kRg, kSp>(a, b, e); };
+      auto after = [&](std::size_t b, std::size_t e) {
+        accelerate<kNz, kRg, kSp>(a, b, e);
+        if (!correct.empty()) integ_->correct_range(correct, b, e);
+      };
       stats_ = model_.evaluate(w_, cand, contacts_, forces_, dt_, broad_->generation(),
                                RangeFn(after));
     }
@@ -170,11 +174,12 @@ void Simulation::compute_accelerations(std::int64_t index) {
 
 void Simulation::step() {
   auto ch = channels();
-  // predict positions and velocities at t + Δt, evaluate forces there, correct
+  // predict positions and velocities at t + Δt, evaluate forces there, correct (each particle
+  // by the thread that summed its force, inside the force pass)
   integ_->predict(ch, dt_);
   w_.s.t = static_cast<double>(w_.s.step + 1) * dt_;
-  compute_accelerations(w_.s.step + 1);
-  integ_->correct(ch, dt_);
+  integ_->check_correct(ch, dt_);  // here: nothing may throw inside the force pass
+  compute_accelerations(w_.s.step + 1, ch);
   ++w_.s.step;
   // 2D drift control: remove the centre-of-mass velocity every K steps
   const DriveSpec& d = w_.scene.drive;

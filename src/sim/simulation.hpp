@@ -57,7 +57,10 @@ class Simulation {
 
  private:
   /// accelerations at the current state; `index` counts force evaluations (noise stream)
-  void compute_accelerations(std::int64_t index);
+  // forces and accelerations at the current (predicted) state; with `correct`, the
+  // integrator's corrector too, each particle right after its acceleration, on the thread
+  // that computed it (Integrator::correct_range; check_correct() done by the caller)
+  void compute_accelerations(std::int64_t index, std::span<const Channel> correct = {});
   void health_check();
   /// kinetic + contact elastic + gravitational energy (J); elastic ½k_sδ² (Model S), not
   /// counted for Model P (a lower bound)

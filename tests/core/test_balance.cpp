@@ -49,11 +49,23 @@ TEST(RangeBalancer, SplitFollowsAnUnevenCost) {
   for (int k = 0; k < 60; ++k) step(b, cost, {1.0, 1.0});
   expect_tiling(b, 100);
   EXPECT_NEAR(static_cast<double>(b.end(0)), 80.0 / 3.0, 1.0);
-  // planning again with the same size keeps the learnt split; a new size starts over
+  // planning again with the same size keeps the learnt split; a new size keeps its fraction
+  // (a rebuilt list of the same work); a new thread count starts over
   b.plan(100, 2);
   EXPECT_NEAR(static_cast<double>(b.end(0)), 80.0 / 3.0, 1.0);
-  b.plan(101, 2);
-  EXPECT_EQ(b.end(0), 51u);  // 50.5 rounded away from zero
+  b.plan(200, 2);
+  EXPECT_NEAR(static_cast<double>(b.end(0)), 160.0 / 3.0, 2.0);
+  expect_tiling(b, 200);
+  b.plan(200, 4);
+  EXPECT_EQ(b.end(0), 50u);
+  expect_tiling(b, 200);
+  RangeBalancer c;
+  c.plan(101, 2);
+  EXPECT_EQ(c.end(0), 51u);  // 50.5 rounded away from zero
+  c.plan(0, 2);              // an empty list, then items again: equal shares
+  expect_tiling(c, 0);
+  c.plan(10, 2);
+  EXPECT_EQ(c.end(0), 5u);
 }
 
 TEST(RangeBalancer, SlowerThreadGetsLessWork) {
