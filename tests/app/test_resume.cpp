@@ -106,21 +106,28 @@ TEST_P(KillResume, SigkillAtRandomMomentsThenResumeIsBitwise) {
     Launch kill = env;
     kill.signal_after_s = when(rng);
     kill.signal = SIGKILL;
-    Outcome killed = run_binary(with_out(c.run_args, dir), tmp / "killed.log", kill);
-    // killed before its first checkpoint (a slow start): kill a fresh run later
-    while (!killed.exited && list_size(dir) == 0 && kill.signal_after_s < 0.9 * wall) {
-      kill.signal_after_s += 0.1 * wall;
+    // a kill before the run's first checkpoint leaves nothing to resume, one after its end
+    // kills nothing: on a loaded machine either can happen at the drawn moment, so the moment
+    // moves (later, or bisected between the two) until a killed run has a checkpoint
+    double too_early = 0.0, too_late = -1.0;
+    Outcome killed;
+    for (int attempt = 0; attempt < 10; ++attempt) {
       fs::remove_all(dir);
       killed = run_binary(with_out(c.run_args, dir), tmp / "killed.log", kill);
-    }
-    // finished before the kill (this run got the CPU faster than the reference): kill earlier
-    for (int retry = 0; killed.exited && retry < 4; ++retry) {
-      kill.signal_after_s *= 0.5;
-      fs::remove_all(dir);
-      killed = run_binary(with_out(c.run_args, dir), tmp / "killed.log", kill);
+      if (killed.exited) {
+        too_late = kill.signal_after_s;
+      } else if (list_size(dir) == 0) {
+        too_early = kill.signal_after_s;
+      } else {
+        break;
+      }
+      kill.signal_after_s = too_late > 0.0 ? 0.5 * (too_early + too_late)
+                                           : kill.signal_after_s + 0.1 * wall;
     }
     ASSERT_FALSE(killed.exited) << "the run ended before the kill at " << kill.signal_after_s
                                 << " s (reference took " << wall << " s)";
+    ASSERT_GT(list_size(dir), 0u) << "no checkpoint before the kill at " << kill.signal_after_s
+                                  << " s (reference took " << wall << " s)";
     const Outcome r = run_binary({"resume", dir.string(), "--quiet"}, tmp / "resume.log", env);
     ASSERT_TRUE(r.exited && r.code == 0) << "kill at " << kill.signal_after_s << " s\n" << r.output;
     EXPECT_NE(r.output.find("resuming"), std::string::npos) << r.output;
