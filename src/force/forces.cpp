@@ -439,7 +439,7 @@ ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<Pai
       chunk_first_[c] = touching;
     }
     if (planned) balance_.record(tid, wall_seconds() - t_start);
-    else balanced = false;  // every thread writes the same value
+    if (tid == 0) balanced = planned;  // the same for every thread: one writes it
 #pragma omp barrier
 #pragma omp single
     {
