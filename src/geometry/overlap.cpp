@@ -285,9 +285,10 @@ Overlap overlap(const PolyRef& a, const PolyRef& b) {
   const int k1 = k0 + 1 == b.n ? 0 : k0 + 1;
   std::uint64_t cut = 0;
   // a regular b and a cap near the facing edge's midpoint (PolyRef::near): only the two
-  // neighbouring edge lines can cut it
+  // neighbouring edge lines can cut it (the margin, a length here: that of the side values
+  // over |e|; the bound's own 10⁻⁶ slack is far wider still)
   const double mx = 0.5 * (b.x[k0] + b.x[k1]), my = 0.5 * (b.y[k0] + b.y[k1]);
-  if (std::abs(cx - mx) + std::abs(cy - my) + hx + hy + margin < b.near) {
+  if (b.near > 0.0 && std::abs(cx - mx) + std::abs(cy - my) + hx + hy + margin / b.len < b.near) {
     cut = may_cut(k1) | may_cut(k0 == 0 ? b.n - 1 : k0 - 1) << (b.n - 2);
   } else {
     for (int k = 0; k < b.n; ++k) cut |= may_cut(k) << k;

@@ -3,7 +3,6 @@
 // arrays, so that the overlap of a pair needs no per-pair set-up (SPEC 2.1)
 #pragma once
 #include <cstddef>
-#include <cstdint>
 #include <vector>
 
 #include "core/vec.hpp"
