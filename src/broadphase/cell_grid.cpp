@@ -98,20 +98,15 @@ class CellGrid final : public BroadPhase {
 
     // each grain's partners above it, sorted: in parallel into per-thread lists over
     // contiguous ranges of i, joined in range order (the same list for any thread count)
-    const auto nn = static_cast<std::int64_t>(n);
 #pragma omp parallel if (run_parallel(n, kParallelMin))
     {
-#ifdef _OPENMP
-      const int t = omp_get_thread_num(), nt = omp_get_num_threads();
-#else
-      const int t = 0, nt = 1;
-#endif
+      const int t = team_thread(), nt = team_size();
 #pragma omp single
       part_.resize(static_cast<std::size_t>(nt));
       std::vector<PairKey>& mine = part_[static_cast<std::size_t>(t)];
       mine.clear();
-      const std::int64_t i0 = nn * t / nt, i1 = nn * (t + 1) / nt;
-      for (std::int64_t i = i0; i < i1; ++i) partners(w, static_cast<std::size_t>(i), mine);
+      const ItemRange r = thread_share(n, t, nt);
+      for (std::size_t i = r.begin; i < r.end; ++i) partners(w, i, mine);
     }
     std::size_t total = 0;
     for (const auto& p : part_) total += p.size();

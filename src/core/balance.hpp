@@ -22,7 +22,7 @@ class RangeBalancer {
   void plan(std::size_t n, int nt) {
     const auto t = static_cast<std::size_t>(nt < 1 ? 1 : nt);
     if (n == n_ && t + 1 == cut_.size()) return;
-    if (t + 1 == cut_.size() && n_ > 0 && n_ != static_cast<std::size_t>(-1)) {
+    if (t + 1 == cut_.size() && n_ > 0) {
       const double scale = static_cast<double>(n) / static_cast<double>(n_);
       for (double& c : cut_) c *= scale;
       cut_[t] = static_cast<double>(n);
@@ -54,13 +54,15 @@ class RangeBalancer {
     for (std::size_t t = 0; t < nt; ++t) total += time_[t * kPad];
     if (!(total > 0.0) || !std::isfinite(total)) return;
     // cost density of each current range (an empty range gets the mean density)
-    std::vector<double> dens(nt);
+    std::vector<double>& dens = dens_;
+    dens.resize(nt);
     for (std::size_t t = 0; t < nt; ++t) {
       const double len = cut_[t + 1] - cut_[t];
       dens[t] = len > 0.5 ? time_[t * kPad] / len : total / static_cast<double>(n_);
     }
     // the ideal split points: the cumulative cost at each reaches k/nt of the total
-    std::vector<double> ideal(nt + 1, 0.0);
+    std::vector<double>& ideal = ideal_;
+    ideal.assign(nt + 1, 0.0);
     ideal[nt] = static_cast<double>(n_);
     double before = 0.0;  // cost of the ranges before range r
     std::size_t r = 0;
@@ -82,10 +84,11 @@ class RangeBalancer {
 
  private:
   static constexpr std::size_t kPad = 8;  // one 64-byte line per thread's timing
-  std::size_t n_ = static_cast<std::size_t>(-1);
+  std::size_t n_ = 0;
   std::vector<double> cut_;        ///< split points as reals (the smoothing's state)
   std::vector<std::size_t> bound_; ///< split points rounded: thread t runs [bound_[t], bound_[t+1])
   std::vector<double> time_;
+  std::vector<double> dens_, ideal_;  ///< update()'s scratch, kept (it runs every step)
 };
 
 }  // namespace gs

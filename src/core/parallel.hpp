@@ -57,13 +57,23 @@ inline int max_team_size() {
   return 1;
 #endif
 }
+/// thread t of nt's contiguous share of n items: [n·t/nt, n·(t+1)/nt) (every parallel loop
+/// over particles splits by this, so a thread meets the same particles in each)
+struct ItemRange {
+  std::size_t begin, end;
+};
+inline ItemRange thread_share(std::size_t n, int t, int nt) {
+  const auto ut = static_cast<std::size_t>(t), unt = static_cast<std::size_t>(nt);
+  return {n * ut / unt, n * (ut + 1) / unt};
+}
+
 /// wall-clock seconds (for timing a thread's share of a loop)
 inline double wall_seconds() {
 #ifdef _OPENMP
   return omp_get_wtime();
 #else
-  return static_cast<double>(std::chrono::steady_clock::now().time_since_epoch().count()) *
-         std::chrono::steady_clock::period::num / std::chrono::steady_clock::period::den;
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
+      .count();
 #endif
 }
 
@@ -92,9 +102,8 @@ void parallel_ranges(std::size_t n, std::size_t threshold, Body&& body) {
   if (run_parallel(n, threshold)) {
 #pragma omp parallel
     {
-      const auto t = static_cast<std::size_t>(omp_get_thread_num());
-      const auto nt = static_cast<std::size_t>(omp_get_num_threads());
-      body(n * t / nt, n * (t + 1) / nt);
+      const ItemRange r = thread_share(n, team_thread(), team_size());
+      body(r.begin, r.end);
     }
     return;
   }

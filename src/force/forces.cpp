@@ -407,11 +407,9 @@ ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<Pai
 #pragma omp parallel
   {
     // each thread's particles: the ranges of parallel_ranges, as in the integrators' passes,
-    // so that a thread places, sums and accelerates the grains whose state it predicted
-    const std::size_t p_begin = n * static_cast<std::size_t>(team_thread()) /
-                                static_cast<std::size_t>(team_size());
-    const std::size_t p_end = n * static_cast<std::size_t>(team_thread() + 1) /
-                              static_cast<std::size_t>(team_size());
+    // so that a thread places, sums, accelerates and corrects the grains it predicted
+    const int tid = team_thread(), nt = team_size();
+    const auto [p_begin, p_end] = thread_share(n, tid, nt);
     if (poly) {
       place_shapes(w, p_begin, p_end);
 #pragma omp barrier
@@ -422,10 +420,10 @@ ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<Pai
     // (Chunks handed out dynamically made a 2-thread pile step slower than one thread on a VM
     // whose cores exchange a cache line in ~230 ns: docs/threads.md.) The split points follow
     // the measured cost (RangeBalancer): where the grains touch more, a chunk costs more.
-    const int tid = team_thread(), nt = team_size();
     const bool planned = static_cast<std::size_t>(nt) == balance_.threads();
-    const std::size_t c_begin = planned ? balance_.begin(tid) : nchunks * tid / nt;
-    const std::size_t c_end = planned ? balance_.end(tid) : nchunks * (tid + 1) / nt;
+    const ItemRange equal = thread_share(nchunks, tid, nt);
+    const std::size_t c_begin = planned ? balance_.begin(tid) : equal.begin;
+    const std::size_t c_end = planned ? balance_.end(tid) : equal.end;
     const double t_start = wall_seconds();
     for (std::size_t c = c_begin; c < c_end; ++c) {
       const std::size_t k0 = c * chunk, k1 = std::min(ncand, k0 + chunk);

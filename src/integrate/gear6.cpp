@@ -146,26 +146,24 @@ void Gear6::correct_range(std::span<const Channel> ch, std::size_t b, std::size_
 void Gear6::correct_dofs(const Channel& k, std::size_t c, std::size_t b, std::size_t e) {
   const double h = dt_;
   const double h2 = h * h / 2.0;
-  {
-    double* const r = r_[c].data();  // DOF i's six values at r[kN·i…kN·i + 5]
-    const double* const a = k.a.data();
-    double* const q = k.q.data();
-    double* const v = k.v.data();
-    double* const vw = vw_[c].data();
-    for (std::size_t i = b; i < e; ++i) {
-      double* const x = r + kN * i;
-      // the acceleration mismatch Δr2 = a·Δt²/2 − r2ᵖ corrects every derivative
-      const double d = a[i] * h2 - x[2];
-      const double a0 = x[0] + kC[0] * d, a1 = x[1] + kC[1] * d;
-      x[0] = a0;
-      x[1] = a1;
-      x[2] += kC[2] * d;
-      x[3] += kC[3] * d;
-      x[4] += kC[4] * d;
-      x[5] += kC[5] * d;
-      q[i] = a0;
-      v[i] = vw[i] = a1 / h;
-    }
+  double* const r = r_[c].data();  // DOF i's six values at r[kN·i…kN·i + 5]
+  const double* const a = k.a.data();
+  double* const q = k.q.data();
+  double* const v = k.v.data();
+  double* const vw = vw_[c].data();
+  for (std::size_t i = b; i < e; ++i) {
+    double* const x = r + kN * i;
+    // the acceleration mismatch Δr2 = a·Δt²/2 − r2ᵖ corrects every derivative
+    const double d = a[i] * h2 - x[2];
+    const double a0 = x[0] + kC[0] * d, a1 = x[1] + kC[1] * d;
+    x[0] = a0;
+    x[1] = a1;
+    x[2] += kC[2] * d;
+    x[3] += kC[3] * d;
+    x[4] += kC[4] * d;
+    x[5] += kC[5] * d;
+    q[i] = a0;
+    v[i] = vw[i] = a1 / h;
   }
 }
 
