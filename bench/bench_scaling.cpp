@@ -30,6 +30,7 @@ void BM_FluidCostScaling(benchmark::State& st) {
   st.counters["particle-steps/s"] =
       benchmark::Counter(n * static_cast<double>(st.iterations()), benchmark::Counter::kIsRate);
   st.counters["contacts/N"] = static_cast<double>(sim.contacts().keys.size()) / n;
+  st.counters["candidates/N"] = static_cast<double>(sim.last_forces().candidates) / n;
 }
 BENCHMARK(BM_FluidCostScaling)
     ->Arg(1000)

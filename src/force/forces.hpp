@@ -18,16 +18,25 @@ namespace gs {
 /// overwrites them (tq only for polygon models; disks exert no contact torque)
 struct ForceBuffer {
   std::vector<double> fx, fy, tq;
+  /// set by the serial evaluation where few particles touch (a gas, a large sparse fluid):
+  /// the buffer is zero but for these particles' entries, so the next evaluation clears just
+  /// them instead of all N (at 10⁶ disks zeroing every entry cost ≈ 12% of a step). Anything
+  /// that writes fx, fy or tq other than ContactModel::evaluate must clear `sparse`.
+  std::vector<std::uint32_t> touched;
+  bool sparse = false;
+  std::size_t sparse_n = 0;  ///< the particle count when `touched` was recorded
   void reset(std::size_t n) {
     fx.assign(n, 0.0);
     fy.assign(n, 0.0);
     tq.assign(n, 0.0);
+    sparse = false;
   }
 };
 
 /// summary of one force evaluation, for health checks and series
 struct ForceStats {
   std::size_t contacts = 0;       ///< touching pairs (including walls)
+  std::size_t candidates = 0;     ///< the broad phase's candidate pairs
   std::size_t degenerate = 0;     ///< polygon contacts without boundary crossings this step
   double max_overlap = 0.0;       ///< largest h_eff (polygons) or δ (disks), m
   double max_overlap_rel = 0.0;   ///< the same over the smaller grain's radius
@@ -64,6 +73,8 @@ class ContactModel {
   struct PolyPairConst;
   PolyPairConst poly_pair_const(const World& w, std::size_t a, std::size_t b,
                                 const law::PolyLawParams& p) const;
+  static void clear_forces(ForceBuffer& f, std::size_t n);
+  void note_touched(ForceBuffer& f, std::size_t n);
   ForceStats evaluate_serial(const World& w, const std::vector<PairKey>& cand,
                              const ContactSet& cs, ForceBuffer& f, double dt);
   ForceStats evaluate_parallel(const World& w, const std::vector<PairKey>& cand,

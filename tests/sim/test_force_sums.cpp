@@ -3,6 +3,8 @@
 // model, with or without a cached candidate index
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -163,6 +165,72 @@ TEST(ForceSums, DiskPrefilterKeepsThePairs) {
       w.s.x[i + 1] = w.s.x[i] + 1.5 * w.radius[i];
     expect_same_disk_paths(w, w.size() / 10);
   }
+}
+
+// one buffer reused from evaluation to evaluation (the serial path clears only the last
+// evaluation's touched entries where few touched) gives, bit for bit, the forces of a fresh
+// buffer every time: a gas whose contacts change, then a dense packing in the same buffer,
+// then the gas again, then a smaller world, and after someone wrote into the buffer and reset
+TEST(ForceSums, ReusedBufferEqualsAFreshOne) {
+  SceneSpec s = build::disk_gas(3000, 0.3, 0.6, 0.6, 5);
+  s.drive.kind = DriveKind::RandomForce;
+  World w0 = make_world(s);
+  place_particles(w0);
+  Simulation sim(std::move(w0));
+  auto bp = make_broadphase(BroadPhaseKind::Auto, sim.world());
+  ContactModel model(sim.world());
+  ForceBuffer reused;
+  std::size_t sparse_calls = 0, touched_max = 0;
+  auto expect_fresh = [&](const World& w, const char* what) {
+    const std::vector<PairKey>& cand = bp->update(w);
+    ContactSet cs1, cs2;
+    ForceBuffer fresh;
+    model.evaluate(w, cand, cs1, reused, w.scene.integrator.dt, 0);
+    model.evaluate(w, cand, cs2, fresh, w.scene.integrator.dt, 0);
+    ASSERT_EQ(reused.fx.size(), w.size()) << what;
+    std::size_t differ = 0;
+    for (std::size_t i = 0; i < w.size(); ++i)
+      differ += std::signbit(reused.fx[i]) != std::signbit(fresh.fx[i]) ||
+                reused.fx[i] != fresh.fx[i] || reused.fy[i] != fresh.fy[i];
+    EXPECT_EQ(differ, 0u) << what;
+    sparse_calls += reused.sparse;
+    touched_max = std::max(touched_max, reused.touched.size());
+  };
+  for (int k = 0; k < 30; ++k) {  // the gas: contacts come and go between evaluations
+    sim.run(40);
+    expect_fresh(sim.world(), "gas");
+  }
+  EXPECT_GT(sparse_calls, 20u) << "the sparse clearing was not exercised";
+  EXPECT_GT(touched_max, 10u);
+  World dense = sim.world();  // grown by 60 %: most disks touch, every entry is written
+  for (double& r : dense.radius) r *= 1.6;
+  dense.max_radius *= 1.6;
+  bp = make_broadphase(BroadPhaseKind::Auto, dense);
+  expect_fresh(dense, "dense");
+  EXPECT_FALSE(reused.sparse);
+  bp = make_broadphase(BroadPhaseKind::Auto, sim.world());
+  expect_fresh(sim.world(), "gas after the dense packing");
+  expect_fresh(sim.world(), "gas again");
+  // a buffer written by someone else must be reset: then it is cleared in full
+  std::fill(reused.fx.begin(), reused.fx.end(), 7.0);
+  reused.reset(reused.fx.size());
+  expect_fresh(sim.world(), "after reset");
+  // a smaller world in the same buffer
+  SceneSpec s2 = build::disk_gas(1000, 0.3, 0.6, 0.6, 9);
+  s2.drive.kind = DriveKind::RandomForce;
+  World w2 = make_world(s2);
+  place_particles(w2);
+  Simulation small(std::move(w2));
+  small.run(400);
+  ContactModel model2(small.world());
+  bp = make_broadphase(BroadPhaseKind::Auto, small.world());
+  const std::vector<PairKey>& cand = bp->update(small.world());
+  ContactSet cs1, cs2;
+  ForceBuffer fresh;
+  model2.evaluate(small.world(), cand, cs1, reused, small.world().scene.integrator.dt, 0);
+  model2.evaluate(small.world(), cand, cs2, fresh, small.world().scene.integrator.dt, 0);
+  EXPECT_EQ(reused.fx, fresh.fx);
+  EXPECT_EQ(reused.fy, fresh.fy);
 }
 
 }  // namespace
