@@ -28,8 +28,10 @@ void write_trajectory_frame(std::ostream& out, const World& w, Vec2 gravity,
   out << n << '\n' << buf;
   if (tap) out << " Tap=" << *tap;
   out << " pbc=\"" << (px ? 'T' : 'F') << ' ' << (py ? 'T' : 'F') << " F\"\n";
-  // one line per particle
-  for (std::size_t i = 0; i < n; ++i) {
+  // one line per particle, in label order (a spatial sort moves particles between slots)
+  const std::vector<std::uint32_t> slot = w.slots_by_id();
+  for (std::size_t label = 0; label < n; ++label) {
+    const std::size_t i = slot.size() == n ? slot[label] : label;
     const Species& k = w.species[w.sp[i]];
     const double vx = w.s.vx[i], vy = w.s.vy[i];
     std::snprintf(buf, sizeof buf, " %.10g %.10g 0 %.8g %.8g 0 %.8g %.10g %.8g %.8g %d\n",
@@ -180,12 +182,7 @@ bool TrajectoryReader::next(TrajectoryFrame& f) {
 void load_trajectory_frame(World& w, const TrajectoryFrame& f, const std::string& where) {
   // the particles are replaced, the constants (species, walls, box) kept
   World fresh = w;
-  fresh.sp.clear();
-  fresh.radius.clear();
-  fresh.mass.clear();
-  fresh.inv_mass.clear();
-  fresh.inv_inertia.clear();
-  fresh.s = State{};
+  fresh.clear_particles();
   for (std::size_t i = 0; i < f.size(); ++i) {
     int k = -1;
     for (std::size_t s = 0; s < w.species.size(); ++s)

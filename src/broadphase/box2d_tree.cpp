@@ -55,7 +55,7 @@ class Box2DTree final : public BroadPhase {
       }
     }
     if (out != last_) {
-      ++generation_;
+      new_generation();
       last_ = out;
     }
     return out;

@@ -3,6 +3,7 @@
 // Two implementations that must agree: Box2D 2.4.1's dynamic AABB tree (walled boxes; the only
 // code that sees Box2D) and a uniform cell grid (any box, needed for periodic ones).
 #pragma once
+#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -41,11 +42,19 @@ class BroadPhase {
   void update(const World& w, std::vector<PairKey>& out) { out = update(w); }
   virtual const char* name() const = 0;
   /// changes whenever update() may have returned a different list than the call before (the
-  /// force loop keeps a per-particle index of the candidates while it stays the same); never 0
+  /// force loop keeps a per-particle index of the candidates while it stays the same); never
+  /// 0, and unique over every broad phase of the process, so that a broad phase built anew
+  /// (after a spatial sort) cannot repeat its predecessor's value
   std::uint64_t generation() const { return generation_; }
 
  protected:
-  std::uint64_t generation_ = 1;
+  /// a value no broad phase of this process has had
+  static std::uint64_t fresh_generation() {
+    static std::atomic<std::uint64_t> next{1};
+    return next.fetch_add(1, std::memory_order_relaxed);
+  }
+  void new_generation() { generation_ = fresh_generation(); }
+  std::uint64_t generation_ = fresh_generation();
 };
 
 /// the broad phase a scene asks for (Auto: the ring's neighbours in 1D, else the cell grid)

@@ -20,7 +20,7 @@ class CellGrid final : public BroadPhase {
   const std::vector<PairKey>& update(const World& w) override {
     if (needs_rebuild(w)) {
       build(w);
-      ++generation_;
+      new_generation();
     }
     return pairs_;
   }

@@ -27,7 +27,7 @@ class RingNeighbours final : public BroadPhase {
   const std::vector<PairKey>& update(const World& w) override {
     const std::size_t n = w.size();
     if (n < 2) {
-      if (!keys_.empty()) ++generation_;
+      if (!keys_.empty()) new_generation();
       keys_.clear();
       shift_.clear();
       return keys_;
@@ -80,7 +80,7 @@ class RingNeighbours final : public BroadPhase {
     }
     if (stale_) {
       build(n);
-      ++generation_;
+      new_generation();
     }
     return keys_;
   }

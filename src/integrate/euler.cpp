@@ -50,6 +50,13 @@ void SemiImplicitEuler::zero_velocities(std::span<const Channel> ch) {
   for (const Channel& k : ch) std::fill(k.v.begin(), k.v.end(), 0.0);
 }
 
+// no history beyond the layout: the state is all there is
+void SemiImplicitEuler::permute(std::span<const std::uint32_t> perm) {
+  for (std::size_t c = 0; c < layout_.channels(); ++c)
+    if (perm.size() != layout_.size(c))
+      throw std::invalid_argument("Integrator::permute: the permutation does not fit the history");
+}
+
 // history: the header only (layout and Δt)
 std::vector<double> SemiImplicitEuler::save() const {
   std::vector<double> out;

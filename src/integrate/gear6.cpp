@@ -184,6 +184,14 @@ void Gear6::zero_velocities(std::span<const Channel> ch) {
   }
 }
 
+void Gear6::permute(std::span<const std::uint32_t> perm) {
+  std::vector<double> tmp;
+  for (std::size_t c = 0; c < layout_.channels(); ++c) {
+    layout_.permute(r_[c], c, perm, kN, tmp);
+    layout_.permute(vw_[c], c, perm, 1, tmp);
+  }
+}
+
 // history: header, then the six scaled derivatives of every DOF, channel by channel
 std::vector<double> Gear6::save() const {
   std::vector<double> out;

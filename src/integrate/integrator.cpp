@@ -88,6 +88,17 @@ void ChannelLayout::check(std::span<const Channel> ch, const char* who) const {
                                 "after adding or removing bodies");
 }
 
+void ChannelLayout::permute(std::vector<double>& v, std::size_t c,
+                            std::span<const std::uint32_t> perm, std::size_t stride,
+                            std::vector<double>& tmp) const {
+  if (perm.size() != sizes_.at(c) || v.size() != perm.size() * stride)
+    throw std::invalid_argument("Integrator::permute: the permutation does not fit the history");
+  tmp.resize(v.size());
+  for (std::size_t k = 0; k < perm.size(); ++k)
+    for (std::size_t m = 0; m < stride; ++m) tmp[k * stride + m] = v[perm[k] * stride + m];
+  v.swap(tmp);
+}
+
 std::size_t ChannelLayout::total() const {
   std::size_t n = 0;
   for (auto s : sizes_) n += s;

@@ -66,6 +66,9 @@ class Integrator {
   /// the current positions, as init() would with v = 0 and the last accelerations (kinetic
   /// damping, drive.quench). Positions and the stored accelerations are kept
   virtual void zero_velocities(std::span<const Channel> ch) = 0;
+  /// the particles moved between slots (a spatial sort): in every channel, DOF k now holds
+  /// what DOF perm[k] held, so the history follows (channels as long as perm)
+  virtual void permute(std::span<const std::uint32_t> perm) = 0;
   /// the integrator's internal history as flat doubles (for checkpoints), and back
   virtual std::vector<double> save() const = 0;
   virtual void load(const std::vector<double>& data) = 0;

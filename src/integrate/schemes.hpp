@@ -20,6 +20,10 @@ class ChannelLayout {
   std::size_t size(std::size_t c) const { return sizes_[c]; }
   /// total degrees of freedom over all channels
   std::size_t total() const;
+  /// move the DOFs of one channel's history (`stride` values per DOF, contiguous) as
+  /// Integrator::permute says; throws std::invalid_argument when perm's length differs
+  void permute(std::vector<double>& v, std::size_t c, std::span<const std::uint32_t> perm,
+               std::size_t stride, std::vector<double>& tmp) const;
   /// write [tag, version, dt, nch, sizes...] to out
   void write_header(std::vector<double>& out, IntegratorKind k, double dt) const;
   /// read the header back; returns the offset of the payload. Throws gs::InputError.
@@ -48,6 +52,7 @@ class Gear6 final : public Integrator {
   void check_correct(std::span<const Channel> ch, double dt) const override;
   void correct_range(std::span<const Channel> ch, std::size_t b, std::size_t e) override;
   void zero_velocities(std::span<const Channel> ch) override;
+  void permute(std::span<const std::uint32_t> perm) override;
   std::vector<double> save() const override;
   void load(const std::vector<double>& data) override;
   /// after init(): set the k-th time derivative (k = 2…5) of channel c, in units/s^k,
@@ -93,6 +98,7 @@ class VelocityVerlet final : public Integrator {
   void check_correct(std::span<const Channel> ch, double dt) const override;
   void correct_range(std::span<const Channel> ch, std::size_t b, std::size_t e) override;
   void zero_velocities(std::span<const Channel> ch) override;
+  void permute(std::span<const std::uint32_t> perm) override;
   std::vector<double> save() const override;
   void load(const std::vector<double>& data) override;
 
@@ -126,6 +132,7 @@ class PositionVerlet final : public Integrator {
   void check_correct(std::span<const Channel> ch, double dt) const override;
   void correct_range(std::span<const Channel> ch, std::size_t b, std::size_t e) override;
   void zero_velocities(std::span<const Channel> ch) override;
+  void permute(std::span<const std::uint32_t> perm) override;
   std::vector<double> save() const override;
   void load(const std::vector<double>& data) override;
 
@@ -149,6 +156,7 @@ class SemiImplicitEuler final : public Integrator {
   void check_correct(std::span<const Channel> ch, double dt) const override;
   void correct_range(std::span<const Channel> ch, std::size_t b, std::size_t e) override;
   void zero_velocities(std::span<const Channel> ch) override;
+  void permute(std::span<const std::uint32_t> perm) override;
   std::vector<double> save() const override;
   void load(const std::vector<double>& data) override;
 

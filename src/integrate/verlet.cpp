@@ -109,6 +109,14 @@ void VelocityVerlet::zero_velocities(std::span<const Channel> ch) {
   for (const Channel& k : ch) std::fill(k.v.begin(), k.v.end(), 0.0);
 }
 
+void VelocityVerlet::permute(std::span<const std::uint32_t> perm) {
+  std::vector<double> tmp;
+  for (std::size_t c = 0; c < layout_.channels(); ++c) {
+    layout_.permute(a_[c], c, perm, 1, tmp);
+    if (c < vh_.size() && !vh_[c].empty()) layout_.permute(vh_[c], c, perm, 1, tmp);
+  }
+}
+
 // history: header, then a_n per channel
 std::vector<double> VelocityVerlet::save() const {
   std::vector<double> out;
@@ -219,6 +227,12 @@ void PositionVerlet::zero_velocities(std::span<const Channel> ch) {
       qp_[c][i] = k.q[i] + a_[c][i] * dt_ * dt_ / 2.0;
     }
   }
+}
+
+void PositionVerlet::permute(std::span<const std::uint32_t> perm) {
+  std::vector<double> tmp;
+  for (std::size_t c = 0; c < layout_.channels(); ++c)
+    for (auto* v : {&qp_[c], &qn_[c], &vn_[c], &a_[c]}) layout_.permute(*v, c, perm, 1, tmp);
 }
 
 // history: header, then q_{n−1}, q_n, v_n, a_n per channel

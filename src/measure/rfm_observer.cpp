@@ -5,6 +5,7 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <stdexcept>
 #include <sstream>
 
 #include "analysis/rfm_csv.hpp"
@@ -113,6 +114,27 @@ void RfmObserver::setup(const Simulation& sim, const std::string& run_dir) {
   leave_y_.assign(n_, 0.0);
   in_flight_.assign(n_, 0);
   steady_ = false;
+  order_seen_ = sim.order_generation();
+}
+
+// the simulation sorted its particles into other slots: the per-slot bookkeeping follows
+void RfmObserver::follow_order(const Simulation& sim) {
+  if (sim.order_generation() != order_seen_ + 1)
+    throw std::logic_error("RfmObserver: more than one particle sort between two steps");
+  const std::vector<std::uint32_t>& perm = sim.last_order();  // new slot k ← old perm[k]
+  if (perm.size() != n_) throw std::logic_error("RfmObserver: sort of another size");
+  std::vector<std::uint32_t> slot(n_);
+  for (std::size_t k = 0; k < n_; ++k) slot[perm[k]] = static_cast<std::uint32_t>(k);
+  auto follow = [&](auto& v) {
+    auto old = v;
+    for (std::size_t k = 0; k < n_; ++k) v[k] = old[perm[k]];
+  };
+  follow(last_touch_);
+  follow(leave_x_);
+  follow(leave_y_);
+  follow(in_flight_);
+  for (std::uint32_t& i : touching_prev_) i = slot[i];
+  order_seen_ = sim.order_generation();
 }
 
 void RfmObserver::save(ByteWriter& out) const {
@@ -185,6 +207,7 @@ void RfmObserver::resume(const Simulation& sim, const std::string& run_dir, Byte
 
 void RfmObserver::after_step(const Simulation& sim) {
   const World& w = sim.world();
+  if (sim.order_generation() != order_seen_) follow_order(sim);
   if (!steady_ && w.s.t >= spec_.discard_time - 0.5 * sim.dt()) begin_steady(sim);
   if (steady_) track_contacts(sim);
   if (w.s.step % spec_.sample_every == 0) sample(sim);

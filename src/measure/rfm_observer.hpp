@@ -58,6 +58,7 @@ class RfmObserver : public Observer {
   void begin_steady(const Simulation& sim);
   void make_velocity_histograms();
   void track_contacts(const Simulation& sim);
+  void follow_order(const Simulation& sim);
   void sample(const Simulation& sim);
   void write_json(const Simulation& sim) const;
 
@@ -90,6 +91,7 @@ class RfmObserver : public Observer {
   std::vector<double> leave_x_, leave_y_;
   std::vector<char> in_flight_;
   long leaves_ = 0;
+  std::uint64_t order_seen_ = 0;  ///< Simulation::order_generation() the slots above follow
 };
 
 /// an RfmObserver when the scene asks for one ([rfm] enabled; default for the random force)

@@ -275,12 +275,18 @@ void read_preparation(const Ctx& ctx, const TableReader& top, SceneSpec& s,
 
 void read_integrator(const Ctx& ctx, const TableReader& top, SceneSpec& s) {
   TableReader r(ctx, table_or_empty(sub_table(top, "integrator")), "integrator",
-                {"kind", "dt", "broad_phase"});
+                {"kind", "dt", "broad_phase", "sort_every"});
   bool soft = s.model.kind == ModelKind::S;
   s.integrator.kind =
       r.choice("kind", soft ? IntegratorKind::VelocityVerlet : IntegratorKind::Gear6);
   s.integrator.dt = r.number("dt", soft ? 1e-6 : 5e-5, Range::positive());
   s.integrator.broad_phase = r.choice("broad_phase", BroadPhaseKind::Auto);
+  s.integrator.sort_every = static_cast<int>(r.integer("sort_every", -1, -1, kIntMax));
+  if (s.integrator.sort_every > 0 && s.model.kind == ModelKind::P)
+    r.fail("sort_every", "spatial sorting is for disk scenes (Model S); polygon contacts keep "
+                         "a directed history. Use 0 or -1 (auto)");
+  if (s.integrator.sort_every > 0 && s.box.kind == BoxKind::Ring1D)
+    r.fail("sort_every", "the 1D ring keeps its particles in ring order; use 0 or -1 (auto)");
 }
 
 // ---------------------------------------------------------------------------------------

@@ -116,6 +116,7 @@ std::vector<Block> emit(const SceneSpec& s) {
   in.name("kind", s.integrator.kind);
   in.num("dt", s.integrator.dt);
   in.name("broad_phase", s.integrator.broad_phase);
+  in.integer("sort_every", s.integrator.sort_every);
   // [drive]
   const DriveSpec& d = s.drive;
   Block& dr = out.emplace_back(Block{"[drive]", "drive", {}});

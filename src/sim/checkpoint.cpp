@@ -28,6 +28,7 @@ std::string encode_checkpoint(const Simulation& sim, const CheckpointExtras& ext
     p.f64s(*v);
   p.i32s(s.wrap_x);
   p.i32s(s.wrap_y);
+  p.i32s(std::vector<std::int32_t>(w.id.begin(), w.id.end()));
   // integrator history
   const Integrator& integ = sim.integrator();
   p.u8(static_cast<std::uint8_t>(integ.kind()));
@@ -87,6 +88,7 @@ Simulation restore_simulation(const Checkpoint& c) {
   if (!std::isfinite(c.s.t) || c.s.step < 0)
     throw InputError(c.path, "", "bad time or step count");
   w.sp.assign(c.sp.begin(), c.sp.end());
+  w.id.assign(c.id.begin(), c.id.end());
   w.radius = c.radius;
   w.mass = c.mass;
   w.inv_mass = c.inv_mass;

@@ -15,7 +15,7 @@ namespace gs {
 
 /// "GSCKPT\0\1": the first eight bytes of every checkpoint
 inline constexpr char kCheckpointMagic[8] = {'G', 'S', 'C', 'K', 'P', 'T', '\0', '\1'};
-inline constexpr std::uint32_t kCheckpointVersion = 1;
+inline constexpr std::uint32_t kCheckpointVersion = 2;  ///< 2: particle labels (1 is read too)
 /// written as a little-endian u32; a big-endian writer would leave 01 02 03 04 on disk
 inline constexpr std::uint32_t kCheckpointEndian = 0x01020304u;
 /// magic, version, endianness marker, payload size, payload checksum
@@ -36,6 +36,7 @@ struct Checkpoint {
   std::vector<std::int32_t> sp;
   std::vector<double> radius, mass, inv_mass, inv_inertia;
   State s;                     ///< positions, velocities, accelerations, wraps, t, step
+  std::vector<std::int32_t> id;  ///< each slot's particle label (version 1: the slot itself)
   std::uint8_t integrator = 0; ///< IntegratorKind of the history below
   std::vector<double> integ;   ///< Integrator::save()
   std::vector<PairKey> keys;   ///< persistent contacts, ascending (i, j, image)

@@ -13,7 +13,8 @@
 namespace gs {
 namespace {
 
-// bytes per particle: sp, 4 constants, 9 state arrays, 2 wrap counts
+// bytes per particle: sp, 4 constants, 9 state arrays, 2 wrap counts (and from version 2
+// the label)
 constexpr std::size_t kParticleBytes = 4 + 4 * 8 + 9 * 8 + 2 * 4;
 
 }  // namespace
@@ -34,7 +35,7 @@ Checkpoint decode_checkpoint(std::string_view bytes, const std::string& name) {
     r.fail(0, "not a gransim checkpoint (bad magic)");
   r.pos = 8;
   const std::uint32_t version = r.u32("version");
-  if (version != kCheckpointVersion)
+  if (version != kCheckpointVersion && version != 1)
     r.fail(8, "checkpoint version " + std::to_string(version) + " is not supported (this build reads " +
                   std::to_string(kCheckpointVersion) + ")");
   const std::uint32_t endian = r.u32("endianness marker");
@@ -57,13 +58,26 @@ Checkpoint decode_checkpoint(std::string_view bytes, const std::string& name) {
   State& s = c.s;
   s.t = r.f64("time");
   s.step = r.i64("step");
-  const std::size_t n = r.count(kParticleBytes, "particle");
+  const std::size_t n = r.count(kParticleBytes + (version >= 2 ? 4 : 0), "particle");
   r.i32s(c.sp, n, "species indices");
   for (auto* v : {&c.radius, &c.mass, &c.inv_mass, &c.inv_inertia, &s.x, &s.y, &s.th, &s.vx,
                   &s.vy, &s.w, &s.ax, &s.ay, &s.aw})
     r.f64s(*v, n, "particle arrays");
   r.i32s(s.wrap_x, n, "wrap counts");
   r.i32s(s.wrap_y, n, "wrap counts");
+  if (version >= 2) {  // the labels: a permutation of 0…N−1
+    const std::size_t at_ids = r.pos;
+    r.i32s(c.id, n, "particle labels");
+    std::vector<char> seen(n, 0);
+    for (std::int32_t v : c.id) {
+      if (v < 0 || static_cast<std::size_t>(v) >= n || seen[static_cast<std::size_t>(v)])
+        r.fail(at_ids, "particle labels are not a permutation of 0…N−1");
+      seen[static_cast<std::size_t>(v)] = 1;
+    }
+  } else {
+    c.id.resize(n);
+    for (std::size_t k = 0; k < n; ++k) c.id[k] = static_cast<std::int32_t>(k);
+  }
   c.integrator = r.u8("integrator kind");
   r.f64s(c.integ, r.count(8, "integrator history"), "integrator history");
   c.degenerate = r.u64("degenerate count");

@@ -17,9 +17,15 @@ Simulation::Simulation(World w) : Simulation(std::move(w), BroadPhaseKind::Auto)
 Simulation::Simulation(World w, BroadPhaseKind bp)
     : w_(std::move(w)),
       dt_(w_.scene.integrator.dt),
-      broad_(make_broadphase(bp == BroadPhaseKind::Auto ? w_.scene.integrator.broad_phase : bp, w_)),
+      broad_kind_(bp == BroadPhaseKind::Auto ? w_.scene.integrator.broad_phase : bp),
+      broad_(make_broadphase(broad_kind_, w_)),
       model_(w_),
       integ_(make_integrator(w_.scene.integrator.kind)) {
+  if (w_.id.size() != w_.size()) {  // a World assembled without add_particle: labels = slots
+    w_.id.resize(w_.size());
+    for (std::size_t k = 0; k < w_.size(); ++k) w_.id[k] = static_cast<std::uint32_t>(k);
+  }
+  sort_every_ = resolved_sort_every(w_);
   // forces at the initial state start the integrator
   compute_accelerations(w_.s.step);
   auto ch = channels();
@@ -130,7 +136,11 @@ void Simulation::compute_accelerations(std::int64_t index, std::span<const Chann
   const bool noise = w_.scene.drive.kind == DriveKind::RandomForce;
   const bool ring = w_.box == BoxKind::Ring1D;  // x only: no ay (and no torques, disks)
   const bool spin = w_.polygons();              // polygons: contact torques
-  if (noise && noise_keys_.size() != n) noise_keys_ = random_force_keys(w_.scene.prep.seed, n);
+  if (noise && noise_keys_.size() != n) {  // each particle's stream follows its label
+    const std::vector<std::uint64_t> by_label = random_force_keys(w_.scene.prep.seed, n);
+    noise_keys_.resize(n);
+    for (std::size_t k = 0; k < n; ++k) noise_keys_[k] = by_label[w_.id[k]];
+  }
   forces_.tq.resize(spin ? n : 0);  // evaluate() sizes the buffers too; the arrays below need them
   forces_.fx.resize(n);
   forces_.fy.resize(n);
@@ -173,6 +183,7 @@ void Simulation::compute_accelerations(std::int64_t index, std::span<const Chann
 }
 
 void Simulation::step() {
+  if (sort_every_ > 0 && w_.s.step > 0 && w_.s.step % sort_every_ == 0) sort_particles();
   auto ch = channels();
   // predict positions and velocities at t + Δt, evaluate forces there, correct (each particle
   // by the thread that summed its force, inside the force pass)

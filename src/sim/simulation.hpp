@@ -13,6 +13,10 @@
 
 namespace gs {
 
+/// integrator.sort_every of w's scene with auto (−1) resolved for w: every kAutoSortEvery
+/// steps for a 2D Model S system of at least kAutoSortMinParticles particles, else 0
+std::int64_t resolved_sort_every(const World& w);
+
 class Simulation {
  public:
   /// take a World with its particles placed; computes the initial forces
@@ -40,6 +44,20 @@ class Simulation {
   void zero_velocities();
   /// checkpoint restore (sim/simulation_restore.cpp): replace the persistent contact set
   void restore_contacts(ContactSet c);
+  /// the spatial sort's interval in steps (integrator.sort_every resolved; 0 = never)
+  std::int64_t sort_every() const { return sort_every_; }
+  /// move the particles between slots in cell order (rows of cells about one diameter
+  /// high, bottom to top; left to right within a row; slot order within a cell), with
+  /// everything that is kept per slot: the World, the integrator's history, the contact
+  /// keys, the random-force streams (sim/simulation_sort.cpp). step() calls it every
+  /// sort_every() steps; the dynamics is the same up to round-off (sums over particles run
+  /// in another order).
+  void sort_particles();
+  /// counts the sorts so far: an observer that keeps per-slot data compares it with the
+  /// value it saw last and then applies last_order()
+  std::uint64_t order_generation() const { return order_generation_; }
+  /// the last sort's permutation: slot k received what slot last_order()[k] held
+  const std::vector<std::uint32_t>& last_order() const { return last_order_; }
   double dt() const { return dt_; }
   /// gravity applied during the last step, m/s²
   Vec2 gravity() const { return gravity_; }
@@ -69,6 +87,7 @@ class Simulation {
 
   World w_;
   double dt_;
+  BroadPhaseKind broad_kind_;
   std::unique_ptr<BroadPhase> broad_;
   ContactModel model_;
   std::unique_ptr<Integrator> integ_;
@@ -78,6 +97,9 @@ class Simulation {
   std::vector<std::uint64_t> noise_keys_;  ///< random force: stream keys per particle (cached)
   std::vector<double> kick_;  ///< the ring's momentum kicks summed per block, kg·m/s²
   Vec2 gravity_;
+  std::int64_t sort_every_ = 0;
+  std::uint64_t order_generation_ = 0;
+  std::vector<std::uint32_t> last_order_;
   double energy_ref_ = 0.0;    ///< mechanical energy at the start, J (undriven/constant g)
   double energy_slack_ = 0.0;  ///< growth tolerated before it counts as a blow-up, J
 };

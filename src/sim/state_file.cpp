@@ -16,8 +16,11 @@ void write_state_file(const World& w, const std::string& path) {
   std::snprintf(buf, sizeof buf, "%.17g", w.s.t);
   o << "# t=" << buf << " step=" << w.s.step << " n=" << w.size() << "\n";
   o << "id,species,x,y,theta,vx,vy,omega\n";
-  for (std::size_t i = 0; i < w.size(); ++i) {
-    o << i << ',' << w.species[w.sp[i]].name;
+  // one row per particle in label order (a spatial sort moves particles between slots)
+  const std::vector<std::uint32_t> slot = w.slots_by_id();
+  for (std::size_t k = 0; k < w.size(); ++k) {
+    const std::size_t i = slot.size() == w.size() ? slot[k] : k;
+    o << k << ',' << w.species[w.sp[i]].name;
     for (double v : {w.s.x[i], w.s.y[i], w.s.th[i], w.s.vx[i], w.s.vy[i], w.s.w[i]}) {
       std::snprintf(buf, sizeof buf, ",%.17g", v);
       o << buf;
@@ -35,12 +38,7 @@ void read_state_file(World& w, const std::string& path) {
   double t = 0;
   long long step = 0;
   World fresh = w;
-  fresh.sp.clear();
-  fresh.radius.clear();
-  fresh.mass.clear();
-  fresh.inv_mass.clear();
-  fresh.inv_inertia.clear();
-  fresh.s = State{};
+  fresh.clear_particles();
   while (std::getline(in, line)) {
     ++lineno;
     if (line.rfind("# t=", 0) == 0) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "core/error.hpp"
 
@@ -35,6 +36,7 @@ Vec2 World::unwrapped(std::size_t i) const {
 
 void World::add_particle(int k, Vec2 pos, double theta, Vec2 vel, double omega) {
   const Species& spc = species[k];
+  id.push_back(static_cast<std::uint32_t>(sp.size()));
   sp.push_back(k);
   radius.push_back(spc.radius);
   mass.push_back(spc.mass);
@@ -51,6 +53,44 @@ void World::add_particle(int k, Vec2 pos, double theta, Vec2 vel, double omega) 
   s.wrap_y.push_back(0);
   s.ay.push_back(0.0);
   s.aw.push_back(0.0);
+}
+
+void World::clear_particles() {
+  sp.clear();
+  radius.clear();
+  mass.clear();
+  inv_mass.clear();
+  inv_inertia.clear();
+  id.clear();
+  s = State{};
+}
+
+namespace {
+template <class T>
+void apply_perm(std::vector<T>& v, std::span<const std::uint32_t> perm, std::vector<T>& tmp) {
+  if (v.empty()) return;
+  tmp.resize(perm.size());
+  for (std::size_t k = 0; k < perm.size(); ++k) tmp[k] = v[perm[k]];
+  v.swap(tmp);
+}
+}  // namespace
+
+void World::permute(std::span<const std::uint32_t> perm) {
+  if (perm.size() != size()) throw std::invalid_argument("World::permute: wrong size");
+  std::vector<double> td;
+  std::vector<int> ti;
+  std::vector<std::uint32_t> tu;
+  for (auto* v : {&radius, &mass, &inv_mass, &inv_inertia, &s.x, &s.y, &s.th, &s.vx, &s.vy,
+                  &s.w, &s.ax, &s.ay, &s.aw})
+    apply_perm(*v, perm, td);
+  for (auto* v : {&sp, &s.wrap_x, &s.wrap_y}) apply_perm(*v, perm, ti);
+  apply_perm(id, perm, tu);
+}
+
+std::vector<std::uint32_t> World::slots_by_id() const {
+  std::vector<std::uint32_t> slot(id.size());
+  for (std::size_t k = 0; k < id.size(); ++k) slot[id[k]] = static_cast<std::uint32_t>(k);
+  return slot;
 }
 
 Poly World::shape(std::size_t i) const {

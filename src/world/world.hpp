@@ -1,6 +1,7 @@
 // the World: constants (species, walls, box) kept apart from the mutable particle state (SoA)
 #pragma once
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -59,6 +60,10 @@ struct World {
   // per-particle constants
   std::vector<int> sp;                ///< species index
   std::vector<double> radius, mass, inv_mass, inv_inertia;
+  /// each slot's particle label: its index when it was placed. A periodic spatial sort
+  /// (Simulation, integrator.sort_every) moves particles between slots; files list particles
+  /// by label, and each particle's random-force stream follows its label.
+  std::vector<std::uint32_t> id;
   // mutable state
   State s;
 
@@ -66,6 +71,13 @@ struct World {
   bool polygons() const { return scene.model.kind == ModelKind::P; }
   /// append a particle of species k at rest
   void add_particle(int k, Vec2 pos, double theta, Vec2 vel = {}, double omega = 0.0);
+  /// remove every particle (constants, species, walls and box stay)
+  void clear_particles();
+  /// move particles between slots: slot k receives what slot perm[k] held (a permutation
+  /// of 0…N−1), in every per-particle array and the state
+  void permute(std::span<const std::uint32_t> perm);
+  /// the slot of each label (the inverse of id)
+  std::vector<std::uint32_t> slots_by_id() const;
   /// world-frame polygon of particle i (polygons only)
   Poly shape(std::size_t i) const;
   /// kinetic energy (translation + rotation), J

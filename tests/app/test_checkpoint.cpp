@@ -136,8 +136,8 @@ TEST(Checkpoint, DamagedBytesAreInputErrorsNamingFileAndOffset) {
   expect_error("", "shorter than the 32-byte header");
   expect_error("GSCKPT__" + good.substr(8, 40), "bad magic");
   std::string b = good;
-  b[8] = 2;
-  expect_error(b, "version 2");
+  b[8] = 3;
+  expect_error(b, "version 3");
   b = good;
   std::swap(b[12], b[15]);
   std::swap(b[13], b[14]);
@@ -156,6 +156,33 @@ TEST(Checkpoint, DamagedBytesAreInputErrorsNamingFileAndOffset) {
     b[24 + k] = static_cast<char>(sum >> (8 * k));
   }
   expect_error(b, "truncated checkpoint");
+
+  // the labels (version 2): a repeated label is named; a version-1 file (no labels, as
+  // written before spatial sorting) reads back with each slot its own label
+  const std::size_t n = sim->world().size();
+  std::string ids;
+  for (std::uint32_t k = 0; k < n; ++k)
+    for (int q = 0; q < 4; ++q) ids += static_cast<char>(k >> (8 * q));
+  const std::size_t at = good.find(ids, kCheckpointHeader);
+  ASSERT_NE(at, std::string::npos);
+  auto reseal = [](std::string bytes, std::uint32_t version) {
+    const std::string p = bytes.substr(kCheckpointHeader);
+    const std::uint64_t sz = p.size(), h = fnv1a64(p);
+    for (int k = 0; k < 4; ++k) bytes[8 + k] = static_cast<char>(version >> (8 * k));
+    for (int k = 0; k < 8; ++k) {
+      bytes[16 + k] = static_cast<char>(sz >> (8 * k));
+      bytes[24 + k] = static_cast<char>(h >> (8 * k));
+    }
+    return bytes;
+  };
+  b = good;
+  b[at + 4] = 0;  // slot 1 labelled 0 as well
+  expect_error(reseal(b, 2), "particle labels are not a permutation");
+  const std::string v1 = reseal(good.substr(0, at) + good.substr(at + ids.size()), 1);
+  const Checkpoint c1 = decode_checkpoint(v1, "v1.gsck");
+  ASSERT_EQ(c1.id.size(), n);
+  for (std::size_t k = 0; k < n; ++k) EXPECT_EQ(c1.id[k], static_cast<int>(k));
+  EXPECT_EQ(c1.s.x, decode_checkpoint(good, "good.gsck").s.x);
 }
 
 // missing files and directories are named
