@@ -1,12 +1,24 @@
 // Cost flatness: whole steps of the randomly forced periodic disk fluid (thesis disks, φ = 0.353,
 // ε_n = ε_t = 0.6, D = 1e-8 N²s, velocity Verlet at Δt = 1e-6 s, cell grid) at N = 10³ … 10⁶,
-// the box scaled with √N so φ stays the same. One thread, so the counter is particle-steps per
-// second per core; bench/summary.py prints the cost per particle-step relative to N = 10⁴.
-// Every size gets the same warm-up (100 steps out of the random start, whose lattice sites are 2%
-// of a diameter apart): the disks have barely met yet (contacts/N ≈ 0.01), so this measures the
-// broad phase, the noise, the integrator and a sparse force loop, the parts whose cost could grow
-// with N. The 10⁶ case costs ≈ 10–30 s (set-up and warm-up included).
+// one thread, so the counter is particle-steps per second per core; bench/summary.py prints
+// the cost per particle-step relative to N = 10⁴.
+//
+// Every size is measured in the same *stationary* state. Out of its lattice-like start the
+// fluid needs ≈ 10⁴ steps to settle (candidate pairs per disk 1.2 → 0.41); before session 7
+// each size got 100 warm-up steps and Google Benchmark then ran it for as many steps as its
+// time allowed (10⁴ disks: 12 000, 10⁶: 100), so the sizes were measured in different states.
+// Now: N = 10³ and 10⁴ run 12 000 steps from their start; 10⁵ and 10⁶ are the settled 10⁴ box
+// tiled 5 × 2 and 10 × 10 (a periodic state of the larger box; the copies' random forces differ,
+// so they decorrelate), in the cell order the spatial sort keeps (integrator.sort_every, auto
+// from 5·10⁴ disks). BM_FluidMixedOrder gives the same 10⁶ state with the particles numbered at
+// random — where an unsorted run drifts as the fluid mixes — and BM_SortParticles one sort.
 #include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <map>
+#include <memory>
+#include <numeric>
+#include <random>
 
 #include "sim/builders.hpp"
 #include "sim/simulation.hpp"
@@ -17,20 +29,83 @@
 namespace gs {
 namespace {
 
-void BM_FluidCostScaling(benchmark::State& st) {
-  const OneThread one;  // the rate is per core
-  SceneSpec s = build::disk_gas(static_cast<int>(st.range(0)), 0.353, 0.6, 0.6, 1);
+constexpr int kSettleSteps = 12000;
+
+SceneSpec fluid(int n) {
+  SceneSpec s = build::disk_gas(n, 0.353, 0.6, 0.6, 1);
   s.drive.kind = DriveKind::RandomForce;
+  return s;
+}
+
+// the settled fluid of n disks (run from its own start)
+const World& settled(int n) {
+  static std::map<int, World> cache;
+  auto it = cache.find(n);
+  if (it == cache.end()) {
+    World w = make_world(fluid(n));
+    place_particles(w);
+    Simulation sim(std::move(w));
+    sim.run(kSettleSteps);
+    it = cache.emplace(n, sim.world()).first;
+  }
+  return it->second;
+}
+
+// the settled 10⁴ box tiled kx × ky; `shuffle`: the particles numbered at random
+World tiled(int kx, int ky, bool shuffle) {
+  const World& base = settled(10000);
+  SceneSpec s = fluid(10000 * kx * ky);
+  s.box.width = base.Lx * kx;
+  s.box.height = base.Ly * ky;
   World w = make_world(s);
-  place_particles(w);
-  Simulation sim(std::move(w));
-  sim.run(100);  // leave the lattice-like start (the same for every N)
-  for (auto _ : st) sim.step();
+  for (int ty = 0; ty < ky; ++ty)
+    for (int tx = 0; tx < kx; ++tx)
+      for (std::size_t i = 0; i < base.size(); ++i) {
+        const Vec2 p = base.unwrapped(i);
+        const double x = p.x - base.Lx * std::floor(p.x / base.Lx) + tx * base.Lx;
+        const double y = p.y - base.Ly * std::floor(p.y / base.Ly) + ty * base.Ly;
+        w.add_particle(base.sp[i], {x, y}, 0.0, {base.s.vx[i], base.s.vy[i]});
+      }
+  if (shuffle) {
+    std::vector<std::uint32_t> perm(w.size());
+    std::iota(perm.begin(), perm.end(), 0u);
+    std::shuffle(perm.begin(), perm.end(), std::mt19937_64(7));
+    w.permute(perm);
+    std::iota(w.id.begin(), w.id.end(), 0u);  // labels in the new, random slot order
+  }
+  return w;
+}
+
+// the measured simulations, kept between Google Benchmark's calls (set-up runs once)
+Simulation& fluid_at(int n, bool mixed) {
+  static std::map<std::pair<int, bool>, std::unique_ptr<Simulation>> cache;
+  auto& slot = cache[{n, mixed}];
+  if (!slot) {
+    World w;
+    if (n == 100000) w = tiled(5, 2, mixed);
+    else if (n == 1000000) w = tiled(10, 10, mixed);
+    else w = settled(n);
+    if (mixed) w.scene.integrator.sort_every = 0;
+    slot = std::make_unique<Simulation>(std::move(w));
+    if (slot->sort_every() > 0) slot->sort_particles();  // as a sorting run keeps it
+    slot->run(50);
+  }
+  return *slot;
+}
+
+void report(benchmark::State& st, const Simulation& sim) {
   const double n = static_cast<double>(sim.world().size());
   st.counters["particle-steps/s"] =
       benchmark::Counter(n * static_cast<double>(st.iterations()), benchmark::Counter::kIsRate);
   st.counters["contacts/N"] = static_cast<double>(sim.contacts().keys.size()) / n;
   st.counters["candidates/N"] = static_cast<double>(sim.last_forces().candidates) / n;
+}
+
+void BM_FluidCostScaling(benchmark::State& st) {
+  const OneThread one;  // the rate is per core
+  Simulation& sim = fluid_at(static_cast<int>(st.range(0)), false);
+  for (auto _ : st) sim.step();
+  report(st, sim);
 }
 BENCHMARK(BM_FluidCostScaling)
     ->Arg(1000)
@@ -39,6 +114,29 @@ BENCHMARK(BM_FluidCostScaling)
     ->Arg(1000000)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
+
+void BM_FluidMixedOrder(benchmark::State& st) {
+  const OneThread one;
+  Simulation& sim = fluid_at(static_cast<int>(st.range(0)), true);
+  for (auto _ : st) sim.step();
+  report(st, sim);
+}
+BENCHMARK(BM_FluidMixedOrder)->Arg(1000000)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// one spatial sort of the mixed 10⁶ state (each iteration sorts a fresh copy of it)
+void BM_SortParticles(benchmark::State& st) {
+  const OneThread one;
+  const World mixed = fluid_at(static_cast<int>(st.range(0)), true).world();
+  for (auto _ : st) {
+    st.PauseTiming();
+    World w = mixed;
+    w.scene.integrator.sort_every = 1000;
+    Simulation sim(std::move(w));
+    st.ResumeTiming();
+    sim.sort_particles();
+  }
+}
+BENCHMARK(BM_SortParticles)->Arg(1000000)->Unit(benchmark::kMillisecond)->Iterations(3);
 
 }  // namespace
 }  // namespace gs

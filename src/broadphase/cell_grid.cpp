@@ -26,19 +26,29 @@ class CellGrid final : public BroadPhase {
   }
 
  private:
+  // has a grain of [b, e) moved more than half the skin since the last build? Branch-free
+  // (the whole range is read anyway): the loop vectorises
+  bool moved_beyond(const World& w, std::size_t b, std::size_t e) const {
+    const double lim = 0.25 * skin_ * skin_;
+    const double* __restrict x = w.s.x.data();
+    const double* __restrict y = w.s.y.data();
+    const double* __restrict x0 = bx_.data();
+    const double* __restrict y0 = by_.data();
+    int m = 0;
+    for (std::size_t i = b; i < e; ++i) {
+      const double dx = x[i] - x0[i], dy = y[i] - y0[i];
+      m |= static_cast<int>(dx * dx + dy * dy > lim);
+    }
+    return m != 0;
+  }
+
   // has any grain moved more than half the skin since the last build?
   bool needs_rebuild(const World& w) const {
     const std::size_t n = w.size();
     if (n != bx_.size()) return true;
-    const double lim = 0.25 * skin_ * skin_;
     std::atomic<bool> moved{false};  // an OR: the same answer whatever the thread count
     parallel_ranges(n, kParallelMinCheap, [&](std::size_t b, std::size_t e) {
-      bool m = false;
-      for (std::size_t i = b; i < e; ++i) {
-        const double dx = w.s.x[i] - bx_[i], dy = w.s.y[i] - by_[i];
-        m = m || dx * dx + dy * dy > lim;
-      }
-      if (m) moved.store(true, std::memory_order_relaxed);
+      if (moved_beyond(w, b, e)) moved.store(true, std::memory_order_relaxed);
     });
     return moved.load();
   }

@@ -12,10 +12,6 @@
 namespace gs {
 namespace {
 
-// one thread: the after-callback runs over blocks of this many particles, which stay in cache
-// between its passes (48 B of force, keys and accelerations each: ≈ 100 KB)
-constexpr std::size_t kAfterBlock = 2048;
-
 // pair parameters: the mean of the two materials' values (identical materials: exact)
 law::PolyLawParams poly_params(const MaterialSpec& a, const MaterialSpec& b) {
   return {0.5 * (a.E + b.E), 0.5 * (a.gamma + b.gamma), 0.5 * (a.mu + b.mu)};
@@ -291,15 +287,7 @@ ForceStats ContactModel::evaluate(const World& w, const std::vector<PairKey>& ca
       place_shapes(w, 0, n);
     }
     st = evaluate_serial(w, cand, cs, f, dt);
-    if (after) {
-      // one thread: in blocks that stay in cache between the callback's passes (the
-      // accelerations, then the corrector reading them back)
-      if (run_parallel(n, kParallelMinCheap)) {
-        parallel_ranges(n, kParallelMinCheap, after);
-      } else {
-        for (std::size_t b = 0; b < n; b += kAfterBlock) after(b, std::min(n, b + kAfterBlock));
-      }
-    }
+    if (after) parallel_ranges(n, kParallelMinCheap, after);
   }
   cs.keys.swap(new_keys_);
   cs.state.swap(new_state_);

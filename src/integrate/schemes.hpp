@@ -87,7 +87,8 @@ enum class VerletForceVelocity {
 
 /// velocity Verlet, kick–drift–kick: predict v_{n+½} = v_n + a_n·Δt/2, q_{n+1} = q_n +
 /// v_{n+½}·Δt; correct v_{n+1} = v_{n+½} + a_{n+1}·Δt/2. Symplectic for conservative forces.
-/// The velocity written for the force evaluation is chosen by VerletForceVelocity.
+/// The velocity written for the force evaluation is chosen by VerletForceVelocity. a_n is
+/// read from the channels: between steps they must hold the last correct()'s accelerations.
 class VelocityVerlet final : public Integrator {
  public:
   explicit VelocityVerlet(VerletForceVelocity fv = VerletForceVelocity::Extrapolated) : fv_(fv) {}
@@ -106,8 +107,9 @@ class VelocityVerlet final : public Integrator {
   VerletForceVelocity fv_;
   ChannelLayout layout_;
   double dt_ = 0.0;                      ///< Δt of the last step, s
-  std::vector<std::vector<double>> a_;   ///< per channel, a_n of the last force evaluation
-  std::vector<std::vector<double>> vh_;  ///< per channel, v_{n+½} during a step
+  /// per channel, v_{n+½} during a step (a_n is the channels' own acceleration: the last
+  /// force evaluation's, which the caller keeps between steps)
+  std::vector<std::vector<double>> vh_;
 };
 
 /// position (Störmer) Verlet (T.2.3): q_{n+1} = 2q_n − q_{n−1} + a_n·Δt². The history is the

@@ -45,12 +45,9 @@ void vv_predict(std::size_t b, std::size_t e, double dt, bool half, const double
     }
   }
 }
-void vv_correct(std::size_t b, std::size_t e, double dt, double* __restrict a,
-                const double* __restrict vh, double* __restrict v, const double* __restrict an) {
-  for (std::size_t i = b; i < e; ++i) {
-    v[i] = vh[i] + an[i] * dt / 2.0;
-    a[i] = an[i];
-  }
+void vv_correct(std::size_t b, std::size_t e, double dt, const double* __restrict vh,
+                double* __restrict v, const double* __restrict an) {
+  for (std::size_t i = b; i < e; ++i) v[i] = vh[i] + an[i] * dt / 2.0;
 }
 void check_dt(double dt, const char* who) {
   if (!(dt > 0.0)) throw std::invalid_argument(std::string(who) + ": dt must be positive");
@@ -59,17 +56,13 @@ void check_dt(double dt, const char* who) {
 
 // ---- velocity Verlet ----
 
-// start: remember a_0
+// start: a_0 is the channels' acceleration, as a_n is at every later step
 void VelocityVerlet::init(std::span<const Channel> ch, double dt) {
   check_dt(dt, "VelocityVerlet::init");
   layout_.set(ch);
   dt_ = dt;
-  a_.assign(ch.size(), {});
   vh_.assign(ch.size(), {});
-  for (std::size_t c = 0; c < ch.size(); ++c) {
-    a_[c].assign(ch[c].a.begin(), ch[c].a.end());
-    vh_[c].assign(ch[c].q.size(), 0.0);
-  }
+  for (std::size_t c = 0; c < ch.size(); ++c) vh_[c].assign(ch[c].q.size(), 0.0);
 }
 
 void VelocityVerlet::predict(std::span<const Channel> ch, double dt) {
@@ -78,7 +71,7 @@ void VelocityVerlet::predict(std::span<const Channel> ch, double dt) {
   dt_ = dt;
   const bool half = fv_ == VerletForceVelocity::HalfStep;
   for_channels(ch, kParallelMinCheap, [&](std::size_t c, std::size_t b, std::size_t e) {
-    vv_predict(b, e, dt, half, a_[c].data(), vh_[c].data(), ch[c].q.data(), ch[c].v.data());
+    vv_predict(b, e, dt, half, ch[c].a.data(), vh_[c].data(), ch[c].q.data(), ch[c].v.data());
   });
 }
 
@@ -89,16 +82,16 @@ void VelocityVerlet::check_correct(std::span<const Channel> ch, double dt) const
 
 void VelocityVerlet::correct(std::span<const Channel> ch, double dt) {
   check_correct(ch, dt);
-  // second half kick with a_{n+1}, which becomes the stored acceleration
+  // second half kick with a_{n+1}, which stays in the channels for the next step's kick
   for_channels(ch, kParallelMinCheap, [&](std::size_t c, std::size_t b, std::size_t e) {
-    vv_correct(b, e, dt_, a_[c].data(), vh_[c].data(), ch[c].v.data(), ch[c].a.data());
+    vv_correct(b, e, dt_, vh_[c].data(), ch[c].v.data(), ch[c].a.data());
   });
 }
 
 void VelocityVerlet::correct_range(std::span<const Channel> ch, std::size_t b, std::size_t e) {
   for (std::size_t c = 0; c < ch.size(); ++c) {
     const std::size_t n = ch[c].q.size();
-    vv_correct(std::min(b, n), std::min(e, n), dt_, a_[c].data(), vh_[c].data(), ch[c].v.data(),
+    vv_correct(std::min(b, n), std::min(e, n), dt_, vh_[c].data(), ch[c].v.data(),
                ch[c].a.data());
   }
 }
@@ -111,26 +104,24 @@ void VelocityVerlet::zero_velocities(std::span<const Channel> ch) {
 
 void VelocityVerlet::permute(std::span<const std::uint32_t> perm) {
   std::vector<double> tmp;
-  for (std::size_t c = 0; c < layout_.channels(); ++c) {
-    layout_.permute(a_[c], c, perm, 1, tmp);
+  for (std::size_t c = 0; c < layout_.channels(); ++c)
     if (c < vh_.size() && !vh_[c].empty()) layout_.permute(vh_[c], c, perm, 1, tmp);
-  }
 }
 
-// history: header, then a_n per channel
+// history: the header only. a_n is the channels' acceleration (the state's, which a checkpoint
+// stores); v_{n+½} lives within a step. Until session 7 a copy of a_n followed the header:
+// such a history still loads (the copy equals the state's acceleration and is not needed).
 std::vector<double> VelocityVerlet::save() const {
   std::vector<double> out;
   layout_.write_header(out, kind(), dt_);
-  put(out, a_);
   return out;
 }
 
 void VelocityVerlet::load(const std::vector<double>& data) {
   std::size_t off = layout_.read_header(data, kind(), dt_);
-  if (data.size() != off + layout_.total())
+  if (data.size() != off && data.size() != off + layout_.total())
     throw InputError("checkpoint", "integrator.velocity_verlet",
                      "integrator history has wrong length");
-  take(data, off, layout_, a_);
   vh_.assign(layout_.channels(), {});
   for (std::size_t c = 0; c < layout_.channels(); ++c) vh_[c].assign(layout_.size(c), 0.0);
 }

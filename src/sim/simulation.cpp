@@ -222,7 +222,7 @@ void Simulation::health_check() {
     if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i]) || !std::isfinite(s.vx[i]) ||
         !std::isfinite(s.vy[i]) || !std::isfinite(s.w[i])) {
       std::ostringstream m;
-      m << "non-finite position or velocity of particle " << i << " at step " << s.step
+      m << "non-finite position or velocity of particle " << w_.id[i] << " at step " << s.step
         << " (t = " << s.t << " s); dt = " << dt_ << " s is "
         << dt_ / model_.min_contact_time() << " contact times: the integration blew up, try dt <= "
         << model_.min_contact_time() / 20 << " s";
@@ -250,7 +250,7 @@ void Simulation::health_check() {
       std::ostringstream m;
       m << "mechanical energy grew from " << energy_ref_ << " J to " << e
         << " J without driving input at step " << s.step << " (t = " << s.t
-        << " s); fastest particle " << worst << " at " << std::sqrt(v2)
+        << " s); fastest particle " << w_.id[worst] << " at " << std::sqrt(v2)
         << " m/s. The integration is unstable: dt = " << dt_ << " s is "
         << dt_ / model_.min_contact_time() << " contact times; try dt <= "
         << model_.min_contact_time() / 20 << " s";

@@ -126,6 +126,31 @@ TEST_P(State, TimeStepChangeIsConsistent) {
   EXPECT_LT(err, 1.5 * err_const);
 }
 
+// velocity Verlet's history is its header (a_n is the channels' acceleration); the history of
+// earlier versions, the header followed by a copy of a_n, still loads and continues the same
+TEST(VelocityVerletHistory, OldLayoutWithAccelerationsLoads) {
+  const double dt = 0.01;
+  auto I = make_integrator(IntegratorKind::VelocityVerlet);
+  auto s = three_channels();
+  s.init(*I, dt);
+  for (int k = 0; k < 50; ++k) s.step(*I, dt);
+  const std::vector<double> hist = I->save();
+  std::vector<double> old = hist;
+  for (const auto& a : s.a) old.insert(old.end(), a.begin(), a.end());
+  ASSERT_EQ(old.size(), hist.size() + 6);
+  auto copy = s;
+  auto J = make_integrator(IntegratorKind::VelocityVerlet);
+  J->load(old);
+  for (int k = 0; k < 100; ++k) {
+    s.step(*I, dt);
+    copy.step(*J, dt);
+  }
+  EXPECT_EQ(s.q, copy.q);
+  EXPECT_EQ(s.v, copy.v);
+  old.pop_back();
+  EXPECT_THROW(make_integrator(IntegratorKind::VelocityVerlet)->load(old), InputError);
+}
+
 // a history never silently applies to another layout or another scheme
 TEST_P(State, LayoutAndHistoryAreChecked) {
   auto I = make_integrator(GetParam());
