@@ -38,7 +38,7 @@ gbench gb_1t.json 'Decagon|AreaInRect|Pile|Disk|Render|Frame|Png|Rfm|RingNeighbo
 echo "== the same whole steps with 2 threads =="
 gbench gb_2t.json 'PileStep|DiskFluid' 2 "$mt"
 echo "== cost per particle-step against N (forced disk fluid, 1 thread) =="
-gbench gb_scaling.json 'FluidCostScaling' 1 "$mt_scan"
+gbench gb_scaling.json 'FluidCostScaling|FluidMixedOrder|SortParticles' 1 "$mt_scan"
 echo "== gransim vs LAMMPS =="
 bench/compare_lammps.sh
 echo "== seconds per tap; MPI sweep =="

@@ -109,6 +109,12 @@ for n in (1000, 10000, 100000, 1000000):
     row(f"forced fluid N = 1e{round(math.log10(n))}: cost per particle-step ÷ N = 1e4's", rel, "",
         "0.75…1.25" if n != 10000 else None,
         (lambda x: 0.75 <= x <= 1.25) if n != 10000 else None, note=f" ({fmt(v)} p-st/s, 1 thread)")
+mixed = counter(gs, "BM_FluidMixedOrder/1000000/real_time")
+row("forced fluid N = 1e6, particles numbered at random (an unsorted long run): cost ÷ N = 1e4's",
+    ratio(base, mixed), "", note=f" ({fmt(mixed)} p-st/s; the spatial sort keeps the figure above)")
+for arg, what in ((0, "from the random order"), (1, "of the sorted state (every 1000 steps)")):
+    t = gs.get(f"BM_SortParticles/1000000/{arg}/iterations:3", {}).get("real_time")
+    row(f"one spatial sort of 1e6 disks {what}", t, " ms")
 
 # seconds per tap
 ext = " (extrapolated ×10)" if quick else ""
