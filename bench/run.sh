@@ -30,7 +30,7 @@ export GS_BENCH_RESULTS=$out/results.txt
 
 if [ "$quick" = 1 ]; then mt=0.1; mt_scan=0.2; else mt=1; mt_scan=1; fi
 gbench() {  # JSON FILTER THREADS MIN_TIME: console table to stdout, JSON to $out
-  OMP_NUM_THREADS=$3 "$bin" --benchmark_min_time="$4" --benchmark_filter="$2" \
+  OMP_NUM_THREADS=$3 ${pin_cmd:-} "$bin" --benchmark_min_time="$4" --benchmark_filter="$2" \
     --benchmark_out="$out/$1" --benchmark_out_format=json 2>/dev/null || echo "($1: gransim_bench failed)"
 }
 echo "== kernels and whole steps (Google Benchmark; 1 thread) =="
@@ -38,7 +38,14 @@ gbench gb_1t.json 'Decagon|AreaInRect|Pile|Disk|Render|Frame|Png|Rfm|RingNeighbo
 echo "== the same whole steps with 2 threads =="
 gbench gb_2t.json 'PileStep|DiskFluid' 2 "$mt"
 echo "== cost per particle-step against N (forced disk fluid, 1 thread) =="
-gbench gb_scaling.json 'FluidCostScaling|FluidMixedOrder|SortParticles' 1 "$mt_scan"
+# every size on the same CPU: the figure is a ratio between sizes, and the two vCPUs of the
+# project's VMs run at different, drifting speeds (docs/threads.md)
+pin=()
+if command -v taskset >/dev/null; then
+  cpu=$(taskset -pc $$ 2>/dev/null | sed 's/.*: //; s/[,-].*//')
+  [ -n "$cpu" ] && pin=(taskset -c "$cpu")
+fi
+pin_cmd="${pin[*]}" gbench gb_scaling.json 'FluidCostScaling|FluidMixedOrder|SortParticles' 1 "$mt_scan"
 echo "== gransim vs LAMMPS =="
 bench/compare_lammps.sh
 echo "== seconds per tap; MPI sweep =="
