@@ -43,11 +43,13 @@ std::string default_out(const std::string& name) {
 void print_banner(const SceneSpec& scene, const Simulation& sim, const ProtocolClock& clock) {
   const double dt = scene.integrator.dt;
   const auto nsteps = static_cast<long long>(std::llround(clock.nominal_duration() / dt));
+  const std::string sorted =
+      sim.sort_every() > 0 ? ", sorted every " + std::to_string(sim.sort_every()) + " steps" : "";
   std::fprintf(stderr,
-               "gransim %s: %s, %zu particles, %lld steps of %g s (%s, %s), contact time %.3g s\n",
+               "gransim %s: %s, %zu particles, %lld steps of %g s (%s, %s%s), contact time %.3g s\n",
                program_version().data(), scene.name.c_str(), sim.world().size(), nsteps, dt,
                std::string(to_string(scene.integrator.kind)).c_str(), sim.broadphase().name(),
-               sim.model().min_contact_time());
+               sorted.c_str(), sim.model().min_contact_time());
   if (is_tapping(scene.drive))
     std::fprintf(stderr,
                  "gransim: %s, settle %g s, then %d taps of T = %g s (excitation %g s)%s%s\n",

@@ -66,6 +66,7 @@ void write_run_json(const RunSession& rs, int code, const std::string& failure, 
      << "  \"sessions\": " << rs.sessions << ",\n"
      << "  \"particle_steps_per_s\": " << rate << ",\n"
      << "  \"broad_phase\": \"" << sim.broadphase().name() << "\",\n"
+     << "  \"sort_every\": " << sim.sort_every() << ",\n"
      << "  \"omp_threads\": " << rs.team.threads << ",\n"
      << "  \"omp_cpus\": " << rs.team.cpus << ",\n"
      << "  \"contact_time_s\": " << sim.model().min_contact_time() << ",\n"
