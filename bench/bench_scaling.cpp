@@ -11,7 +11,8 @@
 // tiled 5 × 2 and 10 × 10 (a periodic state of the larger box; the copies' random forces differ,
 // so they decorrelate), in the cell order the spatial sort keeps (integrator.sort_every, auto
 // from 5·10⁴ disks). BM_FluidMixedOrder gives the same 10⁶ state with the particles numbered at
-// random — where an unsorted run drifts as the fluid mixes — and BM_SortParticles one sort.
+// random — where an unsorted run drifts as the fluid mixes — (and 5·10⁴, 10⁵: where the
+// auto sort starts) and BM_SortParticles one sort.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -82,7 +83,8 @@ Simulation& fluid_at(int n, bool mixed) {
   auto& slot = cache[{n, mixed}];
   if (!slot) {
     World w;
-    if (n == 100000) w = tiled(5, 2, mixed);
+    if (n == 50000) w = tiled(5, 1, mixed);
+    else if (n == 100000) w = tiled(5, 2, mixed);
     else if (n == 1000000) w = tiled(10, 10, mixed);
     else w = settled(n);
     if (mixed) w.scene.integrator.sort_every = 0;
@@ -121,7 +123,12 @@ void BM_FluidMixedOrder(benchmark::State& st) {
   for (auto _ : st) sim.step();
   report(st, sim);
 }
-BENCHMARK(BM_FluidMixedOrder)->Arg(1000000)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_FluidMixedOrder)
+    ->Arg(50000)
+    ->Arg(100000)
+    ->Arg(1000000)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 // one spatial sort (each iteration sorts a fresh copy): of the mixed 10⁶ state (range 1 = 0),
 // and of the sorted one after its steps so far (1: what a sorting run pays every 1000 steps)
