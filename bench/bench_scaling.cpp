@@ -112,6 +112,7 @@ void BM_FluidCostScaling(benchmark::State& st) {
 BENCHMARK(BM_FluidCostScaling)
     ->Arg(1000)
     ->Arg(10000)
+    ->Arg(50000)
     ->Arg(100000)
     ->Arg(1000000)
     ->Unit(benchmark::kMillisecond)
