@@ -130,14 +130,19 @@ void expect_same_disk_paths(const World& w, std::size_t min_contacts) {
   EXPECT_EQ(fy, f1.fy);
 }
 
+// a periodic gas at φ = 0.3 under the random force, at its lattice-like start
+Simulation forced_gas(int n, std::uint64_t seed) {
+  SceneSpec s = build::disk_gas(n, 0.3, 0.6, 0.6, seed);
+  s.drive.kind = DriveKind::RandomForce;
+  World w = make_world(s);
+  place_particles(w);
+  return Simulation(std::move(w));
+}
+
 TEST(ForceSums, DiskPrefilterKeepsThePairs) {
   {  // periodic gas at φ = 0.3, randomly forced out of its lattice: contacts across the
      // boundary too
-    SceneSpec s = build::disk_gas(3000, 0.3, 0.6, 0.6, 5);
-    s.drive.kind = DriveKind::RandomForce;
-    World w0 = make_world(s);
-    place_particles(w0);
-    Simulation sim(std::move(w0));
+    Simulation sim = forced_gas(3000, 5);
     sim.run(400);
     const World& w = sim.world();
     expect_same_disk_paths(w, 10);
@@ -172,11 +177,7 @@ TEST(ForceSums, DiskPrefilterKeepsThePairs) {
 // buffer every time: a gas whose contacts change, then a dense packing in the same buffer,
 // then the gas again, then a smaller world, and after someone wrote into the buffer and reset
 TEST(ForceSums, ReusedBufferEqualsAFreshOne) {
-  SceneSpec s = build::disk_gas(3000, 0.3, 0.6, 0.6, 5);
-  s.drive.kind = DriveKind::RandomForce;
-  World w0 = make_world(s);
-  place_particles(w0);
-  Simulation sim(std::move(w0));
+  Simulation sim = forced_gas(3000, 5);
   auto bp = make_broadphase(BroadPhaseKind::Auto, sim.world());
   ContactModel model(sim.world());
   ForceBuffer reused;
@@ -216,11 +217,7 @@ TEST(ForceSums, ReusedBufferEqualsAFreshOne) {
   reused.reset(reused.fx.size());
   expect_fresh(sim.world(), "after reset");
   // a smaller world in the same buffer
-  SceneSpec s2 = build::disk_gas(1000, 0.3, 0.6, 0.6, 9);
-  s2.drive.kind = DriveKind::RandomForce;
-  World w2 = make_world(s2);
-  place_particles(w2);
-  Simulation small(std::move(w2));
+  Simulation small = forced_gas(1000, 9);
   small.run(400);
   ContactModel model2(small.world());
   bp = make_broadphase(BroadPhaseKind::Auto, small.world());
