@@ -431,6 +431,8 @@ ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<Pai
   chunk_first_.resize(nchunks);
   chunk_stats_.assign(nchunks, {});
   balance_.plan(nchunks, max_team_size());
+  p_items_.assign(balance_.threads(), 0.0);
+  p_seconds_.assign(balance_.threads(), 0.0);
   bool balanced = true;  // did the team have the planned size (else: equal ranges, no timing)
   if (poly) {
     place_walls(w);
@@ -442,8 +444,12 @@ ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<Pai
     // so that a thread places, sums, accelerates and corrects the grains it predicted
     const int tid = team_thread(), nt = team_size();
     const auto [p_begin, p_end] = thread_share(n, tid, nt);
+    // the time this thread spends on its own particles (placing, summing, the callback):
+    // ThreadSpeeds splits the next step's particles by it
+    const double tp0 = wall_seconds();
+    if (poly) place_shapes(w, p_begin, p_end);
+    double t_particles = wall_seconds() - tp0;
     if (poly) {
-      place_shapes(w, p_begin, p_end);
 #pragma omp barrier
     }
     // contiguous ranges of chunks, one per thread, in the pair loop and in the compaction
@@ -497,6 +503,7 @@ ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<Pai
         note_overlap(chunk_stats_[c], w, key, r.h, r.degenerate);
       }
     }
+    const double tp1 = wall_seconds();
     for (std::size_t p = p_begin; p < p_end; ++p) {
       double fx = 0.0, fy = 0.0, tq = 0.0;
       for (std::uint32_t e = cand_start_[p]; e < cand_start_[p + 1]; ++e) {
@@ -518,8 +525,17 @@ ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<Pai
       if (poly) f.tq[p] = tq;
     }
     if (after) after(p_begin, p_end);
+    t_particles += wall_seconds() - tp1;
+    if (planned) {
+      p_items_[static_cast<std::size_t>(tid)] = static_cast<double>(p_end - p_begin);
+      p_seconds_[static_cast<std::size_t>(tid)] = t_particles;
+    }
   }  // omp parallel
-  if (balanced) balance_.update();
+  if (balanced) {
+    balance_.update();
+    ThreadSpeeds::get().update(p_items_.data(), p_seconds_.data(),
+                               static_cast<int>(balance_.threads()));
+  }
   ForceStats st;  // maxima and counts: the same whatever the chunking
   for (const ForceStats& b : chunk_stats_) {
     st.degenerate += b.degenerate;

@@ -80,6 +80,8 @@ class ContactModel {
   ForceStats evaluate_parallel(const World& w, const std::vector<PairKey>& cand,
                                const ContactSet& cs, ForceBuffer& f, double dt, bool reindex,
                                RangeFn after);
+  /// per thread of the last force pass: particles it owned, seconds it spent on them
+  std::vector<double> p_items_, p_seconds_;
   // the per-particle index of the candidates (CSR, ascending candidate order per particle)
   void index_candidates(const std::vector<PairKey>& cand, std::size_t n);
   std::size_t nsp_ = 0;

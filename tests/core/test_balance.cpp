@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/balance.hpp"
+#include "core/parallel.hpp"
 
 namespace gs {
 namespace {
@@ -116,6 +117,86 @@ TEST(RangeBalancer, ConcentratedCostAndDegenerateInput) {
   none.plan(0, 2);
   none.update();
   expect_tiling(none, 0);
+}
+
+// ThreadSpeeds: per-particle shares follow the measured speeds; thread_share tiles [0, n)
+struct SpeedsReset {
+  ~SpeedsReset() { ThreadSpeeds::get().reset(); }  // the process-wide split back to equal
+};
+
+void expect_share_tiling(std::size_t n, int nt) {
+  std::size_t next = 0;
+  for (int t = 0; t < nt; ++t) {
+    const ItemRange r = thread_share(n, t, nt);
+    EXPECT_EQ(r.begin, next) << "thread " << t << " of " << nt << ", n = " << n;
+    EXPECT_LE(r.begin, r.end);
+    next = r.end;
+  }
+  EXPECT_EQ(next, n);
+}
+
+TEST(ThreadSpeeds, SharesFollowTheMeasuredSpeeds) {
+  const SpeedsReset reset;
+  ThreadSpeeds& sp = ThreadSpeeds::get();
+  sp.reset();
+  EXPECT_FALSE(sp.has(2));
+  EXPECT_EQ(thread_share(1184, 0, 2).end, 592u);  // equal before any measurement
+  // thread 1 runs at half the speed of thread 0: after a few dozen steps thread 0 owns two
+  // thirds of the particles and both take the same time
+  const std::size_t n = 1184;
+  for (int step = 0; step < 60; ++step) {
+    double items[2], secs[2];
+    for (int t = 0; t < 2; ++t) {
+      const ItemRange r = thread_share(n, t, 2);
+      items[t] = static_cast<double>(r.end - r.begin);
+      secs[t] = items[t] * (t == 0 ? 1e-8 : 2e-8);
+    }
+    sp.update(items, secs, 2);
+  }
+  ASSERT_TRUE(sp.has(2));
+  EXPECT_NEAR(static_cast<double>(thread_share(n, 0, 2).end) / n, 2.0 / 3.0, 0.03);
+  for (std::size_t m : {0u, 1u, 7u, 1184u, 1000000u}) expect_share_tiling(m, 2);
+  EXPECT_FALSE(sp.has(3));  // another team size: equal shares
+  EXPECT_EQ(thread_share(999, 1, 3).begin, 333u);
+  expect_share_tiling(999, 3);
+}
+
+TEST(ThreadSpeeds, JitterDoesNotMoveTheSplitAndBadTimingsAreIgnored) {
+  const SpeedsReset reset;
+  ThreadSpeeds& sp = ThreadSpeeds::get();
+  sp.reset();
+  const double equal_items[2] = {500, 500}, equal_secs[2] = {1e-5, 1e-5};
+  sp.update(equal_items, equal_secs, 2);
+  const std::size_t first = thread_share(1000, 0, 2).end;
+  EXPECT_EQ(first, 500u);
+  // timings within ±1.5% of equal, alternating: the split point stays where it is
+  for (int step = 0; step < 100; ++step) {
+    const double j = step % 2 ? 1.015 : 0.985;
+    const double secs[2] = {1e-5 * j, 1e-5 / j};
+    sp.update(equal_items, secs, 2);
+    EXPECT_EQ(thread_share(1000, 0, 2).end, first) << step;
+  }
+  // zero or non-finite timings and empty shares leave it alone
+  const double zero[2] = {0.0, 1e-5}, nan[2] = {std::nan(""), 1e-5}, none[2] = {0, 500};
+  sp.update(equal_items, zero, 2);
+  sp.update(equal_items, nan, 2);
+  sp.update(none, equal_secs, 2);
+  EXPECT_EQ(thread_share(1000, 0, 2).end, first);
+  // a thread a hundred times slower still keeps a quarter of an equal share
+  for (int step = 0; step < 200; ++step) {
+    double items[2], secs[2];
+    for (int t = 0; t < 2; ++t) {
+      const ItemRange r = thread_share(1000, t, 2);
+      items[t] = static_cast<double>(r.end - r.begin);
+      secs[t] = items[t] * (t == 0 ? 1e-8 : 1e-6);
+    }
+    sp.update(items, secs, 2);
+  }
+  const ItemRange slow = thread_share(1000, 1, 2);
+  EXPECT_GE(slow.end - slow.begin, 120u);
+  EXPECT_LE(slow.end - slow.begin, 140u);
+  sp.reset();
+  EXPECT_EQ(thread_share(1000, 0, 2).end, 500u);
 }
 
 }  // namespace
