@@ -112,7 +112,8 @@ for n in (1000, 10000, 100000, 1000000):
 mixed = counter(gs, "BM_FluidMixedOrder/1000000/real_time")
 row("forced fluid N = 1e6, particles numbered at random (an unsorted long run): cost ÷ N = 1e4's",
     ratio(base, mixed), "", note=f" ({fmt(mixed)} p-st/s; the spatial sort keeps the figure above)")
-for arg, what in ((0, "from the random order"), (1, "of the sorted state (every 1000 steps)")):
+for arg, what in ((0, "from the random order, fresh buffers"),
+                  (1, "of the sorted state, buffers kept (every 1000 steps in a run)")):
     t = gs.get(f"BM_SortParticles/1000000/{arg}/iterations:3", {}).get("real_time")
     row(f"one spatial sort of 1e6 disks {what}", t, " ms")
 

@@ -185,10 +185,9 @@ void Gear6::zero_velocities(std::span<const Channel> ch) {
 }
 
 void Gear6::permute(std::span<const std::uint32_t> perm) {
-  std::vector<double> tmp;
   for (std::size_t c = 0; c < layout_.channels(); ++c) {
-    layout_.permute(r_[c], c, perm, kN, tmp);
-    layout_.permute(vw_[c], c, perm, 1, tmp);
+    layout_.permute(r_[c], c, perm, kN, perm_tmp_);
+    layout_.permute(vw_[c], c, perm, 1, perm_tmp_);
   }
 }
 

@@ -65,6 +65,7 @@ class Gear6 final : public Integrator {
   void rescale(double dt);
   void note_velocities();  // vw_ := r1/Δt, after the history changed outside predict/correct
   ChannelLayout layout_;
+  std::vector<double> perm_tmp_;  ///< permute()'s buffer, kept between sorts
   double dt_ = 0.0;  ///< the Δt the derivatives are scaled with, s
   /// per channel, the 6 scaled derivatives r_k = Δt^k/k!·q⁽ᵏ⁾, DOF-major (r_k of DOF i at
   /// 6·i + k): a thread's DOFs are one block, so two threads meet at one place per channel
@@ -106,6 +107,7 @@ class VelocityVerlet final : public Integrator {
  private:
   VerletForceVelocity fv_;
   ChannelLayout layout_;
+  std::vector<double> perm_tmp_;  ///< permute()'s buffer, kept between sorts
   double dt_ = 0.0;                      ///< Δt of the last step, s
   /// per channel, v_{n+½} during a step (a_n is the channels' own acceleration: the last
   /// force evaluation's, which the caller keeps between steps)
@@ -140,6 +142,7 @@ class PositionVerlet final : public Integrator {
 
  private:
   ChannelLayout layout_;
+  std::vector<double> perm_tmp_;         ///< permute()'s buffer, kept between sorts
   double dt_ = 0.0;                      ///< Δt of the last step, s
   std::vector<std::vector<double>> qp_;  ///< per channel, q_{n−1}
   std::vector<std::vector<double>> qn_;  ///< per channel, q_n as last written

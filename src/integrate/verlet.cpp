@@ -103,9 +103,8 @@ void VelocityVerlet::zero_velocities(std::span<const Channel> ch) {
 }
 
 void VelocityVerlet::permute(std::span<const std::uint32_t> perm) {
-  std::vector<double> tmp;
   for (std::size_t c = 0; c < layout_.channels(); ++c)
-    if (c < vh_.size() && !vh_[c].empty()) layout_.permute(vh_[c], c, perm, 1, tmp);
+    if (c < vh_.size() && !vh_[c].empty()) layout_.permute(vh_[c], c, perm, 1, perm_tmp_);
 }
 
 // history: the header only. a_n is the channels' acceleration (the state's, which a checkpoint
@@ -221,9 +220,9 @@ void PositionVerlet::zero_velocities(std::span<const Channel> ch) {
 }
 
 void PositionVerlet::permute(std::span<const std::uint32_t> perm) {
-  std::vector<double> tmp;
   for (std::size_t c = 0; c < layout_.channels(); ++c)
-    for (auto* v : {&qp_[c], &qn_[c], &vn_[c], &a_[c]}) layout_.permute(*v, c, perm, 1, tmp);
+    for (auto* v : {&qp_[c], &qn_[c], &vn_[c], &a_[c]})
+      layout_.permute(*v, c, perm, 1, perm_tmp_);
 }
 
 // history: header, then q_{n−1}, q_n, v_n, a_n per channel

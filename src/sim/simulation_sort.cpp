@@ -47,25 +47,32 @@ void Simulation::sort_particles() {
   cell = std::max(cell, std::sqrt(area / (4.0 * static_cast<double>(n))));
   const auto nx = static_cast<std::size_t>(std::max(1.0, std::floor(w_.Lx / cell)));
   const auto ny = static_cast<std::size_t>(std::max(1.0, std::floor(w_.Ly / cell)));
-  std::vector<std::uint32_t> start(nx * ny + 1, 0), cell_id(n);
+  SortScratch& sc = sort_scratch_;
+  std::vector<std::uint32_t>& start = sc.start;
+  std::vector<std::uint32_t>& cell_id = sc.cell;
+  start.assign(nx * ny + 1, 0);
+  cell_id.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     cell_id[i] = static_cast<std::uint32_t>(cell_of(w_, i, cell, nx, ny));
     ++start[cell_id[i] + 1];
   }
   for (std::size_t c = 0; c < nx * ny; ++c) start[c + 1] += start[c];
-  std::vector<std::uint32_t> perm(n), slot(n);  // perm: new → old; slot: old → new
+  std::vector<std::uint32_t>& perm = sc.perm;  // new → old
+  std::vector<std::uint32_t>& slot = sc.slot;  // old → new
+  perm.resize(n);
+  slot.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     const std::uint32_t k = start[cell_id[i]]++;
     perm[k] = static_cast<std::uint32_t>(i);
     slot[i] = k;
   }
 
-  w_.permute(perm);
+  w_.permute(perm, sc.world);
   integ_->permute(perm);
   if (noise_keys_.size() == n) {
-    std::vector<std::uint64_t> keys(n);
-    for (std::size_t k = 0; k < n; ++k) keys[k] = noise_keys_[perm[k]];
-    noise_keys_.swap(keys);
+    sc.keys.resize(n);
+    for (std::size_t k = 0; k < n; ++k) sc.keys[k] = noise_keys_[perm[k]];
+    noise_keys_.swap(sc.keys);
   }
   // the contact set under the new numbers: (i, j) swap where the order flips, and then j's
   // image shift, the normal and the contact point's frame flip with them
@@ -103,7 +110,7 @@ void Simulation::sort_particles() {
   contacts_ = std::move(cs);  // Model S: no per-contact state (sorting is for disks only)
   forces_.sparse = false;     // its list of touched entries named the old slots
   broad_ = make_broadphase(broad_kind_, w_);
-  last_order_ = std::move(perm);
+  last_order_.swap(perm);  // the previous order's buffer serves the next sort
   ++order_generation_;
 }
 

@@ -75,16 +75,13 @@ void apply_perm(std::vector<T>& v, std::span<const std::uint32_t> perm, std::vec
 }
 }  // namespace
 
-void World::permute(std::span<const std::uint32_t> perm) {
+void World::permute(std::span<const std::uint32_t> perm, PermuteScratch& scratch) {
   if (perm.size() != size()) throw std::invalid_argument("World::permute: wrong size");
-  std::vector<double> td;
-  std::vector<int> ti;
-  std::vector<std::uint32_t> tu;
   for (auto* v : {&radius, &mass, &inv_mass, &inv_inertia, &s.x, &s.y, &s.th, &s.vx, &s.vy,
                   &s.w, &s.ax, &s.ay, &s.aw})
-    apply_perm(*v, perm, td);
-  for (auto* v : {&sp, &s.wrap_x, &s.wrap_y}) apply_perm(*v, perm, ti);
-  apply_perm(id, perm, tu);
+    apply_perm(*v, perm, scratch.d);
+  for (auto* v : {&sp, &s.wrap_x, &s.wrap_y}) apply_perm(*v, perm, scratch.i);
+  apply_perm(id, perm, scratch.u);
 }
 
 std::vector<std::uint32_t> World::slots_by_id() const {

@@ -74,8 +74,18 @@ struct World {
   /// remove every particle (constants, species, walls and box stay)
   void clear_particles();
   /// move particles between slots: slot k receives what slot perm[k] held (a permutation
-  /// of 0…N−1), in every per-particle array and the state
-  void permute(std::span<const std::uint32_t> perm);
+  /// of 0…N−1), in every per-particle array and the state; `scratch` keeps its buffers for
+  /// the next call (fresh pages cost more than the copy itself)
+  struct PermuteScratch {
+    std::vector<double> d;
+    std::vector<int> i;
+    std::vector<std::uint32_t> u;
+  };
+  void permute(std::span<const std::uint32_t> perm, PermuteScratch& scratch);
+  void permute(std::span<const std::uint32_t> perm) {
+    PermuteScratch scratch;
+    permute(perm, scratch);
+  }
   /// the slot of each label (the inverse of id)
   std::vector<std::uint32_t> slots_by_id() const;
   /// world-frame polygon of particle i (polygons only)
