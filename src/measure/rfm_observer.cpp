@@ -12,6 +12,7 @@
 #include "analysis/rfm_freepath.hpp"
 #include "analysis/rfm_tails.hpp"
 #include "core/error.hpp"
+#include "core/permute.hpp"
 #include "measure/rfm_io.hpp"
 #include "output/run_dir.hpp"
 #include "sim/simulation.hpp"
@@ -123,16 +124,14 @@ void RfmObserver::follow_order(const Simulation& sim) {
     throw std::logic_error("RfmObserver: more than one particle sort between two steps");
   const std::vector<std::uint32_t>& perm = sim.last_order();  // new slot k ← old perm[k]
   if (perm.size() != n_) throw std::logic_error("RfmObserver: sort of another size");
-  std::vector<std::uint32_t> slot(n_);
-  for (std::size_t k = 0; k < n_; ++k) slot[perm[k]] = static_cast<std::uint32_t>(k);
-  auto follow = [&](auto& v) {
-    auto old = v;
-    for (std::size_t k = 0; k < n_; ++k) v[k] = old[perm[k]];
-  };
-  follow(last_touch_);
-  follow(leave_x_);
-  follow(leave_y_);
-  follow(in_flight_);
+  const std::vector<std::uint32_t> slot = inverse_permutation(perm);
+  std::vector<std::int64_t> t64;
+  std::vector<double> td;
+  std::vector<char> tc;
+  gather_permuted(last_touch_, perm, t64);
+  gather_permuted(leave_x_, perm, td);
+  gather_permuted(leave_y_, perm, td);
+  gather_permuted(in_flight_, perm, tc);
   for (std::uint32_t& i : touching_prev_) i = slot[i];
   order_seen_ = sim.order_generation();
 }

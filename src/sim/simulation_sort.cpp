@@ -6,6 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/permute.hpp"
 #include "sim/simulation.hpp"
 
 namespace gs {
@@ -69,11 +70,7 @@ void Simulation::sort_particles() {
 
   w_.permute(perm, sc.world);
   integ_->permute(perm);
-  if (noise_keys_.size() == n) {
-    sc.keys.resize(n);
-    for (std::size_t k = 0; k < n; ++k) sc.keys[k] = noise_keys_[perm[k]];
-    noise_keys_.swap(sc.keys);
-  }
+  if (noise_keys_.size() == n) gather_permuted(noise_keys_, perm, sc.keys);
   // the contact set under the new numbers: (i, j) swap where the order flips, and then j's
   // image shift, the normal and the contact point's frame flip with them
   const auto N = static_cast<std::uint32_t>(n);

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "core/error.hpp"
+#include "core/permute.hpp"
 
 namespace gs {
 
@@ -65,30 +66,16 @@ void World::clear_particles() {
   s = State{};
 }
 
-namespace {
-template <class T>
-void apply_perm(std::vector<T>& v, std::span<const std::uint32_t> perm, std::vector<T>& tmp) {
-  if (v.empty()) return;
-  tmp.resize(perm.size());
-  for (std::size_t k = 0; k < perm.size(); ++k) tmp[k] = v[perm[k]];
-  v.swap(tmp);
-}
-}  // namespace
-
 void World::permute(std::span<const std::uint32_t> perm, PermuteScratch& scratch) {
   if (perm.size() != size()) throw std::invalid_argument("World::permute: wrong size");
   for (auto* v : {&radius, &mass, &inv_mass, &inv_inertia, &s.x, &s.y, &s.th, &s.vx, &s.vy,
                   &s.w, &s.ax, &s.ay, &s.aw})
-    apply_perm(*v, perm, scratch.d);
-  for (auto* v : {&sp, &s.wrap_x, &s.wrap_y}) apply_perm(*v, perm, scratch.i);
-  apply_perm(id, perm, scratch.u);
+    gather_permuted(*v, perm, scratch.d);
+  for (auto* v : {&sp, &s.wrap_x, &s.wrap_y}) gather_permuted(*v, perm, scratch.i);
+  gather_permuted(id, perm, scratch.u);
 }
 
-std::vector<std::uint32_t> World::slots_by_id() const {
-  std::vector<std::uint32_t> slot(id.size());
-  for (std::size_t k = 0; k < id.size(); ++k) slot[id[k]] = static_cast<std::uint32_t>(k);
-  return slot;
-}
+std::vector<std::uint32_t> World::slots_by_id() const { return inverse_permutation(id); }
 
 Poly World::shape(std::size_t i) const {
   return place(species[sp[i]].body, {s.x[i], s.y[i]}, s.th[i]);
