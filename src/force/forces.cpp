@@ -220,18 +220,19 @@ bool ContactModel::polygon_pair(const World& w, PairKey key, const ContactSet& c
 
 // the candidates that disk_pair may find touching, in order, into sel_: disk pairs by the
 // very test of disk_disk (same expressions, so the same decisions), wall pairs all
-std::size_t ContactModel::select_disk_pairs(const World& w, const std::vector<PairKey>& cand) {
+std::size_t ContactModel::select_disk_pairs(const World& w, const std::vector<PairKey>& cand,
+                                            std::size_t k0, std::size_t k1) {
   const auto N = static_cast<std::uint32_t>(w.size());
   const double* x = w.s.x.data();
   const double* y = w.s.y.data();
   const double* r = w.radius.data();
-  sel_.resize(cand.size());
+  sel_.resize(k1 - k0);
   std::uint32_t* sel = sel_.data();
   std::size_t m = 0;
   if (w.box == BoxKind::Ring1D) {
     // the ring: no walls, every y is 0 and no image is shifted in y, so d.y is exactly 0 and
     // d.x alone gives disk_disk's decision (norm2(d) = d.x² + 0 to the last bit)
-    for (std::size_t k = 0; k < cand.size(); ++k) {
+    for (std::size_t k = k0; k < k1; ++k) {
       const PairKey key = cand[k];
       const std::uint32_t i = key_i(key), j = key_j(key);
       const double dx = x[j] + image_sx(key_image(key)) * w.Lx - x[i];
@@ -241,7 +242,7 @@ std::size_t ContactModel::select_disk_pairs(const World& w, const std::vector<Pa
     }
     return m;
   }
-  for (std::size_t k = 0; k < cand.size(); ++k) {
+  for (std::size_t k = k0; k < k1; ++k) {
     const PairKey key = cand[k];
     const std::uint32_t i = key_i(key), j = key_j(key);
     const bool wall = j >= N;
@@ -366,10 +367,16 @@ ForceStats ContactModel::evaluate_serial(const World& w, const std::vector<PairK
     // pass first keeps the disk pairs that touch (disk_disk's own test) and every wall pair,
     // so that the loop no longer mispredicts at each contact; in a packing, where almost all
     // touch, that pass would only add work. Either way the same pairs are evaluated.
+    // Block by block: the selected pairs are evaluated while the lines the selection read
+    // are still in the cache
     if (3 * cs.keys.size() < cand.size()) {
-      const std::size_t m = select_disk_pairs(w, cand);
-      run(m, [&](std::size_t q) { return cand[sel_[q]]; },
-          [&](PairKey key) { return disk_pair(w, key, pf, r); });
+      constexpr std::size_t kSelectBlock = 1024;
+      for (std::size_t k0 = 0; k0 < cand.size(); k0 += kSelectBlock) {
+        const std::size_t k1 = std::min(cand.size(), k0 + kSelectBlock);
+        const std::size_t m = select_disk_pairs(w, cand, k0, k1);
+        run(m, [&](std::size_t q) { return cand[sel_[q]]; },
+            [&](PairKey key) { return disk_pair(w, key, pf, r); });
+      }
     } else {
       run(cand.size(), [&](std::size_t q) { return cand[q]; },
           [&](PairKey key) { return disk_pair(w, key, pf, r); });

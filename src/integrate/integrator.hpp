@@ -44,6 +44,13 @@ struct Channel {
   std::span<const double> a;
 };
 
+/// a correction that is one velocity kick per DOF: v_{n+1} = v̂ + c_new·a_{n+1} − c_old·a_n,
+/// v̂ the velocity predict() wrote, c = fraction·Δt
+struct KickForm {
+  double new_frac = 0.0;
+  double old_frac = 0.0;
+};
+
 /// an integrator owns whatever history it needs (Gear derivatives, previous positions)
 class Integrator {
  public:
@@ -62,6 +69,16 @@ class Integrator {
   /// result is bitwise that of correct()
   virtual void check_correct(std::span<const Channel> ch, double dt) const = 0;
   virtual void correct_range(std::span<const Channel> ch, std::size_t b, std::size_t e) = 0;
+  /// let the caller apply the correction itself, as the kick `form`, inside its acceleration
+  /// pass while a_n is still in the channels (one pass over the velocities less, and no
+  /// history): on = true returns whether the scheme has such a form (velocity Verlet) and
+  /// fills `form`; predict() then keeps no history of its own and correct()/correct_range()
+  /// throw std::logic_error. on = false returns to correct(). Call between steps
+  virtual bool fuse_kick(bool on, KickForm& form) {
+    (void)on;
+    (void)form;
+    return false;
+  }
   /// between steps: set every velocity of ch to zero and restart the history from rest at
   /// the current positions, as init() would with v = 0 and the last accelerations (kinetic
   /// damping, drive.quench). Positions and the stored accelerations are kept

@@ -99,18 +99,23 @@ class VelocityVerlet final : public Integrator {
   void correct(std::span<const Channel> ch, double dt) override;
   void check_correct(std::span<const Channel> ch, double dt) const override;
   void correct_range(std::span<const Channel> ch, std::size_t b, std::size_t e) override;
+  /// the kick: v_{n+1} = v̂ + (a_{n+1} − a_n)·Δt/2 (Extrapolated: v̂ = v_n + a_n·Δt), or
+  /// v̂ + a_{n+1}·Δt/2 (HalfStep: v̂ = v_{n+½})
+  bool fuse_kick(bool on, KickForm& form) override;
   void zero_velocities(std::span<const Channel> ch) override;
   void permute(std::span<const std::uint32_t> perm) override;
   std::vector<double> save() const override;
   void load(const std::vector<double>& data) override;
 
  private:
+  void size_history();
   VerletForceVelocity fv_;
+  bool fused_ = false;  ///< the caller kicks (fuse_kick): no v_{n+½} kept
   ChannelLayout layout_;
   std::vector<double> perm_tmp_;  ///< permute()'s buffer, kept between sorts
   double dt_ = 0.0;                      ///< Δt of the last step, s
-  /// per channel, v_{n+½} during a step (a_n is the channels' own acceleration: the last
-  /// force evaluation's, which the caller keeps between steps)
+  /// per channel, v_{n+½} during a step, unless the caller kicks (a_n is the channels' own
+  /// acceleration: the last force evaluation's, which the caller keeps between steps)
   std::vector<std::vector<double>> vh_;
 };
 

@@ -45,6 +45,23 @@ void vv_predict(std::size_t b, std::size_t e, double dt, bool half, const double
     }
   }
 }
+// the same step for a caller that applies the kick itself (no v_{n+½} stored)
+void vv_predict_kicked(std::size_t b, std::size_t e, double dt, bool half,
+                       const double* __restrict a, double* __restrict q, double* __restrict v) {
+  if (half) {
+    for (std::size_t i = b; i < e; ++i) {
+      const double vh = v[i] + a[i] * dt / 2.0;
+      q[i] += vh * dt;
+      v[i] = vh;
+    }
+  } else {
+    for (std::size_t i = b; i < e; ++i) {
+      const double vh = v[i] + a[i] * dt / 2.0;
+      q[i] += vh * dt;
+      v[i] = v[i] + a[i] * dt;
+    }
+  }
+}
 void vv_correct(std::size_t b, std::size_t e, double dt, const double* __restrict vh,
                 double* __restrict v, const double* __restrict an) {
   for (std::size_t i = b; i < e; ++i) v[i] = vh[i] + an[i] * dt / 2.0;
@@ -61,8 +78,20 @@ void VelocityVerlet::init(std::span<const Channel> ch, double dt) {
   check_dt(dt, "VelocityVerlet::init");
   layout_.set(ch);
   dt_ = dt;
-  vh_.assign(ch.size(), {});
-  for (std::size_t c = 0; c < ch.size(); ++c) vh_[c].assign(ch[c].q.size(), 0.0);
+  size_history();
+}
+
+// v_{n+½} per channel, unless the caller kicks
+void VelocityVerlet::size_history() {
+  vh_.assign(fused_ ? 0 : layout_.channels(), {});
+  for (std::size_t c = 0; c < vh_.size(); ++c) vh_[c].assign(layout_.size(c), 0.0);
+}
+
+bool VelocityVerlet::fuse_kick(bool on, KickForm& form) {
+  fused_ = on;
+  form = {0.5, fv_ == VerletForceVelocity::HalfStep ? 0.0 : 0.5};
+  size_history();
+  return true;
 }
 
 void VelocityVerlet::predict(std::span<const Channel> ch, double dt) {
@@ -71,7 +100,8 @@ void VelocityVerlet::predict(std::span<const Channel> ch, double dt) {
   dt_ = dt;
   const bool half = fv_ == VerletForceVelocity::HalfStep;
   for_channels(ch, kParallelMinCheap, [&](std::size_t c, std::size_t b, std::size_t e) {
-    vv_predict(b, e, dt, half, ch[c].a.data(), vh_[c].data(), ch[c].q.data(), ch[c].v.data());
+    if (fused_) vv_predict_kicked(b, e, dt, half, ch[c].a.data(), ch[c].q.data(), ch[c].v.data());
+    else vv_predict(b, e, dt, half, ch[c].a.data(), vh_[c].data(), ch[c].q.data(), ch[c].v.data());
   });
 }
 
@@ -82,6 +112,7 @@ void VelocityVerlet::check_correct(std::span<const Channel> ch, double dt) const
 
 void VelocityVerlet::correct(std::span<const Channel> ch, double dt) {
   check_correct(ch, dt);
+  if (fused_) throw std::logic_error("VelocityVerlet::correct: the caller kicks (fuse_kick)");
   // second half kick with a_{n+1}, which stays in the channels for the next step's kick
   for_channels(ch, kParallelMinCheap, [&](std::size_t c, std::size_t b, std::size_t e) {
     vv_correct(b, e, dt_, vh_[c].data(), ch[c].v.data(), ch[c].a.data());
@@ -89,6 +120,7 @@ void VelocityVerlet::correct(std::span<const Channel> ch, double dt) {
 }
 
 void VelocityVerlet::correct_range(std::span<const Channel> ch, std::size_t b, std::size_t e) {
+  if (fused_) throw std::logic_error("VelocityVerlet::correct_range: the caller kicks (fuse_kick)");
   for (std::size_t c = 0; c < ch.size(); ++c) {
     const std::size_t n = ch[c].q.size();
     vv_correct(std::min(b, n), std::min(e, n), dt_, vh_[c].data(), ch[c].v.data(),
@@ -121,8 +153,7 @@ void VelocityVerlet::load(const std::vector<double>& data) {
   if (data.size() != off && data.size() != off + layout_.total())
     throw InputError("checkpoint", "integrator.velocity_verlet",
                      "integrator history has wrong length");
-  vh_.assign(layout_.channels(), {});
-  for (std::size_t c = 0; c < layout_.channels(); ++c) vh_[c].assign(layout_.size(c), 0.0);
+  size_history();
 }
 
 // ---- position Verlet ----

@@ -68,6 +68,11 @@ class Simulation {
     energy_ref_ = ref;
     energy_slack_ = slack;
   }
+  /// the integrator's correction as a velocity kick inside the acceleration pass (one pass
+  /// over the velocities less): on by default where the scheme has one (velocity Verlet)
+  /// and the particles are disks; off: the integrator's own correct() (for comparisons)
+  void set_kick_fusion(bool on);
+  bool kick_fused() const { return fused_; }
   /// does anything drive the system (gravity, pulses, noise)?
   bool driven() const;
   /// can the mechanical energy only decrease (no drive, or constant gravity)?
@@ -96,6 +101,9 @@ class Simulation {
   ForceStats stats_;
   std::vector<std::uint64_t> noise_keys_;  ///< random force: stream keys per particle (cached)
   std::vector<double> kick_;  ///< the ring's momentum kicks summed per block, kg·m/s²
+  std::vector<double> ring_pre_;  ///< the ring's accelerations before the mean kick, m/s²
+  bool fused_ = false;            ///< the integrator's kick inside the acceleration pass
+  KickForm kick_form_;
   Vec2 gravity_;
   std::int64_t sort_every_ = 0;
   std::uint64_t order_generation_ = 0;

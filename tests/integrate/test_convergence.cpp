@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <stdexcept>
 #include <vector>
 
 #include "integrate/schemes.hpp"
@@ -143,6 +144,48 @@ TEST(PositionVerlet, MatchesVelocityVerletToRoundOff) {
     // states are O(1); 5000 steps of different round-off accumulate to ≲ 1e-12
     EXPECT_NEAR(a.q[0][0], b.q[0][0], 1e-10) << "c = " << c;
     EXPECT_NEAR(a.v[0][0], b.v[0][0], 1e-10) << "c = " << c;
+  }
+}
+
+// a caller that applies velocity Verlet's correction itself (Integrator::fuse_kick) as the
+// kick v̂ + c_new·a_{n+1} − c_old·a_n follows the integrator's own correct() to round-off,
+// with either force velocity and with damping; meanwhile correct() refuses
+TEST(VelocityVerlet, CallerKickFollowsCorrect) {
+  for (auto fv : {VerletForceVelocity::Extrapolated, VerletForceVelocity::HalfStep}) {
+    VelocityVerlet own(fv), fused(fv);
+    KickForm form;
+    ASSERT_TRUE(fused.fuse_kick(true, form));
+    EXPECT_EQ(form.new_frac, 0.5);
+    EXPECT_EQ(form.old_frac, fv == VerletForceVelocity::HalfStep ? 0.0 : 0.5);
+    const double dt = 0.01;
+    test::OscillatorSystem a, b;
+    a.add(kW, 0.3, {kQ0, -0.2}, {kV0, 0.1});
+    b.add(kW, 0.3, {kQ0, -0.2}, {kV0, 0.1});
+    a.init(own, dt);
+    b.init(fused, dt);
+    for (int k = 0; k < 5000; ++k) {
+      a.step(own, dt);
+      auto ch = b.spans();
+      fused.predict(ch, dt);
+      const std::vector<double> a_old = b.a[0];
+      b.forces();
+      for (std::size_t i = 0; i < b.q[0].size(); ++i)
+        b.v[0][i] += form.new_frac * dt * b.a[0][i] - form.old_frac * dt * a_old[i];
+    }
+    // O(1) states; 5000 steps of different round-off stay ≲ 1e-13
+    for (std::size_t i = 0; i < 2; ++i) {
+      EXPECT_NEAR(a.q[0][i], b.q[0][i], 1e-11);
+      EXPECT_NEAR(a.v[0][i], b.v[0][i], 1e-11);
+    }
+    auto ch = b.spans();
+    fused.predict(ch, dt);
+    EXPECT_THROW(fused.correct(ch, dt), std::logic_error);
+    EXPECT_THROW(fused.correct_range(ch, 0, 1), std::logic_error);
+    // back to the own correction: the half-step history is there again
+    ASSERT_TRUE(fused.fuse_kick(false, form));
+    fused.predict(ch, dt);
+    b.forces();
+    EXPECT_NO_THROW(fused.correct(ch, dt));
   }
 }
 

@@ -1,0 +1,128 @@
+// velocity Verlet's kick inside the acceleration pass (Simulation::set_kick_fusion): on for
+// disks with velocity Verlet only, and the same dynamics as the integrator's own correct()
+// up to round-off, in 2D (with noise and contacts), on the 1D ring (its noise's mean removed
+// in a second pass) and across a switch in the middle of a run
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "scene/parse.hpp"
+#include "test_world.hpp"
+
+namespace gs {
+namespace {
+
+Simulation make_sim(const SceneSpec& s) {
+  World w = make_world(s);
+  place_particles(w);
+  return Simulation(std::move(w));
+}
+
+// a randomly forced periodic gas dense enough that ≈ 1% of the disks touch at any time
+SceneSpec gas(IntegratorKind kind = IntegratorKind::VelocityVerlet) {
+  SceneSpec s = build::disk_gas(2000, 0.45, 0.6, 0.6, 3);
+  s.drive.kind = DriveKind::RandomForce;
+  s.drive.D = 1e-7;
+  s.integrator.kind = kind;
+  return s;
+}
+
+// the 1D ring of the thesis, 200 rods
+SceneSpec ring() {
+  return parse_scene_file(std::string(GS_SOURCE_DIR) + "/scenes/rfm1d_reference.toml",
+                          {"species[0].count=200"});
+}
+
+// largest difference of positions (relative to the box) and velocities (relative to the
+// largest speed) between two runs of the same particles
+double max_difference(const World& a, const World& b) {
+  double vmax = 0.0, dx = 0.0, dv = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    vmax = std::max(vmax, std::hypot(a.s.vx[i], a.s.vy[i]));
+    dx = std::max({dx, std::abs(a.s.x[i] - b.s.x[i]), std::abs(a.s.y[i] - b.s.y[i])});
+    dv = std::max({dv, std::abs(a.s.vx[i] - b.s.vx[i]), std::abs(a.s.vy[i] - b.s.vy[i])});
+  }
+  return std::max(dx / a.Lx, dv / vmax);
+}
+
+TEST(KickFusion, OnForDisksWithVelocityVerletOnly) {
+  EXPECT_TRUE(make_sim(gas()).kick_fused());
+  EXPECT_TRUE(make_sim(ring()).kick_fused());
+  EXPECT_FALSE(make_sim(gas(IntegratorKind::Gear6)).kick_fused());
+  EXPECT_FALSE(make_sim(gas(IntegratorKind::PositionVerlet)).kick_fused());
+  SceneSpec pile = build::decagon_pile(40, 0.2, 0.4, 1);
+  pile.integrator.kind = IntegratorKind::VelocityVerlet;
+  EXPECT_FALSE(make_sim(pile).kick_fused());  // polygons: the integrator's own correct()
+  Simulation s = make_sim(gas());
+  s.set_kick_fusion(false);
+  EXPECT_FALSE(s.kick_fused());
+}
+
+// the fused kick v̂ + (a_{n+1} − a_n)·Δt/2 is v_{n+½} + a_{n+1}·Δt/2 in exact arithmetic; the
+// runs differ by round-off (≈ 1e-16 per step), which the contacts amplify over the run: after
+// 600 steps, with ≈ 20 contacts at any time, the measured difference is ≈ 1e-14; 1e-9
+// leaves room for another platform's rounding and still fails for any real error (a kick with
+// the wrong a_n, or a missing half kick, changes velocities by a_n·Δt/2: ~1e-4 of the speed)
+TEST(KickFusion, FollowsTheIntegratorsOwnCorrection) {
+  Simulation fused = make_sim(gas());
+  Simulation own = make_sim(gas());
+  own.set_kick_fusion(false);
+  ASSERT_TRUE(fused.kick_fused());
+  std::size_t contacts = 0;
+  for (int k = 0; k < 600; ++k) {
+    fused.step();
+    own.step();
+    contacts += fused.contacts().keys.size();
+  }
+  EXPECT_GT(contacts, 600u * 10);  // the contacts were there to amplify differences
+  const double d = max_difference(fused.world(), own.world());
+  std::printf("[ gas ] fused against own correct(): max relative difference %.3e\n", d);
+  EXPECT_LT(d, 1e-9);
+  EXPECT_GT(d, 0.0);  // round-off differs: the two paths really were different code
+}
+
+// the ring: the noise's mean momentum is removed in a second pass, where the kick is applied
+TEST(KickFusion, RingWithSymmetrisedNoiseFollowsTheOwnCorrection) {
+  Simulation fused = make_sim(ring());
+  Simulation own = make_sim(ring());
+  own.set_kick_fusion(false);
+  auto momentum = [](const World& w) {
+    double p = 0.0;
+    for (std::size_t i = 0; i < w.size(); ++i) p += w.mass[i] * w.s.vx[i];
+    return p;
+  };
+  const double p0 = momentum(fused.world());
+  for (int k = 0; k < 2000; ++k) {
+    fused.step();
+    own.step();
+  }
+  const double d = max_difference(fused.world(), own.world());
+  std::printf("[ ring ] fused against own correct(): max relative difference %.3e, momentum "
+              "change %.3e\n", d, momentum(fused.world()) - p0);
+  EXPECT_LT(d, 1e-9);
+  // the symmetrised noise and the contacts conserve momentum (T.2.18) in the fused path too:
+  // the change stays at the round-off of sums of 200 momenta ≲ 4e-6 kg·m/s (≈ 1e-21 per step),
+  // where unsymmetrised kicks would have moved it by ≈ 1e-4 kg·m/s
+  EXPECT_LT(std::abs(momentum(fused.world()) - p0), 1e-15);
+}
+
+// switching between steps: on → off (v_{n+½} history allocated) → on, the same dynamics
+TEST(KickFusion, SwitchesBetweenSteps) {
+  Simulation a = make_sim(gas());
+  Simulation b = make_sim(gas());
+  a.run(200);
+  b.run(200);
+  b.set_kick_fusion(false);
+  a.run(200);
+  b.run(200);
+  b.set_kick_fusion(true);
+  a.run(200);
+  b.run(200);
+  EXPECT_TRUE(b.kick_fused());
+  EXPECT_LT(max_difference(a.world(), b.world()), 1e-9);
+}
+
+}  // namespace
+}  // namespace gs
