@@ -30,7 +30,7 @@ export GS_BENCH_RESULTS=$out/results.txt
 
 if [ "$quick" = 1 ]; then mt=0.1; mt_scan=0.2; else mt=1; mt_scan=1; fi
 gbench() {  # JSON FILTER THREADS MIN_TIME: console table to stdout, JSON to $out
-  OMP_NUM_THREADS=$3 ${pin_cmd:-} "$bin" --benchmark_min_time="$4" --benchmark_filter="$2" \
+  OMP_NUM_THREADS=$3 ${pin_cmd:-} "$bin" --benchmark_min_time="$4" --benchmark_filter="$2" ${gb_extra:-} \
     --benchmark_out="$out/$1" --benchmark_out_format=json 2>/dev/null || echo "($1: gransim_bench failed)"
 }
 echo "== kernels and whole steps (Google Benchmark; 1 thread) =="
@@ -45,7 +45,10 @@ if command -v taskset >/dev/null; then
   cpu=$(taskset -pc $$ 2>/dev/null | sed 's/.*: //; s/[,-].*//')
   [ -n "$cpu" ] && pin=(taskset -c "$cpu")
 fi
-pin_cmd="${pin[*]}" gbench gb_scaling.json 'FluidCostScaling|FluidMixedOrder|SortParticles' 1 "$mt_scan"
+# and five repetitions of each size, interleaved at random, so that a slow spell of the host
+# falls on every size alike; summary.py gives the ratio of the medians (and of the minima)
+pin_cmd="${pin[*]}" gb_extra="--benchmark_repetitions=5 --benchmark_enable_random_interleaving=true" \
+  gbench gb_scaling.json 'FluidCostScaling|FluidMixedOrder|SortParticles' 1 "$mt_scan"
 echo "== gransim vs LAMMPS =="
 bench/compare_lammps.sh
 echo "== seconds per tap; MPI sweep =="
