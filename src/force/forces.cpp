@@ -218,45 +218,6 @@ bool ContactModel::polygon_pair(const World& w, PairKey key, const ContactSet& c
   return true;
 }
 
-// the candidates that disk_pair may find touching, in order, into sel_: disk pairs by the
-// very test of disk_disk (same expressions, so the same decisions), wall pairs all
-std::size_t ContactModel::select_disk_pairs(const World& w, const std::vector<PairKey>& cand,
-                                            std::size_t k0, std::size_t k1) {
-  const auto N = static_cast<std::uint32_t>(w.size());
-  const double* x = w.s.x.data();
-  const double* y = w.s.y.data();
-  const double* r = w.radius.data();
-  sel_.resize(k1 - k0);
-  std::uint32_t* sel = sel_.data();
-  std::size_t m = 0;
-  if (w.box == BoxKind::Ring1D) {
-    // the ring: no walls, every y is 0 and no image is shifted in y, so d.y is exactly 0 and
-    // d.x alone gives disk_disk's decision (norm2(d) = d.x² + 0 to the last bit)
-    for (std::size_t k = k0; k < k1; ++k) {
-      const PairKey key = cand[k];
-      const std::uint32_t i = key_i(key), j = key_j(key);
-      const double dx = x[j] + image_sx(key_image(key)) * w.Lx - x[i];
-      const double dist2 = dx * dx, rr = r[i] + r[j];
-      sel[m] = static_cast<std::uint32_t>(k);
-      m += static_cast<std::size_t>(!((dist2 >= rr * rr) | (dist2 == 0.0)));
-    }
-    return m;
-  }
-  for (std::size_t k = k0; k < k1; ++k) {
-    const PairKey key = cand[k];
-    const std::uint32_t i = key_i(key), j = key_j(key);
-    const bool wall = j >= N;
-    const std::uint32_t jj = wall ? i : j;  // a wall's index is no particle: read i instead
-    const std::uint32_t image = key_image(key);
-    const Vec2 d = Vec2{x[jj] + image_sx(image) * w.Lx, y[jj] + image_sy(image) * w.Ly} -
-                   Vec2{x[i], y[i]};
-    const double dist2 = norm2(d), rr = r[i] + r[jj];
-    sel[m] = static_cast<std::uint32_t>(k);
-    m += static_cast<std::size_t>(wall | !((dist2 >= rr * rr) | (dist2 == 0.0)));
-  }
-  return m;
-}
-
 // Below the thresholds a plain loop over the candidates sums each pair's force into its two
 // particles as it goes. Above them: pairs in parallel into per-candidate slots → touching ones
 // compacted into the contact set in fixed blocks → each particle's forces summed over its own
@@ -374,6 +335,7 @@ ForceStats ContactModel::evaluate_serial(const World& w, const std::vector<PairK
       for (std::size_t k0 = 0; k0 < cand.size(); k0 += kSelectBlock) {
         const std::size_t k1 = std::min(cand.size(), k0 + kSelectBlock);
         const std::size_t m = select_disk_pairs(w, cand, k0, k1);
+        prefetch_disk_pairs(w, cand, m, f);
         run(m, [&](std::size_t q) { return cand[sel_[q]]; },
             [&](PairKey key) { return disk_pair(w, key, pf, r); });
       }

@@ -117,6 +117,8 @@ class ContactModel {
   std::vector<std::uint32_t> sel_;   ///< serial disk loop: the candidates that may touch
   std::size_t select_disk_pairs(const World& w, const std::vector<PairKey>& cand, std::size_t k0,
                                 std::size_t k1);
+  void prefetch_disk_pairs(const World& w, const std::vector<PairKey>& cand, std::size_t m,
+                           const ForceBuffer& f) const;
   std::vector<PairForce> pair_f_;    ///< per candidate (touching ones only written)
   std::vector<PairResult> pair_r_;   ///< per candidate (touching ones only written)
   // per-particle index: entries (k << 1 | side) of the candidates naming each particle, side 0

@@ -1,0 +1,65 @@
+// the serial disk loop's pass before the pairs (ContactModel::evaluate_serial): which
+// candidates may touch, and the lines their evaluation will need
+#include "force/forces.hpp"
+
+namespace gs {
+
+// the candidates that disk_pair may find touching, in order, into sel_: disk pairs by the
+// very test of disk_disk (same expressions, so the same decisions), wall pairs all
+std::size_t ContactModel::select_disk_pairs(const World& w, const std::vector<PairKey>& cand,
+                                            std::size_t k0, std::size_t k1) {
+  const auto N = static_cast<std::uint32_t>(w.size());
+  const double* x = w.s.x.data();
+  const double* y = w.s.y.data();
+  const double* r = w.radius.data();
+  sel_.resize(k1 - k0);
+  std::uint32_t* sel = sel_.data();
+  std::size_t m = 0;
+  if (w.box == BoxKind::Ring1D) {
+    // the ring: no walls, every y is 0 and no image is shifted in y, so d.y is exactly 0 and
+    // d.x alone gives disk_disk's decision (norm2(d) = d.x² + 0 to the last bit)
+    for (std::size_t k = k0; k < k1; ++k) {
+      const PairKey key = cand[k];
+      const std::uint32_t i = key_i(key), j = key_j(key);
+      const double dx = x[j] + image_sx(key_image(key)) * w.Lx - x[i];
+      const double dist2 = dx * dx, rr = r[i] + r[j];
+      sel[m] = static_cast<std::uint32_t>(k);
+      m += static_cast<std::size_t>(!((dist2 >= rr * rr) | (dist2 == 0.0)));
+    }
+    return m;
+  }
+  for (std::size_t k = k0; k < k1; ++k) {
+    const PairKey key = cand[k];
+    const std::uint32_t i = key_i(key), j = key_j(key);
+    const bool wall = j >= N;
+    const std::uint32_t jj = wall ? i : j;  // a wall's index is no particle: read i instead
+    const std::uint32_t image = key_image(key);
+    const Vec2 d = Vec2{x[jj] + image_sx(image) * w.Lx, y[jj] + image_sy(image) * w.Ly} -
+                   Vec2{x[i], y[i]};
+    const double dist2 = norm2(d), rr = r[i] + r[jj];
+    sel[m] = static_cast<std::uint32_t>(k);
+    m += static_cast<std::size_t>(wall | !((dist2 >= rr * rr) | (dist2 == 0.0)));
+  }
+  return m;
+}
+
+// the lines that disk_pair and the force sum touch beyond x, y and r (which the selection has
+// just read), for the block's m selected pairs: in a large dilute box they lie far apart and
+// each is a cache miss, so the misses overlap instead of coming one after another
+void ContactModel::prefetch_disk_pairs(const World& w, const std::vector<PairKey>& cand,
+                                       std::size_t m, const ForceBuffer& f) const {
+  const auto N = static_cast<std::uint32_t>(w.size());
+  for (std::size_t q = 0; q < m; ++q) {
+    const PairKey key = cand[sel_[q]];
+    for (const std::uint32_t p : {key_i(key), key_j(key)}) {
+      if (p >= N) continue;  // a wall
+      __builtin_prefetch(&w.s.vx[p]);
+      __builtin_prefetch(&w.s.vy[p]);
+      __builtin_prefetch(&w.sp[p]);
+      __builtin_prefetch(&f.fx[p], 1);
+      __builtin_prefetch(&f.fy[p], 1);
+    }
+  }
+}
+
+}  // namespace gs
