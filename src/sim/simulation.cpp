@@ -82,8 +82,8 @@ struct AccelArrays {
   const double *fx, *fy, *tq, *inv_mass, *inv_inertia, *mass;
   const std::uint64_t* keys;
   double *ax, *ay, *aw;
-  double *vx, *vy;       ///< the kick's velocities (fused)
-  double c_new, c_old;   ///< the kick v += c_new·a_{n+1} − c_old·a_n, s (fused)
+  double *vx, *vy;      ///< the kick's velocities (fused)
+  double c_new, c_old;  ///< the kick v += c_new·a_{n+1} − c_old·a_n, s (fused)
   Vec2 g;
   double sigma;
   std::int64_t index;
@@ -129,17 +129,17 @@ double accelerate(const AccelArrays& a, std::size_t b, std::size_t e) {
 // the integrator's kick v += c_new·a_new − c_old·a_old, then a ← a_new, over one channel's
 // [0, m) (vectorises)
 void kick_block(std::size_t m, double c_new, double c_old, const double* __restrict an,
-          double* __restrict a, double* __restrict v) {
+                double* __restrict a, double* __restrict v) {
   for (std::size_t k = 0; k < m; ++k) {
     v[k] = v[k] + an[k] * c_new - a[k] * c_old;
     a[k] = an[k];
   }
 }
 
-// 2D disks with the fused kick: the accelerations of a block into a buffer that stays in the
-// L1 cache, then the kick over the block, which still sees a_n (the noise loop is scalar and
-// full of rare branches; the kick inside it cost 13% more than this at 10⁴ disks)
-template <bool kNoise>
+// disks with the fused kick: the accelerations of a block into a buffer that stays in the L1
+// cache, then the kick over the block, which still sees a_n (the noise loop is scalar and full
+// of rare branches; the kick inside it cost 13% more than this at 10⁴ disks)
+template <bool kNoise, bool kRing>
 void accelerate_kick(const AccelArrays& a, std::size_t b, std::size_t e) {
   constexpr std::size_t kBlock = 256;
   alignas(64) double bx[kBlock], by[kBlock];
@@ -151,10 +151,11 @@ void accelerate_kick(const AccelArrays& a, std::size_t b, std::size_t e) {
     to.fx = a.fx + k;
     to.fy = a.fy + k;
     to.inv_mass = a.inv_mass + k;
+    to.mass = a.mass + k;
     if (kNoise) to.keys = a.keys + k;
-    accelerate<kNoise, false, false>(to, 0, m);
+    accelerate<kNoise, kRing, false>(to, 0, m);
     kick_block(m, a.c_new, a.c_old, bx, a.ax + k, a.vx + k);
-    kick_block(m, a.c_new, a.c_old, by, a.ay + k, a.vy + k);
+    if (!kRing) kick_block(m, a.c_new, a.c_old, by, a.ay + k, a.vy + k);
   }
 }
 
@@ -237,8 +238,8 @@ void Simulation::compute_accelerations(std::int64_t index, std::span<const Chann
       if (!correct.empty() && !kick) integ_->correct(correct, dt_);
     } else {
       auto after = [&](std::size_t b, std::size_t e) {
-        if constexpr (!kSp && !kRg) {
-          if (kick) return accelerate_kick<kNz>(a, b, e);
+        if constexpr (!kSp) {
+          if (kick) return accelerate_kick<kNz, kRg>(a, b, e);
         }
         accelerate<kNz, kRg, kSp>(a, b, e);
         if (!correct.empty()) integ_->correct_range(correct, b, e);
