@@ -6,8 +6,11 @@
 // slots, combined in a fixed order).
 #pragma once
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace gs {
@@ -31,6 +34,7 @@ class RangeBalancer {
       for (std::size_t k = 0; k <= t; ++k)
         cut_[k] = static_cast<double>(n) * static_cast<double>(k) / static_cast<double>(t);
       time_.assign(t * kPad, 0.0);
+      done_.assign(t * kPad, kAll);
     }
     n_ = n;
     bound_.assign(t + 1, 0);
@@ -42,7 +46,12 @@ class RangeBalancer {
   std::size_t begin(int t) const { return bound_[static_cast<std::size_t>(t)]; }
   std::size_t end(int t) const { return bound_[static_cast<std::size_t>(t) + 1]; }
   /// thread t's seconds for its range this step (each thread writes its own, padded, slot)
-  void record(int t, double seconds) { time_[static_cast<std::size_t>(t) * kPad] = seconds; }
+  void record(int t, double seconds) { record(t, seconds, kAll); }
+  /// the same for the first `done` items of its range only (others took the rest: StealRanges)
+  void record(int t, double seconds, std::size_t done) {
+    time_[static_cast<std::size_t>(t) * kPad] = seconds;
+    done_[static_cast<std::size_t>(t) * kPad] = done;
+  }
 
   /// after the loop: move each split point half way towards where the measured costs (each
   /// range's seconds spread evenly over its items) would put equal shares. Half steps damp the
@@ -50,16 +59,30 @@ class RangeBalancer {
   void update() {
     const std::size_t nt = threads();
     if (nt < 2 || n_ == 0) return;
-    double total = 0.0;
-    for (std::size_t t = 0; t < nt; ++t) total += time_[t * kPad];
-    if (!(total > 0.0) || !std::isfinite(total)) return;
-    // cost density of each current range (an empty range gets the mean density)
+    // cost density of each current range: its seconds over the items it ran (an empty range,
+    // or one whose items all went to other threads, gets the mean density of the rest)
     std::vector<double>& dens = dens_;
-    dens.resize(nt);
+    dens.assign(nt, -1.0);
+    double t_sum = 0.0, i_sum = 0.0;
     for (std::size_t t = 0; t < nt; ++t) {
       const double len = cut_[t + 1] - cut_[t];
-      dens[t] = len > 0.5 ? time_[t * kPad] / len : total / static_cast<double>(n_);
+      const std::size_t d = done_[t * kPad];
+      const double items = d == kAll ? len : static_cast<double>(d);
+      const double sec = time_[t * kPad];
+      if (!(sec >= 0.0) || !std::isfinite(sec)) return;
+      if (items > 0.5) {
+        dens[t] = sec / items;
+        t_sum += sec;
+        i_sum += items;
+      }
     }
+    if (!(t_sum > 0.0) || !(i_sum > 0.0)) return;
+    double total = 0.0;  // the whole loop's cost at these densities
+    for (std::size_t t = 0; t < nt; ++t) {
+      if (dens[t] < 0.0) dens[t] = t_sum / i_sum;
+      total += dens[t] * (cut_[t + 1] - cut_[t]);
+    }
+    if (!(total > 0.0) || !std::isfinite(total)) return;
     // the ideal split points: the cumulative cost at each reaches k/nt of the total
     std::vector<double>& ideal = ideal_;
     ideal.assign(nt + 1, 0.0);
@@ -84,11 +107,79 @@ class RangeBalancer {
 
  private:
   static constexpr std::size_t kPad = 8;  // one 64-byte line per thread's timing
+  static constexpr std::size_t kAll = static_cast<std::size_t>(-1);  // done: the whole range
   std::size_t n_ = 0;
   std::vector<double> cut_;        ///< split points as reals (the smoothing's state)
   std::vector<std::size_t> bound_; ///< split points rounded: thread t runs [bound_[t], bound_[t+1])
   std::vector<double> time_;
+  std::vector<std::size_t> done_;  ///< items each range ran itself (kAll: all of them)
   std::vector<double> dens_, ideal_;  ///< update()'s scratch, kept (it runs every step)
+};
+
+/// each thread's range of a loop's items, taken from the front by its owner and, once a
+/// thread has run out, one by one from the back of another's: the step-to-step jitter of a
+/// shared host (a range planned by the last step's times finishing 5% late) is absorbed
+/// instead of waited for. Only for loops whose items write per-item slots (which thread runs
+/// an item changes nothing). Front and back share one atomic word, so an item is taken once.
+class StealRanges {
+ public:
+  /// before the parallel region: nt ranges, all empty
+  void reset(std::size_t nt) {
+    if (nt != n_) {
+      slots_ = std::make_unique<Slot[]>(nt);
+      n_ = nt;
+    }
+    for (std::size_t t = 0; t < nt; ++t) slots_[t].w.store(0, std::memory_order_relaxed);
+  }
+  std::size_t ranges() const { return n_; }
+  /// thread t's range [b, e) (before any take)
+  void set(std::size_t t, std::size_t b, std::size_t e) {
+    slots_[t].w.store(pack(b, std::max(b, e)), std::memory_order_relaxed);
+  }
+  /// the owner's next items [first, first + count): a quarter of what is left, 1 … `batch`
+  /// (few atomic operations while the range is long, single items near its end); false when
+  /// nothing is left
+  bool take_front(std::size_t t, std::size_t batch, std::size_t& first, std::size_t& count) {
+    std::atomic<std::uint64_t>& a = slots_[t].w;
+    std::uint64_t w = a.load(std::memory_order_relaxed);
+    for (;;) {
+      const std::size_t f = front(w), b = back(w);
+      if (f >= b) return false;
+      const std::size_t c = std::clamp<std::size_t>((b - f) / 4, 1, batch);
+      if (a.compare_exchange_weak(w, pack(f + c, b), std::memory_order_acq_rel,
+                                  std::memory_order_relaxed)) {
+        first = f;
+        count = c;
+        return true;
+      }
+    }
+  }
+  /// one item from the back of thread v's range; false when it is empty
+  bool take_back(std::size_t v, std::size_t& item) {
+    std::atomic<std::uint64_t>& a = slots_[v].w;
+    std::uint64_t w = a.load(std::memory_order_relaxed);
+    for (;;) {
+      const std::size_t f = front(w), b = back(w);
+      if (f >= b) return false;
+      if (a.compare_exchange_weak(w, pack(f, b - 1), std::memory_order_acq_rel,
+                                  std::memory_order_relaxed)) {
+        item = b - 1;
+        return true;
+      }
+    }
+  }
+
+ private:
+  struct alignas(64) Slot {
+    std::atomic<std::uint64_t> w{0};
+  };
+  static std::uint64_t pack(std::size_t f, std::size_t b) {
+    return (static_cast<std::uint64_t>(f) << 32) | static_cast<std::uint32_t>(b);
+  }
+  static std::size_t front(std::uint64_t w) { return static_cast<std::size_t>(w >> 32); }
+  static std::size_t back(std::uint64_t w) { return static_cast<std::size_t>(w & 0xffffffffu); }
+  std::unique_ptr<Slot[]> slots_;
+  std::size_t n_ = 0;
 };
 
 }  // namespace gs

@@ -400,6 +400,9 @@ ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<Pai
   chunk_first_.resize(nchunks);
   chunk_stats_.assign(nchunks, {});
   balance_.plan(nchunks, max_team_size());
+  steal_.reset(balance_.threads());
+  for (std::size_t t = 0; t < balance_.threads(); ++t)
+    steal_.set(t, balance_.begin(static_cast<int>(t)), balance_.end(static_cast<int>(t)));
   p_items_.assign(balance_.threads(), 0.0);
   p_seconds_.assign(balance_.threads(), 0.0);
   bool balanced = true;  // did the team have the planned size (else: equal ranges, no timing)
@@ -438,8 +441,7 @@ ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<Pai
     const ItemRange equal = thread_share(nchunks, tid, nt);
     const std::size_t c_begin = planned ? balance_.begin(tid) : equal.begin;
     const std::size_t c_end = planned ? balance_.end(tid) : equal.end;
-    const double t_start = wall_seconds();
-    for (std::size_t c = c_begin; c < c_end; ++c) {
+    auto run_chunk = [&](std::size_t c) {
       const std::size_t k0 = c * chunk, k1 = std::min(ncand, k0 + chunk);
       std::size_t hint = 0, touching = 0;
       for (std::size_t k = k0; k < k1; ++k) {
@@ -449,8 +451,25 @@ ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<Pai
         touching += t;
       }
       chunk_first_[c] = touching;
+    };
+    const double t_start = wall_seconds();
+    if (planned) {
+      // its own range from the front (timed for the balancer), then other threads' leftovers
+      // from their backs
+      std::size_t first = 0, count = 0, own = 0;
+      const auto t = static_cast<std::size_t>(tid);
+      while (steal_.take_front(t, 8, first, count)) {
+        for (std::size_t c = first; c < first + count; ++c) run_chunk(c);
+        own += count;
+      }
+      balance_.record(tid, wall_seconds() - t_start, own);
+      for (std::size_t k = 1; k < static_cast<std::size_t>(nt); ++k) {
+        std::size_t c = 0;
+        while (steal_.take_back((t + k) % static_cast<std::size_t>(nt), c)) run_chunk(c);
+      }
+    } else {
+      for (std::size_t c = c_begin; c < c_end; ++c) run_chunk(c);
     }
-    if (planned) balance_.record(tid, wall_seconds() - t_start);
     if (tid == 0) balanced = planned;  // the same for every thread: one writes it
 #pragma omp barrier
 #pragma omp single

@@ -130,6 +130,7 @@ class ContactModel {
   std::vector<std::size_t> chunk_first_;  ///< parallel loop: first contact-set slot of each chunk
   std::vector<ForceStats> chunk_stats_;
   RangeBalancer balance_;  ///< parallel loop: each thread's range of chunks
+  StealRanges steal_;      ///< parallel loop: the chunks still to run, per thread
   RangeBalancer place_balance_;  ///< parallel loop, polygons: each thread's grains to place
   std::vector<PairKey> new_keys_;
   std::vector<ContactState> new_state_;

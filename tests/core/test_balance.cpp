@@ -2,8 +2,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <functional>
+#include <thread>
 #include <vector>
 
 #include "core/balance.hpp"
@@ -197,6 +199,68 @@ TEST(ThreadSpeeds, JitterDoesNotMoveTheSplitAndBadTimingsAreIgnored) {
   EXPECT_LE(slow.end - slow.begin, 140u);
   sp.reset();
   EXPECT_EQ(thread_share(1000, 0, 2).end, 500u);
+}
+
+// a range partly run by another thread (StealRanges): its density is its seconds over the
+// items it ran itself. Two threads, 1000 items of equal cost, split 500/500; in the same second
+// thread 0 ran its 500 (and helped), thread 1 only 250: densities 0.002 and 0.004 s per item
+// over the current ranges, total cost 3 s, equal shares at 1.5 s → split at 500 + 0.5/0.004 =
+// 625; the split moves a quarter of the way (500 → 531.25). Counting thread 1's whole range as
+// run would have given it density 0.002 and left the split at 500
+TEST(RangeBalancer, PartlyStolenRangeCountsTheItemsItRan) {
+  RangeBalancer b;
+  b.plan(1000, 2);
+  b.record(0, 1.0, 500);
+  b.record(1, 1.0, 250);
+  b.update();
+  expect_tiling(b, 1000);
+  EXPECT_EQ(b.end(0), 531u);
+  // a range whose items all went elsewhere gets the other's density: no move
+  RangeBalancer c;
+  c.plan(1000, 2);
+  c.record(0, 1.0, 500);
+  c.record(1, 0.0, 0);
+  c.update();
+  EXPECT_EQ(c.end(0), 500u);
+}
+
+// every item of every range is taken exactly once, by its owner from the front or by another
+// thread from the back, while both run at the same time
+TEST(StealRanges, EveryItemOnceUnderContention) {
+  constexpr std::size_t kN = 200000;
+  for (int round = 0; round < 5; ++round) {
+    StealRanges r;
+    r.reset(2);
+    r.set(0, 0, 150000);  // thread 0's range is 3× thread 1's: thread 1 will steal
+    r.set(1, 150000, kN);
+    std::vector<std::atomic<int>> hits(kN);
+    for (auto& h : hits) h.store(0);
+    std::atomic<std::size_t> stolen{0};
+    auto work = [&](std::size_t t) {
+      std::size_t first = 0, count = 0;
+      while (r.take_front(t, 8, first, count)) {
+        EXPECT_LE(count, 8u);
+        for (std::size_t i = first; i < first + count; ++i) hits[i].fetch_add(1);
+      }
+      std::size_t item = 0;
+      while (r.take_back(1 - t, item)) {
+        hits[item].fetch_add(1);
+        stolen.fetch_add(1);
+      }
+    };
+    std::thread a(work, 0), b(work, 1);
+    a.join();
+    b.join();
+    for (std::size_t i = 0; i < kN; ++i) ASSERT_EQ(hits[i].load(), 1) << "item " << i;
+    EXPECT_GT(stolen.load(), 0u) << "round " << round;  // the short range's thread helped
+  }
+  // an empty range gives nothing; a range set empty (e < b) too
+  StealRanges r;
+  r.reset(1);
+  r.set(0, 5, 3);
+  std::size_t f = 0, c = 0;
+  EXPECT_FALSE(r.take_front(0, 8, f, c));
+  EXPECT_FALSE(r.take_back(0, f));
 }
 
 }  // namespace
