@@ -436,7 +436,9 @@ ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<Pai
     // those of the particles it placed, and its slots stay in its own cache from step to step.
     // (Chunks handed out dynamically made a 2-thread pile step slower than one thread on a VM
     // whose cores exchange a cache line in ~230 ns: docs/threads.md.) The split points follow
-    // the measured cost (RangeBalancer): where the grains touch more, a chunk costs more.
+    // the measured cost (RangeBalancer): where the grains touch more, a chunk costs more. What
+    // the last step's times cannot foresee (the host's jitter) a thread that is done first
+    // takes over from the back of the other's range, chunk by chunk (StealRanges).
     const bool planned = static_cast<std::size_t>(nt) == balance_.threads();
     const ItemRange equal = thread_share(nchunks, tid, nt);
     const std::size_t c_begin = planned ? balance_.begin(tid) : equal.begin;
