@@ -26,38 +26,25 @@ void take(const std::vector<double>& in, std::size_t& off, const ChannelLayout& 
   }
 }
 // the velocity Verlet loops over particles [b, e) of one channel, on distinct arrays
-// (restrict: they vectorise without run-time overlap checks)
+// (restrict: they vectorise without run-time overlap checks); kKeep: store v_{n+½} in vh for
+// correct() (not when the caller applies the kick itself: fuse_kick)
+template <bool kKeep>
 void vv_predict(std::size_t b, std::size_t e, double dt, bool half, const double* __restrict a,
                 double* __restrict vh, double* __restrict q, double* __restrict v) {
   // kick half a step with a_n, drift a full step; the velocity the forces see: v_{n+½}
   // (error O(Δt)) or v_n + a_n·Δt (error O(Δt²))
   if (half) {
     for (std::size_t i = b; i < e; ++i) {
-      vh[i] = v[i] + a[i] * dt / 2.0;
-      q[i] += vh[i] * dt;
-      v[i] = vh[i];
+      const double h = v[i] + a[i] * dt / 2.0;
+      if constexpr (kKeep) vh[i] = h;
+      q[i] += h * dt;
+      v[i] = h;
     }
   } else {
     for (std::size_t i = b; i < e; ++i) {
-      vh[i] = v[i] + a[i] * dt / 2.0;
-      q[i] += vh[i] * dt;
-      v[i] = v[i] + a[i] * dt;
-    }
-  }
-}
-// the same step for a caller that applies the kick itself (no v_{n+½} stored)
-void vv_predict_kicked(std::size_t b, std::size_t e, double dt, bool half,
-                       const double* __restrict a, double* __restrict q, double* __restrict v) {
-  if (half) {
-    for (std::size_t i = b; i < e; ++i) {
-      const double vh = v[i] + a[i] * dt / 2.0;
-      q[i] += vh * dt;
-      v[i] = vh;
-    }
-  } else {
-    for (std::size_t i = b; i < e; ++i) {
-      const double vh = v[i] + a[i] * dt / 2.0;
-      q[i] += vh * dt;
+      const double h = v[i] + a[i] * dt / 2.0;
+      if constexpr (kKeep) vh[i] = h;
+      q[i] += h * dt;
       v[i] = v[i] + a[i] * dt;
     }
   }
@@ -100,8 +87,9 @@ void VelocityVerlet::predict(std::span<const Channel> ch, double dt) {
   dt_ = dt;
   const bool half = fv_ == VerletForceVelocity::HalfStep;
   for_channels(ch, kParallelMinCheap, [&](std::size_t c, std::size_t b, std::size_t e) {
-    if (fused_) vv_predict_kicked(b, e, dt, half, ch[c].a.data(), ch[c].q.data(), ch[c].v.data());
-    else vv_predict(b, e, dt, half, ch[c].a.data(), vh_[c].data(), ch[c].q.data(), ch[c].v.data());
+    const double* a = ch[c].a.data();
+    if (fused_) vv_predict<false>(b, e, dt, half, a, nullptr, ch[c].q.data(), ch[c].v.data());
+    else vv_predict<true>(b, e, dt, half, a, vh_[c].data(), ch[c].q.data(), ch[c].v.data());
   });
 }
 

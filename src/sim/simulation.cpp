@@ -62,7 +62,8 @@ double Simulation::mechanical_energy() const {
 // disks (x and y channels; polygons keep correct()): the integrator's kick, where it has one,
 // inside the acceleration pass
 void Simulation::set_kick_fusion(bool on) {
-  fused_ = integ_->fuse_kick(on && !w_.polygons(), kick_form_) && on && !w_.polygons();
+  const bool want = on && !w_.polygons();
+  fused_ = integ_->fuse_kick(want, kick_form_) && want;
 }
 
 bool Simulation::driven() const { return w_.scene.drive.kind != DriveKind::None; }
