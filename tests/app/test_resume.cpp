@@ -167,13 +167,17 @@ INSTANTIATE_TEST_SUITE_P(Scenes, KillResume,
                          [](const auto& info) { return info.param.label; });
 
 // SIGINT: the step finishes, a checkpoint is written, exit code 4 with the resume command
+// the signal goes at a fraction of the uninterrupted run's wall time (a fixed moment fails
+// once the run gets faster than it: this pile's 3 taps take ≈ 2.3 s on a fast host)
 TEST(Resume, SigintCheckpointsAndSaysHowToResume) {
   const fs::path tmp = fresh("sigint");
   const auto args = with_out(kTapping, tmp / "ref");
+  const auto t0 = std::chrono::steady_clock::now();
   ASSERT_EQ(run_binary(args, tmp / "ref.log").code, 0);
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   Launch stop;
   stop.signal = SIGINT;
-  stop.signal_after_s = 2.0;
+  stop.signal_after_s = 0.6 * wall;
   const Outcome o = run_binary(with_out(kTapping, tmp / "run"), tmp / "run.log", stop);
   ASSERT_TRUE(o.exited);
   ASSERT_EQ(o.code, 4) << o.output;
@@ -203,10 +207,12 @@ TEST(Resume, SigintCheckpointsAndSaysHowToResume) {
 // the one before, and still ends bitwise equal
 TEST(Resume, DamagedNewestCheckpointFallsBackToThePreviousOne) {
   const fs::path tmp = fresh("damaged");
+  const auto t0 = std::chrono::steady_clock::now();
   ASSERT_EQ(run_binary(with_out(kTapping, tmp / "ref"), tmp / "ref.log").code, 0);
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   Launch stop;
   stop.signal = SIGINT;
-  stop.signal_after_s = 2.5;
+  stop.signal_after_s = 0.75 * wall;  // after the run's first checkpoints
   ASSERT_EQ(run_binary(with_out(kTapping, tmp / "run"), tmp / "run.log", stop).code, 4);
   std::vector<fs::path> cks;
   for (const auto& e : fs::directory_iterator(tmp / "run"))
