@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <memory>
 #include <mutex>
 #include <stdexcept>
 #include <string>
@@ -26,18 +25,6 @@ test::OscillatorSystem three_channels() {
   s.add(2.5, 0.0, {0.2, 0.7}, {-1.0, 0.0});   // y
   s.add(0.7, 0.1, {3.0, -1.5}, {0.0, 0.25});  // θ
   return s;
-}
-
-// two integrators of one kind on two copies of one system, both started
-struct Twins {
-  std::unique_ptr<Integrator> I, J;
-  test::OscillatorSystem s, r;
-};
-Twins twins(IntegratorKind kind, const test::OscillatorSystem& sys, double dt) {
-  Twins t{make_integrator(kind), make_integrator(kind), sys, sys};
-  t.s.init(*t.I, dt);
-  t.r.init(*t.J, dt);
-  return t;
 }
 
 // save mid-run, continue; a fresh integrator loaded from the history with the saved q, v
@@ -198,11 +185,17 @@ TEST_P(State, NamesRoundTrip) {
 // bits; channels of different lengths are clipped; a wrong Δt throws from check_correct()
 TEST_P(State, CorrectByRangesIsCorrect) {
   const double dt = 0.01;
-  test::OscillatorSystem sys;
-  sys.add(1.0, 0.3, {1.0, -0.4, 0.3, 0.9, -0.2}, {0.5, 0.2, -0.1, 0.0, 0.4});
-  sys.add(2.5, 0.0, {0.2, 0.7, -0.6}, {-1.0, 0.0, 0.3});
-  sys.add(0.7, 0.1, {3.0, -1.5, 0.1, 0.2, 0.5}, {0.0, 0.25, 0.1, -0.3, 0.0});
-  auto [I, J, s, r] = twins(GetParam(), sys, dt);
+  auto make = [] {
+    test::OscillatorSystem s;
+    s.add(1.0, 0.3, {1.0, -0.4, 0.3, 0.9, -0.2}, {0.5, 0.2, -0.1, 0.0, 0.4});
+    s.add(2.5, 0.0, {0.2, 0.7, -0.6}, {-1.0, 0.0, 0.3});
+    s.add(0.7, 0.1, {3.0, -1.5, 0.1, 0.2, 0.5}, {0.0, 0.25, 0.1, -0.3, 0.0});
+    return s;
+  };
+  auto I = make_integrator(GetParam()), J = make_integrator(GetParam());
+  auto s = make(), r = make();
+  s.init(*I, dt);
+  r.init(*J, dt);
   for (int k = 0; k < 150; ++k) {
     s.step(*I, dt);
     auto sp = r.spans();
@@ -229,19 +222,25 @@ TEST_P(State, CorrectByRangesIsCorrect) {
 // OMP_NUM_THREADS = 2, Gear 6's passes run on two threads)
 TEST_P(State, PredictThenIsPredictByBlocks) {
   const double dt = 0.01;
-  std::vector<double> q(1300), v(1300), qy(1030), vy(1030);
-  for (std::size_t i = 0; i < q.size(); ++i) {
-    q[i] = std::sin(0.37 * static_cast<double>(i));
-    v[i] = std::cos(0.11 * static_cast<double>(i));
-  }
-  for (std::size_t i = 0; i < qy.size(); ++i) {
-    qy[i] = 0.5 * std::cos(0.23 * static_cast<double>(i));
-    vy[i] = -0.2 * std::sin(0.51 * static_cast<double>(i));
-  }
-  test::OscillatorSystem sys;
-  sys.add(1.0, 0.3, q, v);
-  sys.add(2.5, 0.0, qy, vy);
-  auto [I, J, s, r] = twins(GetParam(), sys, dt);
+  auto make = [] {
+    test::OscillatorSystem s;
+    std::vector<double> q(1300), v(1300), qy(1030), vy(1030);
+    for (std::size_t i = 0; i < q.size(); ++i) {
+      q[i] = std::sin(0.37 * static_cast<double>(i));
+      v[i] = std::cos(0.11 * static_cast<double>(i));
+    }
+    for (std::size_t i = 0; i < qy.size(); ++i) {
+      qy[i] = 0.5 * std::cos(0.23 * static_cast<double>(i));
+      vy[i] = -0.2 * std::sin(0.51 * static_cast<double>(i));
+    }
+    s.add(1.0, 0.3, q, v);
+    s.add(2.5, 0.0, qy, vy);
+    return s;
+  };
+  auto I = make_integrator(GetParam()), J = make_integrator(GetParam());
+  auto s = make(), r = make();
+  s.init(*I, dt);
+  r.init(*J, dt);
   for (int k = 0; k < 20; ++k) {
     auto ss = s.spans(), rs = r.spans();
     I->predict(ss, dt);
