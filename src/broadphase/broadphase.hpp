@@ -40,20 +40,6 @@ class BroadPhase {
   virtual const std::vector<PairKey>& update(const World& w) = 0;
   /// the same, copied into out
   void update(const World& w, std::vector<PairKey>& out) { out = update(w); }
-  /// a broad phase that decides on a rebuild by checking every grain's displacement can take
-  /// that check by ranges, as the integrator moves the grains (checks_by_range()):
-  /// moved(w, b, e) says whether a grain of [b, e) needs a rebuild, and update_checked(w, any)
-  /// is update(w) told the OR of moved() over every grain at the current positions. The same
-  /// list as update(w)
-  virtual bool checks_by_range() const { return false; }
-  virtual bool moved(const World& w, std::size_t b, std::size_t e) const {
-    (void)w, (void)b, (void)e;
-    return true;
-  }
-  virtual const std::vector<PairKey>& update_checked(const World& w, bool any_moved) {
-    (void)any_moved;
-    return update(w);
-  }
   virtual const char* name() const = 0;
   /// changes whenever update() may have returned a different list than the call before (the
   /// force loop keeps a per-particle index of the candidates while it stays the same); never

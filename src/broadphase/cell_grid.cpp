@@ -18,14 +18,7 @@ class CellGrid final : public BroadPhase {
 
   using BroadPhase::update;
   const std::vector<PairKey>& update(const World& w) override {
-    return update_checked(w, needs_rebuild(w));
-  }
-  bool checks_by_range() const override { return true; }
-  bool moved(const World& w, std::size_t b, std::size_t e) const override {
-    return w.size() != bx_.size() || moved_beyond(w, b, e);
-  }
-  const std::vector<PairKey>& update_checked(const World& w, bool any_moved) override {
-    if (any_moved || w.size() != bx_.size()) {
+    if (needs_rebuild(w)) {
       build(w);
       new_generation();
     }

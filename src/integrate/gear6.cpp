@@ -77,9 +77,7 @@ void Gear6::rescale(double dt) {
   dt_ = dt;
 }
 
-void Gear6::predict(std::span<const Channel> ch, double dt) { predict_then(ch, dt, RangeFn{}); }
-
-void Gear6::predict_then(std::span<const Channel> ch, double dt, const RangeFn& after) {
+void Gear6::predict(std::span<const Channel> ch, double dt) {
   layout_.check(ch, "Gear6::predict");
   if (!(dt > 0.0)) throw std::invalid_argument("Gear6::predict: dt must be positive");
   // pick up caller edits since the last correct() (periodic wrap of q, kicks to v): v counts
@@ -98,7 +96,7 @@ void Gear6::predict_then(std::span<const Channel> ch, double dt, const RangeFn& 
     rescale(dt);
   }
   const double h = dt_;
-  auto body = [&](std::size_t c, std::size_t b, std::size_t e) {
+  for_channels(ch, kParallelMinGear, [&](std::size_t c, std::size_t b, std::size_t e) {
     double* const r = r_[c].data();  // DOF i's six values at r[kN·i…kN·i + 5]
     double* const q = ch[c].q.data();
     double* const v = ch[c].v.data();
@@ -123,11 +121,7 @@ void Gear6::predict_then(std::span<const Channel> ch, double dt, const RangeFn& 
       q[i] = a0;
       v[i] = vw[i] = a1 / h;
     }
-  };
-  // one block per thread: blocks of 512 DOFs, the three channels in turn, made the 2-thread
-  // pile step 2–4% slower (interleaved A/B; the history is 48 B per DOF)
-  if (after) for_channels_then(ch, kParallelMinGear, 0, body, after);
-  else for_channels(ch, kParallelMinGear, body);
+  });
 }
 
 void Gear6::check_correct(std::span<const Channel> ch, double dt) const {

@@ -1,7 +1,6 @@
 // integrator names, orders, the factory, and the channel layout / checkpoint header
 #include "integrate/integrator.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -53,14 +52,6 @@ int integrator_order(IntegratorKind k) {
       return 1;
   }
   return 0;
-}
-
-// schemes without a blocked predictor: the whole prediction, then one block of everything
-void Integrator::predict_then(std::span<const Channel> ch, double dt, const RangeFn& after) {
-  predict(ch, dt);
-  std::size_t nmax = 0;
-  for (const Channel& k : ch) nmax = std::max(nmax, k.q.size());
-  if (after) after(0, nmax);
 }
 
 std::unique_ptr<Integrator> make_integrator(IntegratorKind k) {

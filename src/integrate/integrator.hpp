@@ -21,8 +21,6 @@
 #include <string_view>
 #include <vector>
 
-#include "core/parallel.hpp"
-
 namespace gs {
 
 enum class IntegratorKind : std::uint8_t {
@@ -62,11 +60,6 @@ class Integrator {
   virtual void init(std::span<const Channel> ch, double dt) = 0;
   /// advance q and v to the predicted state at t + dt, where forces are evaluated
   virtual void predict(std::span<const Channel> ch, double dt) = 0;
-  /// predict(), calling after(b, e) for blocks [b, e) of particles that together cover every
-  /// particle once (up to the longest channel), each once all channels of the block hold their
-  /// predicted values, by the thread that predicted them (so that a check of the new positions
-  /// reads them from its cache, not from memory). The same predicted state as predict()
-  virtual void predict_then(std::span<const Channel> ch, double dt, const RangeFn& after);
   /// given a at the predicted state, produce the final q, v at t + dt
   virtual void correct(std::span<const Channel> ch, double dt) = 0;
   /// correct() in two parts, for a caller that corrects each thread's particles where it has

@@ -48,7 +48,6 @@ class Gear6 final : public Integrator {
   IntegratorKind kind() const override { return IntegratorKind::Gear6; }
   void init(std::span<const Channel> ch, double dt) override;
   void predict(std::span<const Channel> ch, double dt) override;
-  void predict_then(std::span<const Channel> ch, double dt, const RangeFn& after) override;
   void correct(std::span<const Channel> ch, double dt) override;
   void check_correct(std::span<const Channel> ch, double dt) const override;
   void correct_range(std::span<const Channel> ch, std::size_t b, std::size_t e) override;
@@ -97,7 +96,6 @@ class VelocityVerlet final : public Integrator {
   IntegratorKind kind() const override { return IntegratorKind::VelocityVerlet; }
   void init(std::span<const Channel> ch, double dt) override;
   void predict(std::span<const Channel> ch, double dt) override;
-  void predict_then(std::span<const Channel> ch, double dt, const RangeFn& after) override;
   void correct(std::span<const Channel> ch, double dt) override;
   void check_correct(std::span<const Channel> ch, double dt) const override;
   void correct_range(std::span<const Channel> ch, std::size_t b, std::size_t e) override;

@@ -82,21 +82,15 @@ bool VelocityVerlet::fuse_kick(bool on, KickForm& form) {
 }
 
 void VelocityVerlet::predict(std::span<const Channel> ch, double dt) {
-  predict_then(ch, dt, RangeFn{});
-}
-
-void VelocityVerlet::predict_then(std::span<const Channel> ch, double dt, const RangeFn& after) {
   layout_.check(ch, "VelocityVerlet::predict");
   check_dt(dt, "VelocityVerlet::predict");
   dt_ = dt;
   const bool half = fv_ == VerletForceVelocity::HalfStep;
-  auto body = [&](std::size_t c, std::size_t b, std::size_t e) {
+  for_channels(ch, kParallelMinCheap, [&](std::size_t c, std::size_t b, std::size_t e) {
     const double* a = ch[c].a.data();
     if (fused_) vv_predict<false>(b, e, dt, half, a, nullptr, ch[c].q.data(), ch[c].v.data());
     else vv_predict<true>(b, e, dt, half, a, vh_[c].data(), ch[c].q.data(), ch[c].v.data());
-  };
-  if (after) for_channels_then(ch, kParallelMinCheap, kPredictBlock, body, after);
-  else for_channels(ch, kParallelMinCheap, body);
+  });
 }
 
 void VelocityVerlet::check_correct(std::span<const Channel> ch, double dt) const {

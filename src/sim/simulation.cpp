@@ -1,7 +1,6 @@
 #include "sim/simulation.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <sstream>
 #include <type_traits>
@@ -201,11 +200,9 @@ void accelerate_ring_noise(const AccelArrays& a, std::size_t n, bool kick,
 
 // broad phase → narrow phase and laws → body forces → accelerations at the current state, in
 // one pass over the particles
-void Simulation::compute_accelerations(std::int64_t index, std::span<const Channel> correct,
-                                       int moved) {
+void Simulation::compute_accelerations(std::int64_t index, std::span<const Channel> correct) {
   const std::size_t n = w_.size();
-  const std::vector<PairKey>& cand =
-      moved >= 0 ? broad_->update_checked(w_, moved == 1) : broad_->update(w_);
+  const std::vector<PairKey>& cand = broad_->update(w_);
   gravity_ = gravity_at(w_.scene.drive, w_.s.t);
   State& s = w_.s;
   const bool noise = w_.scene.drive.kind == DriveKind::RandomForce;
@@ -268,10 +265,10 @@ void Simulation::step() {
   auto ch = channels();
   // predict positions and velocities at t + Δt, evaluate forces there, correct (each particle
   // by the thread that summed its force, inside the force pass)
-  const int moved = predict(ch);
+  integ_->predict(ch, dt_);
   w_.s.t = static_cast<double>(w_.s.step + 1) * dt_;
   integ_->check_correct(ch, dt_);  // here: nothing may throw inside the force pass
-  compute_accelerations(w_.s.step + 1, ch, moved);
+  compute_accelerations(w_.s.step + 1, ch);
   ++w_.s.step;
   // 2D drift control: remove the centre-of-mass velocity every K steps
   const DriveSpec& d = w_.scene.drive;
@@ -282,19 +279,6 @@ void Simulation::step() {
     health_check();
     w_.rewrap();  // periodic: keep |x| within 32 box lengths (image shifts fit in 8 bits)
   }
-}
-
-int Simulation::predict(std::span<const Channel> ch) {
-  if (!broad_->checks_by_range()) {
-    integ_->predict(ch, dt_);
-    return -1;
-  }
-  std::atomic<bool> moved{false};  // an OR: the same answer whatever the blocks and threads
-  auto check = [&](std::size_t b, std::size_t e) {
-    if (broad_->moved(w_, b, e)) moved.store(true, std::memory_order_relaxed);
-  };
-  integ_->predict_then(ch, dt_, RangeFn(check));
-  return moved.load() ? 1 : 0;
 }
 
 // every grain at rest where it is; the channels' velocities through the integrator (which keeps

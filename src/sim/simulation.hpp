@@ -83,14 +83,7 @@ class Simulation {
   // forces and accelerations at the current (predicted) state; with `correct`, the
   // integrator's corrector too, each particle right after its acceleration, on the thread
   // that computed it (Integrator::correct_range; check_correct() done by the caller)
-  /// `moved`: the broad phase's displacement check over the current positions, as predict()
-  /// returns it (−1: none yet, the broad phase checks)
-  void compute_accelerations(std::int64_t index, std::span<const Channel> correct = {},
-                             int moved = -1);
-  /// the integrator's predictor; where the broad phase checks displacements by ranges, that
-  /// check runs on each block of grains right after its prediction: returns its answer
-  /// (1: rebuild, 0: not) or −1 (no such check)
-  int predict(std::span<const Channel> ch);
+  void compute_accelerations(std::int64_t index, std::span<const Channel> correct = {});
   void health_check();
   /// kinetic + contact elastic + gravitational energy (J); elastic ½k_sδ² (Model S), not
   /// counted for Model P (a lower bound)

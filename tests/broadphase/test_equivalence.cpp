@@ -108,39 +108,5 @@ TEST(BroadPhase, PeriodicGridFindsPairsAcrossTheBoundary) {
   EXPECT_EQ(g, ref);
 }
 
-// the cell grid's displacement check by ranges (what the simulation runs on each block of grains
-// its integrator has just moved): the OR of moved() over ranges that cover every grain is the
-// rebuild decision of update(), and update_checked() then gives the same list and generation
-TEST(BroadPhase, GridCheckByRangesDecidesAsUpdate) {
-  SceneSpec s = build::disk_gas(2000, 0.5, 0.9, 0.9, 5);
-  World w = make_world(s);
-  place_particles(w);
-  auto a = make_cell_grid(), b = make_cell_grid();
-  ASSERT_TRUE(b->checks_by_range());
-  EXPECT_TRUE(b->moved(w, 0, 1)) << "nothing built yet: a rebuild";
-  a->update(w);
-  b->update(w);
-  RngStream r(5, 1);
-  const double skin = 0.2 * w.max_radius;  // the grid's skin; half of it triggers a rebuild
-  int rebuilds = 0;
-  for (int round = 0; round < 40; ++round) {
-    // small moves everywhere; now and then one grain (a different one) beyond half the skin
-    for (std::size_t i = 0; i < w.size(); ++i) w.s.x[i] += r.uniform(-0.01, 0.01) * skin;
-    if (round % 5 == 4) w.s.y[(round * 97) % w.size()] += 0.51 * skin;
-    bool any = false;
-    for (std::size_t k = 0; k < w.size(); k += 300) any |= b->moved(w, k, std::min(w.size(), k + 300));
-    const std::uint64_t ga = a->generation(), gb = b->generation();
-    const std::vector<PairKey>& la = a->update(w);
-    const std::vector<PairKey>& lb = b->update_checked(w, any);
-    EXPECT_EQ(la, lb) << "round " << round;
-    EXPECT_EQ(a->generation() != ga, any) << "round " << round;
-    EXPECT_EQ(b->generation() != gb, any) << "round " << round;
-    rebuilds += any;
-  }
-  // each far move rebuilt; the small moves (at most 0.01 skin a round, 5 rounds between far
-  // moves) never reach half the skin
-  EXPECT_EQ(rebuilds, 8);
-}
-
 }  // namespace
 }  // namespace gs

@@ -2,9 +2,7 @@
 // steps, Δt changes, names and layout checks
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <cmath>
-#include <mutex>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -214,66 +212,6 @@ TEST_P(State, CorrectByRangesIsCorrect) {
   auto sp = r.spans();
   J->predict(sp, dt);
   EXPECT_THROW(J->check_correct(sp, 2.0 * dt), std::invalid_argument);
-}
-
-// predict_then(): the same predicted state as predict(), handed to the callback in blocks that
-// cover every particle once (up to the longest channel), each block already predicted in every
-// channel when the callback sees it; 1300 DOFs, so that the 512-particle blocks split (and, with
-// OMP_NUM_THREADS = 2, Gear 6's passes run on two threads)
-TEST_P(State, PredictThenIsPredictByBlocks) {
-  const double dt = 0.01;
-  auto make = [] {
-    test::OscillatorSystem s;
-    std::vector<double> q(1300), v(1300), qy(1030), vy(1030);
-    for (std::size_t i = 0; i < q.size(); ++i) {
-      q[i] = std::sin(0.37 * static_cast<double>(i));
-      v[i] = std::cos(0.11 * static_cast<double>(i));
-    }
-    for (std::size_t i = 0; i < qy.size(); ++i) {
-      qy[i] = 0.5 * std::cos(0.23 * static_cast<double>(i));
-      vy[i] = -0.2 * std::sin(0.51 * static_cast<double>(i));
-    }
-    s.add(1.0, 0.3, q, v);
-    s.add(2.5, 0.0, qy, vy);
-    return s;
-  };
-  auto I = make_integrator(GetParam()), J = make_integrator(GetParam());
-  auto s = make(), r = make();
-  s.init(*I, dt);
-  r.init(*J, dt);
-  for (int k = 0; k < 20; ++k) {
-    auto ss = s.spans(), rs = r.spans();
-    I->predict(ss, dt);
-    std::vector<std::pair<std::size_t, std::size_t>> blocks;
-    std::size_t wrong = 0;
-    std::mutex m;  // the blocks of different threads arrive at the same time
-    auto after = [&](std::size_t b, std::size_t e) {
-      std::size_t bad = 0;
-      for (std::size_t c = 0; c < r.q.size(); ++c)
-        for (std::size_t i = b; i < std::min(e, r.q[c].size()); ++i)
-          bad += r.q[c][i] != s.q[c][i] || r.v[c][i] != s.v[c][i];
-      const std::lock_guard<std::mutex> lock(m);
-      blocks.emplace_back(b, e);
-      wrong += bad;
-    };
-    J->predict_then(rs, dt, RangeFn(after));
-    EXPECT_EQ(wrong, 0u) << "step " << k;
-    std::sort(blocks.begin(), blocks.end());
-    ASSERT_FALSE(blocks.empty());
-    EXPECT_EQ(blocks.front().first, 0u);
-    EXPECT_EQ(blocks.back().second, 1300u);
-    for (std::size_t b = 1; b < blocks.size(); ++b)
-      EXPECT_EQ(blocks[b].first, blocks[b - 1].second);
-    s.forces();
-    r.forces();
-    I->correct(ss, dt);
-    J->correct(rs, dt);
-  }
-  for (std::size_t c = 0; c < s.q.size(); ++c)
-    for (std::size_t i = 0; i < s.q[c].size(); ++i) {
-      ASSERT_EQ(r.q[c][i], s.q[c][i]) << c << " " << i;
-      ASSERT_EQ(r.v[c][i], s.v[c][i]) << c << " " << i;
-    }
 }
 
 INSTANTIATE_TEST_SUITE_P(AllIntegrators, State,
