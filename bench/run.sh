@@ -34,7 +34,10 @@ gbench() {  # JSON FILTER THREADS MIN_TIME: console table to stdout, JSON to $ou
     --benchmark_out="$out/$1" --benchmark_out_format=json 2>/dev/null || echo "($1: gransim_bench failed)"
 }
 echo "== kernels and whole steps (Google Benchmark; 1 thread) =="
-gbench gb_1t.json 'Decagon|AreaInRect|Pile|Disk|Render|Frame|Png|Rfm|RingNeighbours' 1 "$mt"
+gbench gb_1t.json 'Decagon|AreaInRect|Pile|Disk|Render|Frame|Png|Rfm2D|RingNeighbours' 1 "$mt"
+echo "== the 1D ring, five times interleaved (its target is a 1-thread figure) =="
+gb_extra="--benchmark_repetitions=5 --benchmark_enable_random_interleaving=true" \
+  gbench gb_ring.json 'Rfm1DRing' 1 "$mt"
 echo "== the same whole steps with 2 threads =="
 # five repetitions interleaved at random: the pile's target is a 2-thread figure, and the host's
 # slow spells last minutes; summary.py gives the median (and the fastest repetition)

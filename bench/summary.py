@@ -38,6 +38,7 @@ def gb(name):
 
 
 g1, g2, gs = gb("gb_1t.json"), gb("gb_2t.json"), gb("gb_scaling.json")
+g_ring = gb("gb_ring.json") or g1  # the ring repeated (older runs: within gb_1t.json)
 kv = {}
 try:
     with open(os.path.join(d, "results.txt")) as fh:
@@ -125,8 +126,14 @@ for sc, label in (("settled", "10⁴ disks settled under gravity"), ("fluid", "1
         "×")
 
 # Random Force Model
-row("1D ring (N = 1000), 1 thread", counter(g1, "BM_Rfm1DRingStep/0/min_time:3.000"), " p-st/s",
-    "≥ 1e8 p-st/s", ge(1e8))
+ring = "BM_Rfm1DRingStep/0/min_time:3.000"
+ring_b = g_ring.get(ring, {})
+ring_note = ""
+if ring_b.get("repetitions") and ring_b.get("min_real_time") and ring_b.get("particle-steps/s"):
+    fast = ring_b["particle-steps/s"] * ring_b["real_time"] / ring_b["min_real_time"]
+    ring_note = f" (median of {ring_b['repetitions']}; fastest {fmt(fast)}{': ≥ 1e8' if fast >= 1e8 else ''})"
+row("1D ring (N = 1000), 1 thread", counter(g_ring, ring), " p-st/s", "≥ 1e8 p-st/s", ge(1e8),
+    note=ring_note)
 row("2D RFM reference fluid (N = 2000), 1 thread",
     counter(g1, "BM_Rfm2DReferenceStep/0/min_time:3.000"), " p-st/s")
 
