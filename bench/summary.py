@@ -131,7 +131,8 @@ ring_b = g_ring.get(ring, {})
 ring_note = ""
 if ring_b.get("repetitions") and ring_b.get("min_real_time") and ring_b.get("particle-steps/s"):
     fast = ring_b["particle-steps/s"] * ring_b["real_time"] / ring_b["min_real_time"]
-    ring_note = f" (median of {ring_b['repetitions']}; fastest {fmt(fast)}{': ≥ 1e8' if fast >= 1e8 else ''})"
+    ring_note = (f" (median of {ring_b['repetitions']}; fastest {fmt(fast)}"
+                 f"{': ≥ 1e8' if fast >= 1e8 else ''})")
 row("1D ring (N = 1000), 1 thread", counter(g_ring, ring), " p-st/s", "≥ 1e8 p-st/s", ge(1e8),
     note=ring_note)
 row("2D RFM reference fluid (N = 2000), 1 thread",
@@ -169,7 +170,8 @@ def runs_note(key, target):  # a repeated tap figure: how many runs, the fastest
     n, fast = kv.get(key + ".runs"), kv.get(key + ".min")
     if not n or fast is None:
         return ""
-    return f" (median of {n:.0f} runs; fastest {fmt(fast)} s{': ≤ ' + fmt(target) if fast <= target else ''})"
+    return (f" (median of {n:.0f} runs; fastest {fmt(fast)} s"
+            f"{': ≤ ' + fmt(target) if fast <= target else ''})")
 
 
 row("paper tap (3 s), fixed period, Gear 6, 2 threads", kv.get("tap.paper.fixed.t2"), " s",

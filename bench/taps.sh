@@ -37,8 +37,10 @@ tap() {
       echo "$name ($threads threads): gransim run failed: $(tail -1 "$out.err")"; return 0
     fi
     per=$(python3 -c "print($(field wall_time_per_tap_s "$out")*$scale)")
-    taps=$(field taps_done "$out"); ends=$(field early_ends "$out"); rate=$(field particle_steps_per_s "$out")
-    printf '%-44s %10.3g %6s %8s %14.3g\n' "$name ($threads thread$([ "$threads" = 2 ] && echo s))" \
+    taps=$(field taps_done "$out"); ends=$(field early_ends "$out")
+    rate=$(field particle_steps_per_s "$out")
+    printf '%-44s %10.3g %6s %8s %14.3g\n' \
+      "$name ($threads thread$([ "$threads" = 2 ] && echo s))" \
       "$per" "$taps" "$ends" "$rate"
     pers+=("$per")
   done
