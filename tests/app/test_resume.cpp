@@ -78,6 +78,16 @@ std::vector<std::string> with_out(std::vector<std::string> a, const fs::path& ou
   return a;
 }
 
+// run_binary, with the run's wall time (s) in `wall`: the moments at which the tests below
+// interrupt a run are fractions of it
+Outcome timed_run(const std::vector<std::string>& args, const fs::path& log, double& wall,
+                  const Launch& how = {}) {
+  const auto t0 = std::chrono::steady_clock::now();
+  Outcome o = run_binary(args, log, how);
+  wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return o;
+}
+
 TEST_P(KillResume, SigkillAtRandomMomentsThenResumeIsBitwise) {
   const Case& c = GetParam();
   const fs::path tmp = fresh(c.label);
@@ -85,9 +95,8 @@ TEST_P(KillResume, SigkillAtRandomMomentsThenResumeIsBitwise) {
   env.env = {"OMP_NUM_THREADS=" + c.threads};
   env.alarm_s = 120;
   // the uninterrupted reference and its wall time
-  const auto t0 = std::chrono::steady_clock::now();
-  const Outcome ref = run_binary(with_out(c.run_args, tmp / "ref"), tmp / "ref.log", env);
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  double wall = 0.0;
+  const Outcome ref = timed_run(with_out(c.run_args, tmp / "ref"), tmp / "ref.log", wall, env);
   ASSERT_TRUE(ref.exited && ref.code == 0) << ref.output;
   const auto want = outputs(tmp / "ref");
   ASSERT_TRUE(want.count("series.csv") && want.count("state.csv"));
@@ -173,9 +182,8 @@ INSTANTIATE_TEST_SUITE_P(Scenes, KillResume,
 TEST(Resume, SigintCheckpointsAndSaysHowToResume) {
   const fs::path tmp = fresh("sigint");
   const auto args = with_out(kTapping, tmp / "ref");
-  const auto t0 = std::chrono::steady_clock::now();
-  ASSERT_EQ(run_binary(args, tmp / "ref.log").code, 0);
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  double wall = 0.0;
+  ASSERT_EQ(timed_run(args, tmp / "ref.log", wall).code, 0);
   Launch stop;
   stop.signal = SIGINT;
   stop.signal_after_s = 0.5 * wall;
@@ -208,9 +216,8 @@ TEST(Resume, SigintCheckpointsAndSaysHowToResume) {
 // the one before, and still ends bitwise equal
 TEST(Resume, DamagedNewestCheckpointFallsBackToThePreviousOne) {
   const fs::path tmp = fresh("damaged");
-  const auto t0 = std::chrono::steady_clock::now();
-  ASSERT_EQ(run_binary(with_out(kTapping, tmp / "ref"), tmp / "ref.log").code, 0);
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  double wall = 0.0;
+  ASSERT_EQ(timed_run(with_out(kTapping, tmp / "ref"), tmp / "ref.log", wall).code, 0);
   Launch stop;
   stop.signal = SIGINT;
   stop.signal_after_s = 0.5 * wall;  // checkpoints every 3000 of its ≈ 10⁵ steps: some before
@@ -276,9 +283,8 @@ TEST(Resume, InterruptedSweepResumesItsRuns) {
   Launch env;
   env.env = {"GS_SWEEP_NO_MPI=1"};
   env.alarm_s = 120;
-  const auto t0 = std::chrono::steady_clock::now();
-  ASSERT_EQ(run_binary(sweep(tmp / "ref"), tmp / "ref.log", env).code, 0);
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  double wall = 0.0;
+  ASSERT_EQ(timed_run(sweep(tmp / "ref"), tmp / "ref.log", wall, env).code, 0);
   Launch stop = env;
   stop.signal = SIGTERM;
   stop.signal_after_s = 0.5 * wall;

@@ -87,7 +87,8 @@ TEST(KickFusion, FollowsTheIntegratorsOwnCorrection) {
   Simulation own = make_sim(gas());
   own.set_kick_fusion(false);
   ASSERT_TRUE(fused.kick_fused());
-  EXPECT_GT(step_both(fused, own, 600), 600u * 10);  // the contacts were there to amplify differences
+  // the contacts were there to amplify differences
+  EXPECT_GT(step_both(fused, own, 600), 600u * 10);
   const double d = max_difference(fused.world(), own.world());
   std::printf("[ gas ] fused against own correct(): max relative difference %.3e\n", d);
   EXPECT_LT(d, 1e-9);
