@@ -5,3 +5,4 @@
 read -r -a mpi_args <<<"${GS_MPI_ARGS---mca mpi_yield_when_idle 1}"
 root=$PWD
 gs=$root/${GS_BUILD_DIR:-build}/gransim
+bench=$root/${GS_BUILD_DIR:-build}/gransim_bench

@@ -171,6 +171,11 @@ def runs_note(key, target):  # a repeated tap figure: how many runs, the fastest
 row("paper tap (3 s), fixed period, Gear 6, 2 threads", kv.get("tap.paper.fixed.t2"), " s",
     "≤ 15 s", le(15.0), note=ext + runs_note("tap.paper.fixed.t2", 15.0))
 row("paper tap, whole run, Gear 6, 2 threads", kv.get("tap.paper.fixed.rate.t2"), " p-st/s")
+# the window control (taps.sh): the same host moment in the tap's units. A tap step as dear as
+# the settled pile's step measured just before means a slow tap is the host's slow spell
+row("paper tap, 2 threads: µs per step / the settled pile's step just before each run",
+    kv.get("tap.paper.fixed.t2.step_us"), " µs",
+    note=f" / {fmt(kv.get('tap.paper.fixed.t2.control_us'), ' µs')} (medians)")
 
 
 def ends(key):  # how many relaxations ended early
