@@ -58,6 +58,8 @@ class ContactModel {
   ForceStats evaluate(const World& w, const std::vector<PairKey>& candidates, ContactSet& cs,
                       ForceBuffer& f, double dt, std::uint64_t generation = 0,
                       RangeFn after = {});
+  /// from how many candidate pairs evaluate() runs them on the team (more than one thread)
+  static std::size_t parallel_pairs_from(bool polygons, std::size_t particles);
   /// the stiffest binary contact time of the scene (for Δt advice), s
   double min_contact_time() const { return min_contact_time_; }
 

@@ -56,7 +56,7 @@ void expect_serial_sums(const World& w, BroadPhaseKind bpk) {
   ForceBuffer f;
   const std::vector<PairKey>& cand = bp->update(w);
 #ifdef _OPENMP
-  ASSERT_TRUE(run_parallel(cand.size(), w.polygons() ? kParallelMin : kParallelMinCheap))
+  ASSERT_TRUE(run_parallel(cand.size(), ContactModel::parallel_pairs_from(w.polygons(), w.size())))
       << cand.size() << " candidates: below the parallel threshold";
 #endif
   model.evaluate(w, cand, cs, f, w.scene.integrator.dt, bp->generation());
@@ -170,6 +170,60 @@ TEST(ForceSums, DiskPrefilterKeepsThePairs) {
       w.s.x[i + 1] = w.s.x[i] + 1.5 * w.radius[i];
     expect_same_disk_paths(w, w.size() / 10);
   }
+}
+
+// a dilute periodic gas of 10⁴ disks: its particle loops run on the team, its 10³–8·10³
+// candidate pairs, too cheap for a region of their own, join the team's region
+// (ContactModel::parallel_pairs_from). Two threads give the one-thread serial loop's contacts,
+// records and forces bit for bit, with the pairs' cached index and without
+TEST(ForceSums, DiluteLargeGasPairsOnTheTeam) {
+  World w = make_world(build::disk_gas(10000, 0.1, 0.6, 0.6, 8));
+  place_particles(w);
+  // every 25th disk's successor moved onto it (a quarter diameter deep): 400 contacts
+  for (std::size_t i = 0; i + 1 < w.size(); i += 25) {
+    w.s.x[i + 1] = w.s.x[i] + 1.5 * w.radius[i];
+    w.s.y[i + 1] = w.s.y[i];
+  }
+  auto bp = make_broadphase(BroadPhaseKind::CellGrid, w);
+  const std::vector<PairKey> cand = bp->update(w);
+  ASSERT_GE(w.size(), kParallelMinCheap);
+  ASSERT_GE(cand.size(), kParallelMin);
+  ASSERT_LT(cand.size(), kParallelMinCheap) << "the pairs alone would not start a region";
+  ContactModel one(w), team(w);
+  ContactSet cs1, cs2, cs3;
+  ForceBuffer f1, f2, f3;
+#ifdef _OPENMP
+  const int before = omp_get_max_threads();
+  omp_set_num_threads(1);
+#endif
+  one.evaluate(w, cand, cs1, f1, w.scene.integrator.dt, bp->generation());
+  {
+    const TwoThreads two;
+#ifdef _OPENMP
+    ASSERT_TRUE(run_parallel(cand.size(), ContactModel::parallel_pairs_from(false, w.size())));
+#endif
+    team.evaluate(w, cand, cs2, f2, w.scene.integrator.dt, bp->generation());
+    team.evaluate(w, cand, cs3, f3, w.scene.integrator.dt, 0);  // the index made anew
+  }
+#ifdef _OPENMP
+  omp_set_num_threads(before);
+#endif
+  ASSERT_GE(cs1.keys.size(), 400u);
+  EXPECT_EQ(cs2.keys, cs1.keys);
+  EXPECT_EQ(cs3.keys, cs1.keys);
+  ASSERT_EQ(cs2.records.size(), cs1.records.size());
+  for (std::size_t k = 0; k < cs1.records.size(); ++k) {
+    EXPECT_EQ(cs2.records[k].fn, cs1.records[k].fn);
+    EXPECT_EQ(cs2.records[k].ft, cs1.records[k].ft);
+  }
+  EXPECT_EQ(f2.fx, f1.fx);
+  EXPECT_EQ(f2.fy, f1.fy);
+  EXPECT_EQ(f3.fx, f1.fx);
+  EXPECT_EQ(f3.fy, f1.fy);
+  std::vector<double> fx, fy;
+  serial_sums(w, cs1, fx, fy);
+  EXPECT_EQ(fx, f1.fx);
+  EXPECT_EQ(fy, f1.fy);
 }
 
 // one buffer reused from evaluation to evaluation (the serial path clears only the last
