@@ -1,5 +1,8 @@
-// the serial disk loop's pass before the pairs (ContactModel::evaluate_serial): which
-// candidates may touch, and the lines their evaluation will need
+// the disk loops of sparse scenes: the serial loop's pass before the pairs
+// (ContactModel::evaluate_serial: which candidates may touch, and the lines their evaluation
+// will need), and the parallel loop's sums from the few touching pairs
+#include <algorithm>
+
 #include "force/forces.hpp"
 
 namespace gs {
@@ -58,6 +61,34 @@ void ContactModel::prefetch_disk_pairs(const World& w, const std::vector<PairKey
       __builtin_prefetch(&w.sp[p]);
       __builtin_prefetch(&f.fx[p], 1);
       __builtin_prefetch(&f.fy[p], 1);
+    }
+  }
+}
+
+// the disk forces of particles [b, e) from the touching pairs in candidate order, from zero:
+// for each particle the same terms in the same order as the per-particle index gives (its
+// pairs in ascending candidate order), so bitwise the same; a scan of the touch flags instead
+// of a walk over every particle's candidates (a sparse gas: 0.44 candidates and 0.005
+// contacts per disk)
+void ContactModel::sums_from_touching(const World& w, const std::vector<PairKey>& cand,
+                                      ForceBuffer& f, std::size_t b, std::size_t e) const {
+  const auto N = static_cast<std::uint32_t>(w.size());
+  std::fill(f.fx.begin() + static_cast<std::ptrdiff_t>(b),
+            f.fx.begin() + static_cast<std::ptrdiff_t>(e), 0.0);
+  std::fill(f.fy.begin() + static_cast<std::ptrdiff_t>(b),
+            f.fy.begin() + static_cast<std::ptrdiff_t>(e), 0.0);
+  const std::size_t ncand = cand.size();
+  for (std::size_t k = 0; k < ncand; ++k) {
+    if (!touch_[k]) continue;
+    const std::uint32_t i = key_i(cand[k]), j = key_j(cand[k]);
+    const PairForce& r = pair_f_[k];
+    if (i >= b && i < e) {
+      f.fx[i] -= r.fx;
+      f.fy[i] -= r.fy;
+    }
+    if (j < N && j >= b && j < e) {
+      f.fx[j] += r.fx;
+      f.fy[j] += r.fy;
     }
   }
 }

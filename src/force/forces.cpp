@@ -245,12 +245,17 @@ ForceStats ContactModel::evaluate(const World& w, const std::vector<PairKey>& ca
   f.tq.resize(poly ? n : 0);
   ForceStats st;
   if (run_parallel(ncand, parallel_pairs_from(poly, n))) {
-    const bool reindex = generation == 0 || generation != indexed_generation_ ||
-                         n != indexed_n_ || ncand != indexed_count_;
-    st = evaluate_parallel(w, cand, cs, f, dt, reindex, after);
-    indexed_generation_ = generation;
-    indexed_n_ = n;
-    indexed_count_ = ncand;
+    // disks of which few touched last step: each particle's sum from the few touching pairs
+    // themselves, not from its candidates (sums_from_touching); else the per-particle index
+    const bool from_touching = !poly && 3 * cs.keys.size() < ncand;
+    const bool reindex = !from_touching && (generation == 0 || generation != indexed_generation_ ||
+                                            n != indexed_n_ || ncand != indexed_count_);
+    st = evaluate_parallel(w, cand, cs, f, dt, reindex, from_touching, after);
+    if (reindex) {
+      indexed_generation_ = generation;
+      indexed_n_ = n;
+      indexed_count_ = ncand;
+    }
   } else {
     if (poly) {
       place_walls(w);
@@ -390,7 +395,8 @@ void ContactModel::note_touched(ForceBuffer& f, std::size_t n) {
 
 ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<PairKey>& cand,
                                            const ContactSet& cs, ForceBuffer& f, double dt,
-                                           bool reindex, RangeFn after) {
+                                           bool reindex, bool from_touching,
+                                           RangeFn after) {
   const std::size_t n = w.size();
   const std::size_t ncand = cand.size();
   const bool poly = w.polygons();
@@ -510,25 +516,29 @@ ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<Pai
       }
     }
     const double tp1 = wall_seconds();
-    for (std::size_t p = p_begin; p < p_end; ++p) {
-      double fx = 0.0, fy = 0.0, tq = 0.0;
-      for (std::uint32_t e = cand_start_[p]; e < cand_start_[p + 1]; ++e) {
-        const std::uint32_t k = cand_entry_[e] >> 1;
-        if (!touch_[k]) continue;
-        const PairForce& r = pair_f_[k];
-        if (cand_entry_[e] & 1u) {
-          fx += r.fx;
-          fy += r.fy;
-          tq += r.tj;
-        } else {
-          fx -= r.fx;
-          fy -= r.fy;
-          tq -= r.ti;
+    if (from_touching) {
+      sums_from_touching(w, cand, f, p_begin, p_end);
+    } else {
+      for (std::size_t p = p_begin; p < p_end; ++p) {
+        double fx = 0.0, fy = 0.0, tq = 0.0;
+        for (std::uint32_t e = cand_start_[p]; e < cand_start_[p + 1]; ++e) {
+          const std::uint32_t k = cand_entry_[e] >> 1;
+          if (!touch_[k]) continue;
+          const PairForce& r = pair_f_[k];
+          if (cand_entry_[e] & 1u) {
+            fx += r.fx;
+            fy += r.fy;
+            tq += r.tj;
+          } else {
+            fx -= r.fx;
+            fy -= r.fy;
+            tq -= r.ti;
+          }
         }
+        f.fx[p] = fx;
+        f.fy[p] = fy;
+        if (poly) f.tq[p] = tq;
       }
-      f.fx[p] = fx;
-      f.fy[p] = fy;
-      if (poly) f.tq[p] = tq;
     }
     if (after) after(p_begin, p_end);
     t_particles += wall_seconds() - tp1;

@@ -81,7 +81,9 @@ class ContactModel {
                              const ContactSet& cs, ForceBuffer& f, double dt);
   ForceStats evaluate_parallel(const World& w, const std::vector<PairKey>& cand,
                                const ContactSet& cs, ForceBuffer& f, double dt, bool reindex,
-                               RangeFn after);
+                               bool from_touching, RangeFn after);
+  void sums_from_touching(const World& w, const std::vector<PairKey>& cand, ForceBuffer& f,
+                          std::size_t b, std::size_t e) const;
   /// per thread of the last force pass: particles it owned, seconds it spent on them
   std::vector<double> p_items_, p_seconds_;
   // the per-particle index of the candidates (CSR, ascending candidate order per particle)
