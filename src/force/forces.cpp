@@ -500,6 +500,7 @@ ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<Pai
       new_keys_.resize(total);
       new_records_.resize(total);
       new_state_.resize(poly ? total : 0);
+      touching_k_.resize(from_touching ? total : 0);
     }
     for (std::size_t c = c_begin; c < c_end; ++c) {
       std::size_t out = chunk_first_[c];
@@ -509,6 +510,7 @@ ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<Pai
         const PairKey key = cand[k];
         const PairResult& r = pair_r_[k];
         new_keys_[out] = key;
+        if (from_touching) touching_k_[out] = static_cast<std::uint32_t>(k);
         new_records_[out] = {key, r.s, r.n, r.fn, r.ft, r.overlap};
         if (poly) new_state_[out] = r.state;
         ++out;
@@ -517,7 +519,8 @@ ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<Pai
     }
     const double tp1 = wall_seconds();
     if (from_touching) {
-      sums_from_touching(w, cand, f, p_begin, p_end);
+#pragma omp barrier
+      sums_from_touching(w, f, p_begin, p_end);
     } else {
       for (std::size_t p = p_begin; p < p_end; ++p) {
         double fx = 0.0, fy = 0.0, tq = 0.0;

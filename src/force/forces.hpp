@@ -82,8 +82,7 @@ class ContactModel {
   ForceStats evaluate_parallel(const World& w, const std::vector<PairKey>& cand,
                                const ContactSet& cs, ForceBuffer& f, double dt, bool reindex,
                                bool from_touching, RangeFn after);
-  void sums_from_touching(const World& w, const std::vector<PairKey>& cand, ForceBuffer& f,
-                          std::size_t b, std::size_t e) const;
+  void sums_from_touching(const World& w, ForceBuffer& f, std::size_t b, std::size_t e) const;
   /// per thread of the last force pass: particles it owned, seconds it spent on them
   std::vector<double> p_items_, p_seconds_;
   // the per-particle index of the candidates (CSR, ascending candidate order per particle)
@@ -118,6 +117,8 @@ class ContactModel {
     ContactState state;
   };
   std::vector<std::uint8_t> touch_;  ///< per candidate: does the pair touch this step?
+  /// per touching pair of the contact set being made: its candidate index (sums_from_touching)
+  std::vector<std::uint32_t> touching_k_;
   std::vector<std::uint32_t> sel_;   ///< serial disk loop: the candidates that may touch
   std::size_t select_disk_pairs(const World& w, const std::vector<PairKey>& cand, std::size_t k0,
                                 std::size_t k1);
