@@ -107,6 +107,19 @@ TEST(ForceSums, DenseDiskFluidMatchesSerialLoop) {
   expect_serial_sums(w, BroadPhaseKind::CellGrid);
 }
 
+// two evaluations of the same pairs: the same contacts, records and forces, bit for bit
+void expect_same_evaluation(const ContactSet& a, const ForceBuffer& fa, const ContactSet& b,
+                            const ForceBuffer& fb) {
+  EXPECT_EQ(a.keys, b.keys);
+  EXPECT_EQ(fa.fx, fb.fx);
+  EXPECT_EQ(fa.fy, fb.fy);
+  ASSERT_EQ(a.records.size(), b.records.size());
+  for (std::size_t k = 0; k < a.records.size(); ++k) {
+    EXPECT_EQ(a.records[k].fn, b.records[k].fn);
+    EXPECT_EQ(a.records[k].ft, b.records[k].ft);
+  }
+}
+
 // the serial disk loop picks the touching pairs by a branch-free pass first when few touched
 // last step (the contact set is small against the candidates); with a large contact set it
 // visits every candidate. Both must give the same contacts and forces, bit for bit: a periodic
@@ -122,14 +135,7 @@ void expect_same_disk_paths(const World& w, std::size_t min_contacts) {
   model.evaluate(w, cand, packed, f2, w.scene.integrator.dt, bp->generation());
   ASSERT_GE(sparse.keys.size(), min_contacts);
   ASSERT_LT(3 * sparse.keys.size(), cand.size()) << "not a sparse scene: the test needs one";
-  EXPECT_EQ(sparse.keys, packed.keys);
-  EXPECT_EQ(f1.fx, f2.fx);
-  EXPECT_EQ(f1.fy, f2.fy);
-  ASSERT_EQ(sparse.records.size(), packed.records.size());
-  for (std::size_t k = 0; k < sparse.records.size(); ++k) {
-    EXPECT_EQ(sparse.records[k].fn, packed.records[k].fn);
-    EXPECT_EQ(sparse.records[k].ft, packed.records[k].ft);
-  }
+  expect_same_evaluation(sparse, f1, packed, f2);
   std::vector<double> fx, fy;
   serial_sums(w, sparse, fx, fy);
   EXPECT_EQ(fx, f1.fx);
@@ -220,22 +226,10 @@ TEST(ForceSums, DiluteLargeGasPairsOnTheTeam) {
   omp_set_num_threads(before);
 #endif
   ASSERT_GE(cs1.keys.size(), 400u);
-  EXPECT_EQ(cs2.keys, cs1.keys);
-  EXPECT_EQ(cs3.keys, cs1.keys);
-  ASSERT_EQ(cs2.records.size(), cs1.records.size());
-  for (std::size_t k = 0; k < cs1.records.size(); ++k) {
-    EXPECT_EQ(cs2.records[k].fn, cs1.records[k].fn);
-    EXPECT_EQ(cs2.records[k].ft, cs1.records[k].ft);
-  }
-  EXPECT_EQ(f2.fx, f1.fx);
-  EXPECT_EQ(f2.fy, f1.fy);
-  EXPECT_EQ(f3.fx, f1.fx);
-  EXPECT_EQ(f3.fy, f1.fy);
-  EXPECT_EQ(cs4.keys, cs1.keys);
-  for (const ForceBuffer* g : {&f4, &f5}) {
-    EXPECT_EQ(g->fx, f1.fx);
-    EXPECT_EQ(g->fy, f1.fy);
-  }
+  expect_same_evaluation(cs2, f2, cs1, f1);
+  expect_same_evaluation(cs3, f3, cs1, f1);
+  expect_same_evaluation(cs4, f4, cs1, f1);
+  expect_same_evaluation(cs5, f5, cs1, f1);
   std::vector<double> fx, fy;
   serial_sums(w, cs1, fx, fy);
   EXPECT_EQ(fx, f1.fx);
