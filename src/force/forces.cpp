@@ -517,9 +517,11 @@ ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<Pai
         note_overlap(chunk_stats_[c], w, key, r.h, r.degenerate);
       }
     }
-    const double tp1 = wall_seconds();
-    if (from_touching) {
+    if (from_touching) {  // the sums read every thread's compacted pairs
 #pragma omp barrier
+    }
+    const double tp1 = wall_seconds();  // (the barrier's wait is no particle's work)
+    if (from_touching) {
       sums_from_touching(w, f, p_begin, p_end);
     } else {
       for (std::size_t p = p_begin; p < p_end; ++p) {
