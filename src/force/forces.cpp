@@ -247,7 +247,7 @@ ForceStats ContactModel::evaluate(const World& w, const std::vector<PairKey>& ca
   if (run_parallel(ncand, parallel_pairs_from(poly, n))) {
     // disks of which few touched last step: each particle's sum from the few touching pairs
     // themselves, not from its candidates (sums_from_touching); else the per-particle index
-    const bool from_touching = !poly && 3 * cs.keys.size() < ncand;
+    const bool from_touching = !poly && few_touched(cs, ncand);
     const bool reindex = !from_touching && (generation == 0 || generation != indexed_generation_ ||
                                             n != indexed_n_ || ncand != indexed_count_);
     st = evaluate_parallel(w, cand, cs, f, dt, reindex, from_touching, after);
@@ -344,7 +344,7 @@ ForceStats ContactModel::evaluate_serial(const World& w, const std::vector<PairK
     // touch, that pass would only add work. Either way the same pairs are evaluated.
     // Block by block: the selected pairs are evaluated while the lines the selection read
     // are still in the cache
-    if (3 * cs.keys.size() < cand.size()) {
+    if (few_touched(cs, cand.size())) {
       constexpr std::size_t kSelectBlock = 1024;
       for (std::size_t k0 = 0; k0 < cand.size(); k0 += kSelectBlock) {
         const std::size_t k1 = std::min(cand.size(), k0 + kSelectBlock);

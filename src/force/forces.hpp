@@ -83,6 +83,11 @@ class ContactModel {
                                const ContactSet& cs, ForceBuffer& f, double dt, bool reindex,
                                bool from_touching, RangeFn after);
   void sums_from_touching(const World& w, ForceBuffer& f, std::size_t b, std::size_t e) const;
+  /// did few of the candidates touch last step (a gas: under a third)? Then the disk loops
+  /// take their sparse ways (the serial one's selection pass, the parallel one's sums)
+  static bool few_touched(const ContactSet& cs, std::size_t ncand) {
+    return 3 * cs.keys.size() < ncand;
+  }
   /// per thread of the last force pass: particles it owned, seconds it spent on them
   std::vector<double> p_items_, p_seconds_;
   // the per-particle index of the candidates (CSR, ascending candidate order per particle)

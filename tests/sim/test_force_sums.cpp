@@ -20,13 +20,15 @@
 namespace gs {
 namespace {
 
-// two OpenMP threads for the scope (ctest runs with OMP_NUM_THREADS=1, which would leave the
+// k OpenMP threads for the scope (ctest runs with OMP_NUM_THREADS=1, which would leave the
 // parallel path untested); without OpenMP the serial path is all there is
-struct TwoThreads {
+struct Threads {
 #ifdef _OPENMP
   int before = omp_get_max_threads();
-  TwoThreads() { omp_set_num_threads(2); }
-  ~TwoThreads() { omp_set_num_threads(before); }
+  explicit Threads(int k) { omp_set_num_threads(k); }
+  ~Threads() { omp_set_num_threads(before); }
+#else
+  explicit Threads(int) {}
 #endif
 };
 
@@ -49,7 +51,7 @@ void serial_sums(const World& w, const ContactSet& cs, std::vector<double>& fx,
 }
 
 void expect_serial_sums(const World& w, BroadPhaseKind bpk) {
-  const TwoThreads two;  // the parallel path (the candidates are above its thresholds)
+  const Threads two(2);  // the parallel path (the candidates are above its thresholds)
   auto bp = make_broadphase(bpk, w);
   ContactModel model(w);
   ContactSet cs;
@@ -207,13 +209,12 @@ TEST(ForceSums, DiluteLargeGasPairsOnTheTeam) {
   cs4.keys.assign(cand.size(), PairKey{0});  // "as many contacts as candidates last step"
   cs5.keys = cs4.keys;
   ForceBuffer f1, f2, f3, f4, f5;
-#ifdef _OPENMP
-  const int before = omp_get_max_threads();
-  omp_set_num_threads(1);
-#endif
-  one.evaluate(w, cand, cs1, f1, w.scene.integrator.dt, bp->generation());
   {
-    const TwoThreads two;
+    const Threads single(1);
+    one.evaluate(w, cand, cs1, f1, w.scene.integrator.dt, bp->generation());
+  }
+  {
+    const Threads two(2);
 #ifdef _OPENMP
     ASSERT_TRUE(run_parallel(cand.size(), ContactModel::parallel_pairs_from(false, w.size())));
 #endif
@@ -222,9 +223,6 @@ TEST(ForceSums, DiluteLargeGasPairsOnTheTeam) {
     team.evaluate(w, cand, cs4, f4, w.scene.integrator.dt, bp->generation());  // index made
     team.evaluate(w, cand, cs5, f5, w.scene.integrator.dt, bp->generation());  // and reused
   }
-#ifdef _OPENMP
-  omp_set_num_threads(before);
-#endif
   ASSERT_GE(cs1.keys.size(), 400u);
   expect_same_evaluation(cs2, f2, cs1, f1);
   expect_same_evaluation(cs3, f3, cs1, f1);
