@@ -14,6 +14,7 @@
 #include "world/prepare.hpp"
 
 #include "one_thread.hpp"
+#include "run_steps.hpp"
 
 namespace gs {
 std::unique_ptr<BroadPhase> make_ring_neighbours();  // broadphase/ring_neighbours.cpp
@@ -32,9 +33,9 @@ std::unique_ptr<Simulation> warmed(const char* scene, double warm, std::vector<s
   return sim;
 }
 
-void rate(benchmark::State& st, const Simulation& sim) {
+void rate(benchmark::State& st, const Simulation& sim, std::int64_t steps) {
   st.counters["particle-steps/s"] = benchmark::Counter(
-      static_cast<double>(sim.world().size()) * static_cast<double>(st.iterations()),
+      static_cast<double>(sim.world().size()) * static_cast<double>(steps),
       benchmark::Counter::kIsRate);
   st.counters["contacts"] = static_cast<double>(sim.contacts().keys.size());
 }
@@ -53,11 +54,9 @@ void BM_Rfm2DReferenceStep(benchmark::State& st) {
     obs = std::make_unique<RfmObserver>(s);
     obs->start(*sim, dir);
   }
-  for (auto _ : st) {
-    sim->step();
-    if (obs) obs->after_step(*sim);
-  }
-  rate(st, *sim);
+  std::int64_t steps = 0;
+  for (auto _ : st) steps += run_iteration(*sim, obs.get());
+  rate(st, *sim, steps);
   st.SetLabel(st.range(0) ? "with RFM observer" : "bare");
   if (obs) std::filesystem::remove_all(dir);
 }
@@ -76,11 +75,9 @@ void BM_Rfm1DRingStep(benchmark::State& st) {
     obs = std::make_unique<RfmObserver>(s);
     obs->start(*sim, dir);
   }
-  for (auto _ : st) {
-    sim->step();
-    if (obs) obs->after_step(*sim);
-  }
-  rate(st, *sim);
+  std::int64_t steps = 0;
+  for (auto _ : st) steps += run_iteration(*sim, obs.get());
+  rate(st, *sim, steps);
   st.SetLabel(std::string(sim->broadphase().name()) +
               (st.range(0) ? ", with RFM observer" : ", bare"));
   if (obs) std::filesystem::remove_all(dir);

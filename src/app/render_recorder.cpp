@@ -201,6 +201,9 @@ class TrajectoryWriter final : public Observer {
   void after_step(const Simulation& sim) override {
     if (sim.world().s.step % every_ == 0) write(sim);
   }
+  std::int64_t quiet_steps(const Simulation& sim) const override {
+    return every_ - 1 - sim.world().s.step % every_;  // the steps before the next frame's
+  }
   void finish(const Simulation&) override { out_.close(); }
 
  private:

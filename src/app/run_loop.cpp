@@ -17,6 +17,9 @@
 namespace gs {
 namespace {
 
+// steps between progress updates and checks for a stop request (and at most one batch)
+constexpr std::int64_t kProgressEvery = 64;
+
 std::string json_escape(const std::string& s) {
   std::string o;
   for (char c : s) {
@@ -141,11 +144,32 @@ int run_session(RunSession& rs) {
     write_run_checkpoint(rs, wall_now());
     last_checkpoint = Clock::now();
   };
+  // how many steps may run at once before anything outside the simulation looks at its state
+  // (Simulation::run: a disk step's kick then predicts the next step): up to the next series
+  // row, step checkpoint, observer's look, sort, progress check or the end. One step at a time
+  // for a tapping protocol (its clock looks after each) and while settling
+  auto batch = [&]() -> std::int64_t {
+    if (is_tapping(scene.drive) || rs.wall_settled < 0) return 1;
+    const std::int64_t step = sim.world().s.step;
+    std::int64_t m = std::min<std::int64_t>(
+        kProgressEvery, nsteps - step - std::llround(clock.time_saved() / dt));
+    auto to_next = [&](std::int64_t every) {
+      if (every > 0) m = std::min(m, every - step % every);
+    };
+    to_next(out.series_every);
+    to_next(out.checkpoint_steps);
+    if (sim.sort_every() > 0) m = std::min(m, sim.sort_every());  // observers see each sort
+    for (const auto& o : rs.observers) m = std::min(m, 1 + o->quiet_steps(sim));
+    return std::max<std::int64_t>(m, 1);
+  };
   int code = kExitOk;
   std::string failure;
   try {
-    for (std::int64_t k = 0; !finished(); ++k) {
-      sim.step();
+    std::int64_t since_check = kProgressEvery;  // progress and stop checks from the first step
+    while (!finished()) {
+      const std::int64_t m = batch();
+      sim.run(m);
+      since_check += m;
       // may end a relaxation early (moves the clock origin) or ask for a quench's reset
       if (clock.after_step(sim.world()) == ClockEvent::Quench) sim.zero_velocities();
       if (rs.wall_settled < 0 && !settling()) rs.wall_settled = wall_now();
@@ -158,7 +182,8 @@ int run_session(RunSession& rs) {
           excitation_starts_next(sim.world().scene.drive, sim.world().s.t, dt) &&
           taps_done() % out.checkpoint_taps == 0)
         due = true;
-      if ((k & 63) == 0) {
+      if (since_check >= kProgressEvery) {
+        since_check = 0;
         if (out.checkpoint_minutes > 0 &&
             std::chrono::duration<double>(Clock::now() - last_checkpoint).count() >=
                 60.0 * out.checkpoint_minutes)

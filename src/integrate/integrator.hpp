@@ -49,6 +49,9 @@ struct Channel {
 struct KickForm {
   double new_frac = 0.0;
   double old_frac = 0.0;
+  /// the scheme's prediction, for a caller that also predicts the next step inside its kick:
+  /// vv_predict_dof<predict_half> (integrate/vv_kernel.hpp)
+  bool predict_half = false;
 };
 
 /// an integrator owns whatever history it needs (Gear derivatives, previous positions)

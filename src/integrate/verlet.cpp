@@ -7,6 +7,7 @@
 #include "core/parallel.hpp"
 #include "integrate/channel_loop.hpp"
 #include "integrate/schemes.hpp"
+#include "integrate/vv_kernel.hpp"
 
 namespace gs {
 
@@ -28,26 +29,22 @@ void take(const std::vector<double>& in, std::size_t& off, const ChannelLayout& 
 // the velocity Verlet loops over particles [b, e) of one channel, on distinct arrays
 // (restrict: they vectorise without run-time overlap checks); kKeep: store v_{n+½} in vh for
 // correct() (not when the caller applies the kick itself: fuse_kick)
+template <bool kKeep, bool kHalf>
+void vv_predict(std::size_t b, std::size_t e, double dt, const double* __restrict a,
+                double* __restrict vh, double* __restrict q, double* __restrict v) {
+  for (std::size_t i = b; i < e; ++i) {
+    double qi = q[i], vi = v[i];
+    const double h = vv_predict_dof<kHalf>(dt, a[i], qi, vi);
+    if constexpr (kKeep) vh[i] = h;
+    q[i] = qi;
+    v[i] = vi;
+  }
+}
 template <bool kKeep>
 void vv_predict(std::size_t b, std::size_t e, double dt, bool half, const double* __restrict a,
                 double* __restrict vh, double* __restrict q, double* __restrict v) {
-  // kick half a step with a_n, drift a full step; the velocity the forces see: v_{n+½}
-  // (error O(Δt)) or v_n + a_n·Δt (error O(Δt²))
-  if (half) {
-    for (std::size_t i = b; i < e; ++i) {
-      const double h = v[i] + a[i] * dt / 2.0;
-      if constexpr (kKeep) vh[i] = h;
-      q[i] += h * dt;
-      v[i] = h;
-    }
-  } else {
-    for (std::size_t i = b; i < e; ++i) {
-      const double h = v[i] + a[i] * dt / 2.0;
-      if constexpr (kKeep) vh[i] = h;
-      q[i] += h * dt;
-      v[i] = v[i] + a[i] * dt;
-    }
-  }
+  if (half) vv_predict<kKeep, true>(b, e, dt, a, vh, q, v);
+  else vv_predict<kKeep, false>(b, e, dt, a, vh, q, v);
 }
 void vv_correct(std::size_t b, std::size_t e, double dt, const double* __restrict vh,
                 double* __restrict v, const double* __restrict an) {
@@ -76,7 +73,8 @@ void VelocityVerlet::size_history() {
 
 bool VelocityVerlet::fuse_kick(bool on, KickForm& form) {
   fused_ = on;
-  form = {0.5, fv_ == VerletForceVelocity::HalfStep ? 0.0 : 0.5};
+  const bool half = fv_ == VerletForceVelocity::HalfStep;
+  form = {0.5, half ? 0.0 : 0.5, half};
   size_history();
   return true;
 }

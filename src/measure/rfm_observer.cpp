@@ -212,6 +212,17 @@ void RfmObserver::after_step(const Simulation& sim) {
   if (w.s.step % spec_.sample_every == 0) sample(sim);
 }
 
+std::int64_t RfmObserver::quiet_steps(const Simulation& sim) const {
+  if (steady_) return 0;  // free paths: the contacts are followed at every step
+  const World& w = sim.world();
+  std::int64_t q = spec_.sample_every - 1 - w.s.step % spec_.sample_every;
+  // the steps before the transient can end (t ≥ discard_time − Δt/2), two fewer for round-off
+  const double left = (spec_.discard_time - 0.5 * sim.dt() - w.s.t) / sim.dt();
+  if (left < static_cast<double>(q) + 2.0)
+    q = std::max<std::int64_t>(0, std::min(q, static_cast<std::int64_t>(std::floor(left)) - 2));
+  return q;
+}
+
 // the transient is over: fix the velocity histogram range from the current spread
 void RfmObserver::begin_steady(const Simulation& sim) {
   const World& w = sim.world();

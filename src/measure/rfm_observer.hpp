@@ -36,6 +36,8 @@ class RfmObserver : public Observer {
   explicit RfmObserver(const SceneSpec& scene);
   void start(const Simulation& sim, const std::string& run_dir) override;
   void after_step(const Simulation& sim) override;
+  /// until the next sample or the transient's end; none once the contacts are followed
+  std::int64_t quiet_steps(const Simulation& sim) const override;
   void finish(const Simulation& sim) override;
   const char* name() const override { return "rfm"; }
   void save(ByteWriter& out) const override;

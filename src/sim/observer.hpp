@@ -3,6 +3,7 @@
 // and never change state. A run that checkpoints asks each observer for its state (save) and
 // a resumed run hands it back (resume instead of start); see docs/robustness.md.
 #pragma once
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -22,6 +23,13 @@ class Observer {
   virtual void start(const Simulation& sim, const std::string& run_dir) = 0;
   /// after every step (keep it cheap: sample on your own interval)
   virtual void after_step(const Simulation& sim) = 0;
+  /// how many of the coming steps after_step may miss (it is then called after a later one):
+  /// the run loop lets the simulation run that many steps at once (Simulation::run). 0, the
+  /// default: every step. May answer low, never high
+  virtual std::int64_t quiet_steps(const Simulation& sim) const {
+    (void)sim;
+    return 0;
+  }
   /// the run ends (completed, interrupted or stopped by a health check): flush everything
   virtual void finish(const Simulation& sim) = 0;
   /// checkpoint (between two steps, files flushed): everything needed to continue exactly —

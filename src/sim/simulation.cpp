@@ -9,6 +9,7 @@
 #include "core/parallel.hpp"
 #include "drive/random_force.hpp"
 #include "drive/schedule.hpp"
+#include "integrate/vv_kernel.hpp"
 
 namespace gs {
 
@@ -85,10 +86,19 @@ struct AccelArrays {
   double *ax, *ay, *aw;
   double *vx, *vy;      ///< the kick's velocities (fused)
   double c_new, c_old;  ///< the kick v += c_new·a_{n+1} − c_old·a_n, s (fused)
+  double *qx, *qy;      ///< the positions the next step's prediction advances (ahead)
+  double dt;            ///< Δt, s
+  bool ahead;           ///< after the kick, the next step's prediction (vv_predict_dof)
+  bool half;            ///< ... of the half-step velocity (KickForm::predict_half)
+  bool prefetch;        ///< state beyond the caches: the kick's lines fetched during the noise
   Vec2 g;
   double sigma;
   std::int64_t index;
 };
+
+// from this many particles on the state outgrows the L2 cache (≈ 100 B per disk): the fused
+// kick fetches its lines ahead
+constexpr std::size_t kPrefetchFrom = 32768;
 
 // accelerations of particles [b, e): contact force, gravity and the random kick of the step;
 // returns Σ m·kick over the range (the ring's momentum kick, for its mean)
@@ -128,13 +138,27 @@ double accelerate(const AccelArrays& a, std::size_t b, std::size_t e) {
 }
 
 // the integrator's kick v += c_new·a_new − c_old·a_old, then a ← a_new, over one channel's
-// [0, m) (vectorises)
-void kick_block(std::size_t m, double c_new, double c_old, const double* __restrict an,
-                double* __restrict a, double* __restrict v) {
+// [0, m) (vectorises); kAhead: then the next step's prediction of the same DOFs, as
+// VelocityVerlet::predict would make it (Simulation::run: one pass over the state less)
+template <bool kAhead, bool kHalf>
+void kick_block(std::size_t m, double c_new, double c_old, double dt, const double* __restrict an,
+                double* __restrict a, double* __restrict v, double* __restrict q) {
   for (std::size_t k = 0; k < m; ++k) {
-    v[k] = v[k] + an[k] * c_new - a[k] * c_old;
+    double vk = v[k] + an[k] * c_new - a[k] * c_old;
     a[k] = an[k];
+    if constexpr (kAhead) {
+      double qk = q[k];
+      vv_predict_dof<kHalf>(dt, an[k], qk, vk);
+      q[k] = qk;
+    }
+    v[k] = vk;
   }
+}
+void kick_block(const AccelArrays& a, std::size_t m, const double* an, double* acc, double* v,
+                double* q) {
+  if (!a.ahead) kick_block<false, false>(m, a.c_new, a.c_old, a.dt, an, acc, v, q);
+  else if (a.half) kick_block<true, true>(m, a.c_new, a.c_old, a.dt, an, acc, v, q);
+  else kick_block<true, false>(m, a.c_new, a.c_old, a.dt, an, acc, v, q);
 }
 
 // disks with the fused kick: the accelerations of a block into a buffer that stays in the L1
@@ -142,7 +166,7 @@ void kick_block(std::size_t m, double c_new, double c_old, const double* __restr
 // of rare branches; the kick inside it cost 13% more than this at 10⁴ disks)
 template <bool kNoise, bool kRing>
 void accelerate_kick(const AccelArrays& a, std::size_t b, std::size_t e) {
-  constexpr std::size_t kBlock = 256;
+  constexpr std::size_t kBlock = 256, kSub = 32;
   alignas(64) double bx[kBlock], by[kBlock];
   AccelArrays to = a;  // particle k + q of `a` is q of `to`
   to.ax = bx;
@@ -154,9 +178,27 @@ void accelerate_kick(const AccelArrays& a, std::size_t b, std::size_t e) {
     to.inv_mass = a.inv_mass + k;
     to.mass = a.mass + k;
     if (kNoise) to.keys = a.keys + k;
-    accelerate<kNoise, kRing, false>(to, 0, m);
-    kick_block(m, a.c_new, a.c_old, bx, a.ax + k, a.vx + k);
-    if (!kRing) kick_block(m, a.c_new, a.c_old, by, a.ay + k, a.vy + k);
+    // the kick's lines of the block are fetched while the noise is drawn (the noise loop is
+    // compute bound; at 10⁶ disks the kick otherwise waits on memory)
+    for (std::size_t q = 0; q < m; q += a.prefetch ? kSub : m) {
+      if (!a.prefetch) {
+        accelerate<kNoise, kRing, false>(to, 0, m);
+        break;
+      }
+      accelerate<kNoise, kRing, false>(to, q, std::min(m, q + kSub));
+      for (std::size_t l = k + q; l < k + std::min(m, q + kSub); l += 8) {
+        __builtin_prefetch(a.ax + l, 1);
+        __builtin_prefetch(a.vx + l, 1);
+        if (a.ahead) __builtin_prefetch(a.qx + l, 1);
+        if constexpr (!kRing) {
+          __builtin_prefetch(a.ay + l, 1);
+          __builtin_prefetch(a.vy + l, 1);
+          if (a.ahead) __builtin_prefetch(a.qy + l, 1);
+        }
+      }
+    }
+    kick_block(a, m, bx, a.ax + k, a.vx + k, a.qx + k);
+    if (!kRing) kick_block(a, m, by, a.ay + k, a.vy + k, a.qy + k);
   }
 }
 
@@ -186,12 +228,14 @@ void accelerate_ring_noise(const AccelArrays& a, std::size_t n, bool kick,
       for (std::size_t i = b; i < e; ++i) ax[i] = p[i] - mean * im[i];
       return;
     }
-    double* __restrict vx = a.vx;
-    const double c_new = a.c_new, c_old = a.c_old;
-    for (std::size_t i = b; i < e; ++i) {
-      const double an = p[i] - mean * im[i];
-      vx[i] = vx[i] + an * c_new - ax[i] * c_old;
-      ax[i] = an;
+    // the final accelerations of [b, e) in blocks that stay in the L1 cache, each kicked (and
+    // predicted, ahead) as accelerate_kick's blocks are
+    constexpr std::size_t kBlock = 256;
+    alignas(64) double an[kBlock];
+    for (std::size_t k = b; k < e; k += kBlock) {
+      const std::size_t m = std::min(kBlock, e - k);
+      for (std::size_t q = 0; q < m; ++q) an[q] = p[k + q] - mean * im[k + q];
+      kick_block(a, m, an, ax + k, a.vx + k, a.qx + k);
     }
   });
 }
@@ -200,7 +244,8 @@ void accelerate_ring_noise(const AccelArrays& a, std::size_t n, bool kick,
 
 // broad phase → narrow phase and laws → body forces → accelerations at the current state, in
 // one pass over the particles
-void Simulation::compute_accelerations(std::int64_t index, std::span<const Channel> correct) {
+void Simulation::compute_accelerations(std::int64_t index, std::span<const Channel> correct,
+                                       bool ahead) {
   const std::size_t n = w_.size();
   const std::vector<PairKey>& cand = broad_->update(w_);
   gravity_ = gravity_at(w_.scene.drive, w_.s.t);
@@ -220,7 +265,8 @@ void Simulation::compute_accelerations(std::int64_t index, std::span<const Chann
                       w_.inv_mass.data(), w_.inv_inertia.data(), w_.mass.data(),
                       noise ? noise_keys_.data() : nullptr, s.ax.data(), s.ay.data(),
                       s.aw.data(), s.vx.data(), s.vy.data(), kick_form_.new_frac * dt_,
-                      kick_form_.old_frac * dt_, gravity_,
+                      kick_form_.old_frac * dt_, s.x.data(), s.y.data(), dt_, ahead,
+                      kick_form_.predict_half, n >= kPrefetchFrom, gravity_,
                       noise ? std::sqrt(2.0 * w_.scene.drive.D / dt_) : 0.0,  // T.2.16
                       index};
   using T = std::true_type;
@@ -230,6 +276,8 @@ void Simulation::compute_accelerations(std::int64_t index, std::span<const Chann
   // ring's noise, whose mean kick needs every particle first. A fused kick (disks, velocity
   // Verlet) is the correction, applied where the acceleration is computed
   const bool kick = fused_ && !correct.empty();
+  if (ahead && (!kick || spin))
+    throw std::logic_error("compute_accelerations: a prediction ahead needs the fused kick");
   auto go = [&](auto nz, auto rg, auto sp) {
     constexpr bool kNz = decltype(nz)::value, kRg = decltype(rg)::value;
     [[maybe_unused]] constexpr bool kSp = decltype(sp)::value;
@@ -260,16 +308,41 @@ void Simulation::compute_accelerations(std::int64_t index, std::span<const Chann
   }
 }
 
-void Simulation::step() {
-  if (sort_every_ > 0 && w_.s.step > 0 && w_.s.step % sort_every_ == 0) sort_particles();
+void Simulation::run(std::int64_t n) {
+  for (std::int64_t k = 0; k < n; ++k) advance(k + 1 < n);
+}
+
+// may step `from`'s kick predict the next step? Only inside run() (nothing outside sees the
+// state between the two steps), with the fused kick (disks), and where nothing between the
+// steps reads or edits the state: no drift removal, health check or wrapping after `from`, no
+// sort before the next step
+bool Simulation::may_predict_ahead(std::int64_t from) const {
+  if (!fused_ || w_.polygons()) return false;
+  const std::int64_t next = from + 1;  // the step count once `from` is done
+  const DriveSpec& d = w_.scene.drive;
+  if (d.kind == DriveKind::RandomForce && w_.box != BoxKind::Ring1D && d.com_removal_every > 0 &&
+      next % d.com_removal_every == 0)
+    return false;
+  if (w_.scene.health.check_every > 0 && next % w_.scene.health.check_every == 0) return false;
+  return !(sort_every_ > 0 && next % sort_every_ == 0);
+}
+
+void Simulation::advance(bool then_predict) {
+  if (sort_every_ > 0 && w_.s.step > 0 && w_.s.step % sort_every_ == 0)
+    sort_particles();
   auto ch = channels();
-  // predict positions and velocities at t + Δt, evaluate forces there, correct (each particle
-  // by the thread that summed its force, inside the force pass)
-  integ_->predict(ch, dt_);
+  // predict positions and velocities at t + Δt (unless the last step's kick did), evaluate
+  // forces there, correct (each particle by the thread that summed its force, inside the force
+  // pass) and, ahead, predict the next step there too
+  if (ahead_) ++ahead_steps_;
+  else integ_->predict(ch, dt_);
+  ahead_ = false;
+  const bool ahead = then_predict && may_predict_ahead(w_.s.step);
   w_.s.t = static_cast<double>(w_.s.step + 1) * dt_;
   integ_->check_correct(ch, dt_);  // here: nothing may throw inside the force pass
-  compute_accelerations(w_.s.step + 1, ch);
+  compute_accelerations(w_.s.step + 1, ch, ahead);
   ++w_.s.step;
+  ahead_ = ahead;
   // 2D drift control: remove the centre-of-mass velocity every K steps
   const DriveSpec& d = w_.scene.drive;
   if (d.kind == DriveKind::RandomForce && w_.box != BoxKind::Ring1D && d.com_removal_every > 0 &&

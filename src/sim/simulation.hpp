@@ -25,11 +25,11 @@ class Simulation {
 
   /// advance one time step: drive → predict → broad phase → contacts → forces → correct →
   /// health check
-  void step();
-  /// advance n steps
-  void run(std::int64_t n) {
-    for (std::int64_t k = 0; k < n; ++k) step();
-  }
+  void step() { advance(false); }
+  /// advance n steps: bitwise n × step(), but where nothing reads or edits the state between
+  /// two of them (velocity Verlet on disks, no drift removal, health check or sort between),
+  /// each step's kick predicts the next step too (one pass over the state less per step)
+  void run(std::int64_t n);
 
   World& world() { return w_; }
   const World& world() const { return w_; }
@@ -73,6 +73,8 @@ class Simulation {
   /// and the particles are disks; off: the integrator's own correct() (for comparisons)
   void set_kick_fusion(bool on);
   bool kick_fused() const { return fused_; }
+  /// how many steps so far took their prediction from the previous step's kick (run())
+  std::uint64_t steps_predicted_ahead() const { return ahead_steps_; }
   /// does anything drive the system (gravity, pulses, noise)?
   bool driven() const;
   /// can the mechanical energy only decrease (no drive, or constant gravity)?
@@ -83,7 +85,12 @@ class Simulation {
   // forces and accelerations at the current (predicted) state; with `correct`, the
   // integrator's corrector too, each particle right after its acceleration, on the thread
   // that computed it (Integrator::correct_range; check_correct() done by the caller)
-  void compute_accelerations(std::int64_t index, std::span<const Channel> correct = {});
+  // (`ahead`: and, after the kick, the next step's prediction: may_predict_ahead())
+  void compute_accelerations(std::int64_t index, std::span<const Channel> correct = {},
+                             bool ahead = false);
+  /// one step; `then_predict`: the next step follows at once (run())
+  void advance(bool then_predict);
+  bool may_predict_ahead(std::int64_t from) const;
   void health_check();
   /// kinetic + contact elastic + gravitational energy (J); elastic ½k_sδ² (Model S), not
   /// counted for Model P (a lower bound)
@@ -103,6 +110,8 @@ class Simulation {
   std::vector<double> kick_;  ///< the ring's momentum kicks summed per block, kg·m/s²
   std::vector<double> ring_pre_;  ///< the ring's accelerations before the mean kick, m/s²
   bool fused_ = false;            ///< the integrator's kick inside the acceleration pass
+  bool ahead_ = false;  ///< inside run(): the state already holds the next step's prediction
+  std::uint64_t ahead_steps_ = 0;  ///< steps that took their prediction from the last kick
   KickForm kick_form_;
   Vec2 gravity_;
   std::int64_t sort_every_ = 0;

@@ -18,6 +18,10 @@
 #include "app/run.hpp"
 #include "app/run_info.hpp"
 #include "measure/rfm_io.hpp"
+#include "measure/rfm_observer.hpp"
+#include "scene/parse.hpp"
+#include "sim/simulation.hpp"
+#include "world/prepare.hpp"
 
 namespace gs {
 namespace {
@@ -203,6 +207,57 @@ TEST(RfmObserver, FollowsTheSpatialSort) {
   EXPECT_EQ(ps.total(), pp.total());
   // round-off (sums in another order) grows through the collisions: 2·10⁻⁹ after 12 000 steps
   EXPECT_NEAR(sorted.json("T_mean"), plain.json("T_mean"), 1e-6 * plain.json("T_mean"));
+}
+
+// quiet_steps lets a run skip the observer where it would do nothing: an observer called only
+// after the steps it asks for (the simulation running the steps between at once, its kick
+// predicting ahead) ends in the state, bit for bit, of one called after every step — through
+// the transient, its end, the samples, the followed contacts and a sort every 37 steps
+TEST(RfmObserver, QuietStepsLoseNothing) {
+  std::string text = kTiny2D;
+  text.replace(text.find("duration = 0.04"), 15, "duration = 0.012");
+  text.replace(text.find("discard_time = 0.01"), 19, "discard_time = 0.0053");
+  const SceneSpec s = parse_scene_string(text + "[integrator]\nsort_every = 37\n", "tiny.toml");
+  const fs::path dir = fs::temp_directory_path() / ("gs_rfm_quiet_" + std::to_string(::getpid()));
+  fs::create_directories(dir / "every");
+  fs::create_directories(dir / "quiet");
+  auto sim_of = [&] {
+    World w = make_world(s);
+    place_particles(w);
+    return Simulation(std::move(w));
+  };
+  Simulation every = sim_of(), quiet = sim_of();
+  RfmObserver obs_every(s), obs_quiet(s);
+  obs_every.start(every, (dir / "every").string());
+  obs_quiet.start(quiet, (dir / "quiet").string());
+  const std::int64_t steps = 12000;
+  for (std::int64_t k = 0; k < steps; ++k) {
+    every.step();
+    obs_every.after_step(every);
+  }
+  std::int64_t calls = 0;
+  while (quiet.world().s.step < steps) {
+    // as the run loop: never past a sort (the observer follows one sort per call)
+    const std::int64_t m = std::min({1 + obs_quiet.quiet_steps(quiet), quiet.sort_every(),
+                                     steps - quiet.world().s.step});
+    quiet.run(m);
+    obs_quiet.after_step(quiet);
+    ++calls;
+  }
+  ByteWriter a, b;
+  obs_every.save(a);
+  obs_quiet.save(b);
+  EXPECT_TRUE(a.out == b.out);
+  EXPECT_EQ(every.world().s.x, quiet.world().s.x);
+  EXPECT_EQ(every.world().s.vy, quiet.world().s.vy);
+  // the transient (5300 steps) ran in batches; the steady part, whose contacts are followed,
+  // step by step
+  EXPECT_LT(calls, steps - 5000);
+  EXPECT_GT(calls, steps - 5300);
+  EXPECT_GT(quiet.steps_predicted_ahead(), 4000u);
+  obs_every.finish(every);
+  obs_quiet.finish(quiet);
+  fs::remove_all(dir);
 }
 
 }  // namespace

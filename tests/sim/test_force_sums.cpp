@@ -13,24 +13,11 @@
 #include "sim/state_file.hpp"
 #include "test_world.hpp"
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
-
 namespace gs {
 namespace {
 
-// k OpenMP threads for the scope (ctest runs with OMP_NUM_THREADS=1, which would leave the
-// parallel path untested); without OpenMP the serial path is all there is
-struct Threads {
-#ifdef _OPENMP
-  int before = omp_get_max_threads();
-  explicit Threads(int k) { omp_set_num_threads(k); }
-  ~Threads() { omp_set_num_threads(before); }
-#else
-  explicit Threads(int) {}
-#endif
-};
+using testing::Threads;
+
 
 // the serial reference: every touching pair in key order, as the force loop once summed them
 void serial_sums(const World& w, const ContactSet& cs, std::vector<double>& fx,

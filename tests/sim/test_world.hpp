@@ -8,7 +8,24 @@
 #include "sim/simulation.hpp"
 #include "world/prepare.hpp"
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 namespace gs::testing {
+
+// k OpenMP threads for the scope (ctest runs with OMP_NUM_THREADS=1, which would leave the
+// parallel path untested); without OpenMP the serial path is all there is
+struct Threads {
+#ifdef _OPENMP
+  int before = omp_get_max_threads();
+  explicit Threads(int k) { omp_set_num_threads(k); }
+  ~Threads() { omp_set_num_threads(before); }
+#else
+  explicit Threads(int) {}
+#endif
+};
+
 
 /// FNV-1a over the bytes of the state arrays (positions, angles, velocities)
 inline std::uint64_t state_hash(const World& w) {

@@ -1,0 +1,150 @@
+// Simulation::run(n): where nothing reads or edits the state between two steps (velocity
+// Verlet on disks; no drift removal, health check or sort between them), each step's fused kick
+// also makes the next step's prediction. The run is bit for bit n × step(): in 2D with noise
+// and contacts, on the 1D ring with and without noise, on two threads, and across runs of any
+// length, whose state between them is the plain one
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "scene/parse.hpp"
+#include "test_world.hpp"
+
+namespace gs {
+namespace {
+
+using testing::Threads;
+
+Simulation make_sim(const SceneSpec& s) {
+  World w = make_world(s);
+  place_particles(w);
+  return Simulation(std::move(w));
+}
+
+// a randomly forced periodic gas with contacts, its drift removal, health check and sort at
+// intervals that fall inside the runs (7, 11, 13 steps)
+SceneSpec gas(int n = 2000) {
+  SceneSpec s = build::disk_gas(n, 0.45, 0.6, 0.6, 3);
+  s.drive.kind = DriveKind::RandomForce;
+  s.drive.D = 1e-7;
+  s.drive.com_removal_every = 7;
+  s.health.check_every = 11;
+  s.integrator.sort_every = 13;
+  return s;
+}
+
+// the thesis's 1D ring, 200 rods (`noise` false: no drive, rods up to 5 m/s that meet)
+SceneSpec ring(bool noise) {
+  std::vector<std::string> set{"species[0].count=200", "health.check_every=11"};
+  if (!noise) {
+    set.push_back("drive.kind=none");
+    set.push_back("preparation.velocity_amplitude=5.0");
+  }
+  return parse_scene_file(std::string(GS_SOURCE_DIR) + "/scenes/rfm1d_reference.toml", set);
+}
+
+bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
+}
+
+// the clock, every position, velocity and acceleration, the slots' labels and the contacts
+void expect_same_state(const Simulation& a, const Simulation& b) {
+  const State& p = a.world().s;
+  const State& q = b.world().s;
+  EXPECT_EQ(p.step, q.step);
+  EXPECT_EQ(p.t, q.t);
+  EXPECT_TRUE(same_bits(p.x, q.x));
+  EXPECT_TRUE(same_bits(p.y, q.y));
+  EXPECT_TRUE(same_bits(p.vx, q.vx));
+  EXPECT_TRUE(same_bits(p.vy, q.vy));
+  EXPECT_TRUE(same_bits(p.ax, q.ax));
+  EXPECT_TRUE(same_bits(p.ay, q.ay));
+  EXPECT_EQ(a.world().id, b.world().id);
+  EXPECT_EQ(a.contacts().keys, b.contacts().keys);
+}
+
+void steps(Simulation& s, int n) {
+  for (int k = 0; k < n; ++k) s.step();
+}
+
+// the steps of a run(n) from step 0 whose prediction the previous kick made: those whose
+// predecessor was neither followed by drift removal or a health check nor by a sort
+std::uint64_t expected_ahead(int n, int com, int check, int sort) {
+  std::uint64_t k = 0;
+  for (int s = 1; s < n; ++s)
+    k += (com == 0 || s % com != 0) && (check == 0 || s % check != 0) && (sort == 0 || s % sort != 0);
+  return k;
+}
+
+TEST(RunAhead, GasRunIsBitwiseItsSteps) {
+  Simulation a = make_sim(gas());
+  Simulation b = make_sim(gas());
+  a.run(150);
+  steps(b, 150);
+  expect_same_state(a, b);
+  EXPECT_GT(a.contacts().keys.size(), 0u);  // contacts and their history took part
+  // the prediction came from the kick on every step but those after an event
+  EXPECT_EQ(a.steps_predicted_ahead(), expected_ahead(150, 7, 11, 13));
+  EXPECT_EQ(b.steps_predicted_ahead(), 0u);
+}
+
+// a run ends in the plain state: runs of any length, and steps between them, chain
+TEST(RunAhead, RunsOfAnyLengthChain) {
+  Simulation a = make_sim(gas());
+  Simulation b = make_sim(gas());
+  for (int n : {37, 1, 2, 0, 60}) {
+    a.run(n);
+    steps(b, n);
+    expect_same_state(a, b);
+  }
+  a.step();
+  a.run(25);
+  steps(b, 26);
+  expect_same_state(a, b);
+}
+
+TEST(RunAhead, RingWithAndWithoutNoise) {
+  for (bool noise : {true, false}) {
+    Simulation a = make_sim(ring(noise));
+    Simulation b = make_sim(ring(noise));
+    a.run(700);
+    steps(b, 700);
+    expect_same_state(a, b);
+    EXPECT_EQ(a.steps_predicted_ahead(), expected_ahead(700, 0, 11, 0)) << "noise " << noise;
+  }
+}
+
+// 10⁴ disks: the kick and its prediction run on the team, inside the force pass
+TEST(RunAhead, TwoThreadsGiveOneThreadsSteps) {
+  Simulation a = make_sim(gas(10000));
+  Simulation b = make_sim(gas(10000));
+  {
+    const Threads two(2);
+    a.run(40);
+  }
+  {
+    const Threads one(1);
+    steps(b, 40);
+  }
+  expect_same_state(a, b);
+  EXPECT_GT(a.steps_predicted_ahead(), 0u);
+}
+
+// no fused kick, no prediction ahead: the integrator's own correct(), Gear 6 on polygons
+TEST(RunAhead, OnlyWithTheFusedKick) {
+  Simulation own = make_sim(gas());
+  own.set_kick_fusion(false);
+  own.run(50);
+  EXPECT_EQ(own.steps_predicted_ahead(), 0u);
+  Simulation pile = make_sim(build::decagon_pile(40, 0.2, 0.4, 1));
+  Simulation pile_steps = make_sim(build::decagon_pile(40, 0.2, 0.4, 1));
+  pile.run(30);
+  steps(pile_steps, 30);
+  EXPECT_EQ(pile.steps_predicted_ahead(), 0u);
+  EXPECT_EQ(testing::state_hash(pile.world()), testing::state_hash(pile_steps.world()));
+}
+
+}  // namespace
+}  // namespace gs
