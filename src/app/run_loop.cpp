@@ -146,16 +146,18 @@ int run_session(RunSession& rs) {
   };
   // how many steps may run at once before anything outside the simulation looks at its state
   // (Simulation::run: a disk step's kick then predicts the next step): up to the next series
-  // row, step checkpoint, observer's look, sort, progress check or the end. One step at a time
-  // for a tapping protocol (its clock looks after each) and while settling
+  // row, step checkpoint, observer's look, sort, progress check, the next tap or the end. One
+  // step at a time while settling and where the protocol clock looks after each (early rest)
   auto batch = [&]() -> std::int64_t {
-    if (is_tapping(scene.drive) || rs.wall_settled < 0) return 1;
+    if (clock.watches_steps() || rs.wall_settled < 0) return 1;
     const std::int64_t step = sim.world().s.step;
     std::int64_t m = std::min<std::int64_t>(
         kProgressEvery, nsteps - step - std::llround(clock.time_saved() / dt));
     auto to_next = [&](std::int64_t every) {
       if (every > 0) m = std::min(m, every - step % every);
     };
+    // taps: the clock's end, the tap checkpoints and the tap measurement are at excitations
+    m = std::min(m, 1 + steps_before_excitation(sim.world().scene.drive, sim.world().s.t, dt));
     to_next(out.series_every);
     to_next(out.checkpoint_steps);
     if (sim.sort_every() > 0) m = std::min(m, sim.sort_every());  // observers see each sort

@@ -41,6 +41,10 @@ class ProtocolClock {
   /// on the step before an excitation, so the measured state is one the dynamics produced.
   ClockEvent after_step(World& w);
 
+  /// does after_step() look at every step (early rest or quench in a tapping protocol)? If
+  /// not, a run may call it after a batch of steps only
+  bool watches_steps() const { return (drive_.early_rest || drive_.quench) && is_tapping(drive_); }
+
   /// the number of full taps done: after this step the next one would start tap `taps`
   /// (only when drive.taps > 0)
   bool done(const World& w) const;

@@ -3,6 +3,7 @@
 // gravity_at once per force evaluation)
 #pragma once
 #include <cmath>
+#include <cstdint>
 
 #include "core/vec.hpp"
 #include "scene/spec.hpp"
@@ -68,6 +69,17 @@ inline bool excitation_starts_next(const DriveSpec& d, double t, double dt) {
   const DrivePhase now = drive_phase(d, t), next = drive_phase(d, t + dt);
   if (next.settling || !next.exciting) return false;
   return now.settling || !now.exciting || now.tap != next.tap;
+}
+
+/// how many of the steps after t certainly end before the step after which
+/// excitation_starts_next() holds (the start of the protocol or of the next period), three
+/// fewer than the time left allows (round-off); 0 close to it. No tapping: a large number
+inline std::int64_t steps_before_excitation(const DriveSpec& d, double t, double dt) {
+  if (!is_tapping(d) || drive_period(d) <= 0.0) return std::int64_t{1} << 40;
+  const double tau = protocol_time(d, t);
+  const double left = tau < 0.0 ? -tau : drive_period(d) - drive_phase(d, t).t_in;
+  const double steps = std::floor(left / dt) - 3.0;
+  return steps > 0.0 ? static_cast<std::int64_t>(steps) : 0;
 }
 
 /// gravitational acceleration at time t, m/s²:

@@ -95,33 +95,45 @@ void Gear6::predict(std::span<const Channel> ch, double dt) {
     }
     rescale(dt);
   }
-  const double h = dt_;
   for_channels(ch, kParallelMinGear, [&](std::size_t c, std::size_t b, std::size_t e) {
-    double* const r = r_[c].data();  // DOF i's six values at r[kN·i…kN·i + 5]
-    double* const q = ch[c].q.data();
-    double* const v = ch[c].v.data();
-    double* const vw = vw_[c].data();
-    for (std::size_t i = b; i < e; ++i) {
-      double* const x = r + kN * i;
-      double a0 = x[0], a1 = x[1];
-      if (!rescaled) {  // the pick-up, as above
-        if (q[i] != a0) a0 = q[i];
-        if (v[i] != vw[i]) a1 = v[i] * h;
-      }
-      const double a2 = x[2], a3 = x[3], a4 = x[4], a5 = x[5];
-      // Taylor step with the Pascal triangle (each line uses the old higher values)
-      a0 += a1 + a2 + a3 + a4 + a5;
-      a1 += 2.0 * a2 + 3.0 * a3 + 4.0 * a4 + 5.0 * a5;
-      x[2] = a2 + (3.0 * a3 + 6.0 * a4 + 10.0 * a5);
-      x[3] = a3 + (4.0 * a4 + 10.0 * a5);
-      x[4] = a4 + 5.0 * a5;
-      x[0] = a0;
-      x[1] = a1;
-      // the predicted state, where the caller evaluates the forces
-      q[i] = a0;
-      v[i] = vw[i] = a1 / h;
-    }
+    predict_dofs(ch[c], c, b, e, !rescaled);
   });
+}
+
+void Gear6::predict_range(std::span<const Channel> ch, std::size_t b, std::size_t e) {
+  for (std::size_t c = 0; c < ch.size(); ++c) {
+    const std::size_t n = ch[c].q.size();
+    predict_dofs(ch[c], c, std::min(b, n), std::min(e, n), true);
+  }
+}
+
+void Gear6::predict_dofs(const Channel& k, std::size_t c, std::size_t b, std::size_t e,
+                         bool pick_up) {
+  const double h = dt_;
+  double* const r = r_[c].data();  // DOF i's six values at r[kN·i…kN·i + 5]
+  double* const q = k.q.data();
+  double* const v = k.v.data();
+  double* const vw = vw_[c].data();
+  for (std::size_t i = b; i < e; ++i) {
+    double* const x = r + kN * i;
+    double a0 = x[0], a1 = x[1];
+    if (pick_up) {  // the pick-up, as in predict()
+      if (q[i] != a0) a0 = q[i];
+      if (v[i] != vw[i]) a1 = v[i] * h;
+    }
+    const double a2 = x[2], a3 = x[3], a4 = x[4], a5 = x[5];
+    // Taylor step with the Pascal triangle (each line uses the old higher values)
+    a0 += a1 + a2 + a3 + a4 + a5;
+    a1 += 2.0 * a2 + 3.0 * a3 + 4.0 * a4 + 5.0 * a5;
+    x[2] = a2 + (3.0 * a3 + 6.0 * a4 + 10.0 * a5);
+    x[3] = a3 + (4.0 * a4 + 10.0 * a5);
+    x[4] = a4 + 5.0 * a5;
+    x[0] = a0;
+    x[1] = a1;
+    // the predicted state, where the caller evaluates the forces
+    q[i] = a0;
+    v[i] = vw[i] = a1 / h;
+  }
 }
 
 void Gear6::check_correct(std::span<const Channel> ch, double dt) const {

@@ -17,6 +17,7 @@
 #include <cstdint>
 #include <memory>
 #include <span>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -77,6 +78,17 @@ class Integrator {
   /// history): on = true returns whether the scheme has such a form (velocity Verlet) and
   /// fills `form`; predict() then keeps no history of its own and correct()/correct_range()
   /// throw std::logic_error. on = false returns to correct(). Call between steps
+  /// can predict_range() follow correct_range()? (Gear 6)
+  virtual bool predicts_by_range() const { return false; }
+  /// right after correct_range() of [b, e) and with nothing edited in between: the next
+  /// step's prediction of those particles, bitwise what the next predict() would make there
+  /// (a caller that runs steps back to back, Simulation::run; then it skips that predict())
+  virtual void predict_range(std::span<const Channel> ch, std::size_t b, std::size_t e) {
+    (void)ch;
+    (void)b;
+    (void)e;
+    throw std::logic_error("predict_range: this scheme predicts through predict() only");
+  }
   virtual bool fuse_kick(bool on, KickForm& form) {
     (void)on;
     (void)form;

@@ -51,6 +51,8 @@ class Gear6 final : public Integrator {
   void correct(std::span<const Channel> ch, double dt) override;
   void check_correct(std::span<const Channel> ch, double dt) const override;
   void correct_range(std::span<const Channel> ch, std::size_t b, std::size_t e) override;
+  bool predicts_by_range() const override { return true; }
+  void predict_range(std::span<const Channel> ch, std::size_t b, std::size_t e) override;
   void zero_velocities(std::span<const Channel> ch) override;
   void permute(std::span<const std::uint32_t> perm) override;
   std::vector<double> save() const override;
@@ -62,6 +64,8 @@ class Gear6 final : public Integrator {
  private:
   // the corrector on DOFs [b, e) of channel c
   void correct_dofs(const Channel& k, std::size_t c, std::size_t b, std::size_t e);
+  // the predictor on DOFs [b, e) of channel c; `pick_up`: caller edits of q and v first
+  void predict_dofs(const Channel& k, std::size_t c, std::size_t b, std::size_t e, bool pick_up);
   void rescale(double dt);
   void note_velocities();  // vw_ := r1/Δt, after the history changed outside predict/correct
   ChannelLayout layout_;

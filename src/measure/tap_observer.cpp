@@ -63,6 +63,11 @@ void TapObserver::after_step(const Simulation& sim) {
   if (excitation_starts_next(d, w.s.t, sim.dt())) measure(sim);
 }
 
+std::int64_t TapObserver::quiet_steps(const Simulation& sim) const {
+  const World& w = sim.world();
+  return steps_before_excitation(w.scene.drive, w.s.t, sim.dt());
+}
+
 void TapObserver::finish(const Simulation& /*sim*/) {
   // rows are flushed as they are written; close the files
   taps_ = CsvWriter();

@@ -15,6 +15,8 @@ class TapObserver : public Observer {
   explicit TapObserver(const SceneSpec& scene, double segregation_dh = 0.01);
   void start(const Simulation& sim, const std::string& run_dir) override;
   void after_step(const Simulation& sim) override;
+  /// until just before the next excitation starts (when it measures)
+  std::int64_t quiet_steps(const Simulation& sim) const override;
   void finish(const Simulation& sim) override;
   const char* name() const override { return "taps"; }
   void save(ByteWriter& out) const override;

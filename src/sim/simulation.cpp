@@ -276,8 +276,8 @@ void Simulation::compute_accelerations(std::int64_t index, std::span<const Chann
   // ring's noise, whose mean kick needs every particle first. A fused kick (disks, velocity
   // Verlet) is the correction, applied where the acceleration is computed
   const bool kick = fused_ && !correct.empty();
-  if (ahead && (!kick || spin))
-    throw std::logic_error("compute_accelerations: a prediction ahead needs the fused kick");
+  if (ahead && !(kick && !spin) && !(integ_->predicts_by_range() && !(noise && ring)))
+    throw std::logic_error("compute_accelerations: no prediction ahead on this path");
   auto go = [&](auto nz, auto rg, auto sp) {
     constexpr bool kNz = decltype(nz)::value, kRg = decltype(rg)::value;
     [[maybe_unused]] constexpr bool kSp = decltype(sp)::value;
@@ -292,6 +292,7 @@ void Simulation::compute_accelerations(std::int64_t index, std::span<const Chann
         }
         accelerate<kNz, kRg, kSp>(a, b, e);
         if (!correct.empty()) integ_->correct_range(correct, b, e);
+        if (ahead) integ_->predict_range(correct, b, e);
       };
       stats_ = model_.evaluate(w_, cand, contacts_, forces_, dt_, broad_->generation(),
                                RangeFn(after));
@@ -312,12 +313,17 @@ void Simulation::run(std::int64_t n) {
   for (std::int64_t k = 0; k < n; ++k) advance(k + 1 < n);
 }
 
-// may step `from`'s kick predict the next step? Only inside run() (nothing outside sees the
-// state between the two steps), with the fused kick (disks), and where nothing between the
+// may step `from`'s correction predict the next step? Only inside run() (nothing outside sees
+// the state between the two steps), with the fused kick (disks) or an integrator that predicts
+// by ranges (Gear 6), and where nothing between the
 // steps reads or edits the state: no drift removal, health check or wrapping after `from`, no
 // sort before the next step
 bool Simulation::may_predict_ahead(std::int64_t from) const {
-  if (!fused_ || w_.polygons()) return false;
+  const bool ring_noise =
+      w_.box == BoxKind::Ring1D && w_.scene.drive.kind == DriveKind::RandomForce;
+  const bool kick = fused_ && !w_.polygons();  // the fused kick predicts (disks)
+  // or the integrator, after correct_range() (Gear 6; not the ring's whole-channel correct())
+  if (!kick && !(integ_->predicts_by_range() && !ring_noise)) return false;
   const std::int64_t next = from + 1;  // the step count once `from` is done
   const DriveSpec& d = w_.scene.drive;
   if (d.kind == DriveKind::RandomForce && w_.box != BoxKind::Ring1D && d.com_removal_every > 0 &&

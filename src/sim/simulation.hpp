@@ -27,8 +27,9 @@ class Simulation {
   /// health check
   void step() { advance(false); }
   /// advance n steps: bitwise n × step(), but where nothing reads or edits the state between
-  /// two of them (velocity Verlet on disks, no drift removal, health check or sort between),
-  /// each step's kick predicts the next step too (one pass over the state less per step)
+  /// two of them (no drift removal, health check or sort between), each step's correction
+  /// predicts the next step too, particle by particle inside the force pass (the fused kick
+  /// of velocity Verlet on disks; Gear 6): one pass over the state less per step
   void run(std::int64_t n);
 
   World& world() { return w_; }
