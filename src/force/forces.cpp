@@ -244,13 +244,15 @@ ForceStats ContactModel::evaluate(const World& w, const std::vector<PairKey>& ca
   f.fy.resize(n);
   f.tq.resize(poly ? n : 0);
   ForceStats st;
+  const bool placed = poly && placed_ahead_;  // by the last evaluate()'s `after`
+  placed_ahead_ = false;
   if (run_parallel(ncand, parallel_pairs_from(poly, n))) {
     // disks of which few touched last step: each particle's sum from the few touching pairs
     // themselves, not from its candidates (sums_from_touching); else the per-particle index
     const bool from_touching = !poly && few_touched(cs, ncand);
     const bool reindex = !from_touching && (generation == 0 || generation != indexed_generation_ ||
                                             n != indexed_n_ || ncand != indexed_count_);
-    st = evaluate_parallel(w, cand, cs, f, dt, reindex, from_touching, after);
+    st = evaluate_parallel(w, cand, cs, f, dt, reindex, from_touching, placed, after);
     if (reindex) {
       indexed_generation_ = generation;
       indexed_n_ = n;
@@ -260,7 +262,7 @@ ForceStats ContactModel::evaluate(const World& w, const std::vector<PairKey>& ca
     if (poly) {
       place_walls(w);
       shapes_.resize(n, max_sides_);
-      place_shapes(w, 0, n);
+      if (!placed) place_shapes(w, 0, n);
     }
     st = evaluate_serial(w, cand, cs, f, dt);
     if (after) parallel_ranges(n, kParallelMinCheap, after);
@@ -395,7 +397,7 @@ void ContactModel::note_touched(ForceBuffer& f, std::size_t n) {
 
 ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<PairKey>& cand,
                                            const ContactSet& cs, ForceBuffer& f, double dt,
-                                           bool reindex, bool from_touching,
+                                           bool reindex, bool from_touching, bool placed,
                                            RangeFn after) {
   const std::size_t n = w.size();
   const std::size_t ncand = cand.size();
@@ -424,7 +426,7 @@ ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<Pai
   if (poly) {
     place_walls(w);
     shapes_.resize(n, max_sides_);
-    place_balance_.plan(n, max_team_size());
+    if (!placed) place_balance_.plan(n, max_team_size());
   }
 #pragma omp parallel
   {
@@ -435,7 +437,7 @@ ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<Pai
     // polygons placed over ranges of their own, balanced on the placing's own time: the
     // barrier after it waited for the slower thread (≈ 9 µs of a 2-thread pile step split
     // by ThreadSpeeds, whose ranges balance summing + correcting)
-    if (poly) {
+    if (poly && !placed) {
       const bool own = static_cast<std::size_t>(nt) == place_balance_.threads();
       const double t0 = wall_seconds();
       place_shapes(w, own ? place_balance_.begin(tid) : p_begin,
@@ -554,7 +556,7 @@ ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<Pai
   }  // omp parallel
   if (balanced) {
     balance_.update();
-    if (poly) place_balance_.update();
+    if (poly && !placed) place_balance_.update();
     ThreadSpeeds::get().update(p_items_.data(), p_seconds_.data(),
                                static_cast<int>(balance_.threads()));
   }

@@ -58,6 +58,13 @@ class ContactModel {
   ForceStats evaluate(const World& w, const std::vector<PairKey>& candidates, ContactSet& cs,
                       ForceBuffer& f, double dt, std::uint64_t generation = 0,
                       RangeFn after = {});
+  /// polygons: place particles [b, e) at their current state for the next evaluate(), from
+  /// inside this evaluate()'s `after` (the pairs are done by then), once the caller has
+  /// predicted the next step there (Simulation::run); every particle once, then
+  /// placed_ahead(), and the next evaluate() does not place them again (one pass and, on
+  /// the team, one barrier less)
+  void place_ahead(const World& w, std::size_t b, std::size_t e) { place_shapes(w, b, e); }
+  void placed_ahead() { placed_ahead_ = true; }
   /// from how many candidate pairs evaluate() runs them on the team (more than one thread)
   static std::size_t parallel_pairs_from(bool polygons, std::size_t particles);
   /// the stiffest binary contact time of the scene (for Δt advice), s
@@ -81,7 +88,7 @@ class ContactModel {
                              const ContactSet& cs, ForceBuffer& f, double dt);
   ForceStats evaluate_parallel(const World& w, const std::vector<PairKey>& cand,
                                const ContactSet& cs, ForceBuffer& f, double dt, bool reindex,
-                               bool from_touching, RangeFn after);
+                               bool from_touching, bool placed, RangeFn after);
   void sums_from_touching(const World& w, ForceBuffer& f, std::size_t b, std::size_t e) const;
   /// did few of the candidates touch last step (a gas: under a third)? Then the disk loops
   /// take their sparse ways (the serial one's selection pass, the parallel one's sums)
@@ -107,6 +114,7 @@ class ContactModel {
   bool rocking_ = true;
   double min_contact_time_ = 0.0;
   PolyStore shapes_;       ///< world-frame polygons of this step, prepared for the overlap
+  bool placed_ahead_ = false;  ///< shapes_ already holds the next evaluate()'s polygons
   PolyStore wall_shapes_;  ///< the walls' polygons, prepared once
   int max_sides_ = 0;      ///< most vertices of any species' polygon
   std::vector<BodyExtent> extent_;  ///< per species: its body's extent, for the placement

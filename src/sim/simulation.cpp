@@ -292,10 +292,14 @@ void Simulation::compute_accelerations(std::int64_t index, std::span<const Chann
         }
         accelerate<kNz, kRg, kSp>(a, b, e);
         if (!correct.empty()) integ_->correct_range(correct, b, e);
-        if (ahead) integ_->predict_range(correct, b, e);
+        if (ahead) {
+          integ_->predict_range(correct, b, e);
+          if constexpr (kSp) model_.place_ahead(w_, b, e);  // the next step's polygons
+        }
       };
       stats_ = model_.evaluate(w_, cand, contacts_, forces_, dt_, broad_->generation(),
                                RangeFn(after));
+      if (ahead && kSp) model_.placed_ahead();
     }
   };
   if (noise) {
