@@ -31,7 +31,8 @@ field() { grep "\"$1\"" "$2/run.json" | head -1 | sed 's/.*: *//; s/,.*//'; }
 # measured just before a run: the host's speed at that moment, in the paper tap's own units
 control() {
   OMP_NUM_THREADS=$1 "$bench" --benchmark_filter='BM_PileStep/0/2/' --benchmark_min_time=2 \
-    --benchmark_format=csv 2>/dev/null | awk -F, '/^"BM_PileStep/ { print $3; exit }'
+    --benchmark_format=json 2>/dev/null |
+    python3 -c 'import json, sys; print(json.load(sys.stdin)["benchmarks"][0]["s/step"] * 1e6)'
 }
 
 # tap NAME SCENE THREADS SCALE SETS...: REPS runs (default 1), each run's seconds per tap (×SCALE)
