@@ -97,6 +97,14 @@ inline ShellResult sh(const std::string& cmd) {
   return r;
 }
 
+/// a whole file's bytes ("" if it cannot be read)
+inline std::string slurp(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
 /// the command line that runs gransim with `args` (the chart scripts of this source tree)
 inline std::string gransim(const std::string& args) {
   return std::string("GS_TOOLS_DIR=") + GS_SOURCE_DIR + "/tools " + GS_BINARY + " " + args;

@@ -18,6 +18,8 @@
 #include "scene/parse.hpp"
 #include "sim/state_file.hpp"
 #include "world/prepare.hpp"
+
+#include "binary.hpp"
 #if defined(GS_HAVE_FFMPEG)
 #include "output/movie/movie.hpp"
 #endif
@@ -26,6 +28,7 @@ namespace gs {
 namespace {
 
 namespace fs = std::filesystem;
+using testing::slurp;
 
 fs::path scratch() {
   static const fs::path dir = [] {
@@ -35,13 +38,6 @@ fs::path scratch() {
     return d;
   }();
   return dir;
-}
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
 }
 
 /// run gransim with arguments; its exit code, stderr in `err`

@@ -21,18 +21,12 @@ namespace gs {
 namespace {
 
 namespace fs = std::filesystem;
+using testing::slurp;
 using testing::Launch;
 using testing::Outcome;
 using testing::run_binary;
 
 const std::string kSource = GS_SOURCE_DIR;
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 // every output file of a run directory except run.json (wall times) and the checkpoints
 std::map<std::string, std::string> outputs(const fs::path& dir) {

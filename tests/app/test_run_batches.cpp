@@ -18,15 +18,9 @@ namespace gs {
 namespace {
 
 namespace fs = std::filesystem;
+using testing::slurp;
 using testing::gransim;
 using testing::sh;
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 // runs `scene` with `sets` into dir/<tag>: the exit code
 int run(const fs::path& dir, const std::string& tag, const std::string& scene,

@@ -21,6 +21,7 @@ namespace gs {
 namespace {
 
 namespace fs = std::filesystem;
+using testing::slurp;
 
 using Result = testing::ShellResult;
 using testing::gransim;
@@ -30,13 +31,6 @@ using testing::sh;
 std::string mpirun2(const std::string& args) {
   return std::string("OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 GS_TOOLS_DIR=") +
          GS_SOURCE_DIR + "/tools mpirun --oversubscribe -np 2 " + GS_BINARY + " " + args;
-}
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
 }
 
 // run.json and sweep.json without what depends on the machine's speed (wall times, rates)

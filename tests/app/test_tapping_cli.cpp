@@ -19,17 +19,11 @@ namespace gs {
 namespace {
 
 namespace fs = std::filesystem;
+using testing::slurp;
 
 using Result = testing::ShellResult;
 using testing::gransim;
 using testing::sh;
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 // a CSV file as header + rows of numbers
 struct Table {
