@@ -319,9 +319,8 @@ void Simulation::run(std::int64_t n) {
 
 // may step `from`'s correction predict the next step? Only inside run() (nothing outside sees
 // the state between the two steps), with the fused kick (disks) or an integrator that predicts
-// by ranges (Gear 6), and where nothing between the
-// steps reads or edits the state: no drift removal, health check or wrapping after `from`, no
-// sort before the next step
+// by ranges (Gear 6), and where nothing between the steps reads or edits the state: no drift
+// removal, health check or wrapping after `from`, no sort before the next step
 bool Simulation::may_predict_ahead(std::int64_t from) const {
   const bool ring_noise =
       w_.box == BoxKind::Ring1D && w_.scene.drive.kind == DriveKind::RandomForce;
