@@ -2,7 +2,7 @@
 // each step's correction predicts the next step). With output.series_every = 1 it looks after
 // every step and takes none: the two runs write the same taps, samples and final state, bit for
 // bit — a Gear 6 tapping pile (batches up to each tap) and a randomly forced disk gas (velocity
-// Verlet's fused kick, batches through the transient)
+// Verlet's fused kick, batches through the transient; with its trajectory every 250 steps)
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -58,10 +58,11 @@ TEST(RunBatches, ForcedGasWritesTheSameSamplesAndState) {
   TempDir d;
   const std::string sets =
       "--set species[0].count=300 --set scene.duration=0.006 --set rfm.discard_time=0.003 "
-      "--set rfm.sample_every=500";
+      "--set rfm.sample_every=500 --set render.trajectory_every=250";
   ASSERT_EQ(run(d.p, "batched", "rfm2d_reference.toml", sets), 0);
   ASSERT_EQ(run(d.p, "each", "rfm2d_reference.toml", sets + " --set output.series_every=1"), 0);
-  for (const char* f : {"state.csv", "rfm.json", "hist_freepath.csv", "moments.csv"}) {
+  for (const char* f :
+       {"state.csv", "rfm.json", "hist_freepath.csv", "moments.csv", "trajectory.xyz"}) {
     const std::string a = slurp(d.p / "batched" / f);
     EXPECT_GT(a.size(), 50u) << f;
     EXPECT_TRUE(a == slurp(d.p / "each" / f)) << f;
