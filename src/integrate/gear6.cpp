@@ -103,7 +103,8 @@ void Gear6::predict(std::span<const Channel> ch, double dt) {
 void Gear6::predict_range(std::span<const Channel> ch, std::size_t b, std::size_t e) {
   for (std::size_t c = 0; c < ch.size(); ++c) {
     const std::size_t n = ch[c].q.size();
-    predict_dofs(ch[c], c, std::min(b, n), std::min(e, n), true);
+    // right after correct_dofs() q and v are r0 and r1/Δt: nothing to pick up
+    predict_dofs(ch[c], c, std::min(b, n), std::min(e, n), false);
   }
 }
 

@@ -73,11 +73,6 @@ class Integrator {
   /// result is bitwise that of correct()
   virtual void check_correct(std::span<const Channel> ch, double dt) const = 0;
   virtual void correct_range(std::span<const Channel> ch, std::size_t b, std::size_t e) = 0;
-  /// let the caller apply the correction itself, as the kick `form`, inside its acceleration
-  /// pass while a_n is still in the channels (one pass over the velocities less, and no
-  /// history): on = true returns whether the scheme has such a form (velocity Verlet) and
-  /// fills `form`; predict() then keeps no history of its own and correct()/correct_range()
-  /// throw std::logic_error. on = false returns to correct(). Call between steps
   /// can predict_range() follow correct_range()? (Gear 6)
   virtual bool predicts_by_range() const { return false; }
   /// right after correct_range() of [b, e) and with nothing edited in between: the next
@@ -89,6 +84,11 @@ class Integrator {
     (void)e;
     throw std::logic_error("predict_range: this scheme predicts through predict() only");
   }
+  /// let the caller apply the correction itself, as the kick `form`, inside its acceleration
+  /// pass while a_n is still in the channels (one pass over the velocities less, and no
+  /// history): on = true returns whether the scheme has such a form (velocity Verlet) and
+  /// fills `form`; predict() then keeps no history of its own and correct()/correct_range()
+  /// throw std::logic_error. on = false returns to correct(). Call between steps
   virtual bool fuse_kick(bool on, KickForm& form) {
     (void)on;
     (void)form;

@@ -276,7 +276,7 @@ void Simulation::compute_accelerations(std::int64_t index, std::span<const Chann
   // ring's noise, whose mean kick needs every particle first. A fused kick (disks, velocity
   // Verlet) is the correction, applied where the acceleration is computed
   const bool kick = fused_ && !correct.empty();
-  if (ahead && !(kick && !spin) && !(integ_->predicts_by_range() && !(noise && ring)))
+  if (ahead && !predicts_in_pass())
     throw std::logic_error("compute_accelerations: no prediction ahead on this path");
   auto go = [&](auto nz, auto rg, auto sp) {
     constexpr bool kNz = decltype(nz)::value, kRg = decltype(rg)::value;
@@ -322,23 +322,35 @@ void Simulation::run(std::int64_t n) {
 // by ranges (Gear 6), and where nothing between the steps reads or edits the state: no drift
 // removal, health check or wrapping after `from`, no sort before the next step
 bool Simulation::may_predict_ahead(std::int64_t from) const {
+  const std::int64_t next = from + 1;  // the step count once `from` is done
+  return predicts_in_pass() && !removes_drift_after(next) && !checks_health_after(next) &&
+         !sorts_before(next);
+}
+
+// the fused kick predicts (disks), or the integrator after correct_range() (Gear 6; not on the
+// noisy ring, whose correction is the integrator's whole-channel correct())
+bool Simulation::predicts_in_pass() const {
   const bool ring_noise =
       w_.box == BoxKind::Ring1D && w_.scene.drive.kind == DriveKind::RandomForce;
-  const bool kick = fused_ && !w_.polygons();  // the fused kick predicts (disks)
-  // or the integrator, after correct_range() (Gear 6; not the ring's whole-channel correct())
-  if (!kick && !(integ_->predicts_by_range() && !ring_noise)) return false;
-  const std::int64_t next = from + 1;  // the step count once `from` is done
+  return (fused_ && !w_.polygons()) || (integ_->predicts_by_range() && !ring_noise);
+}
+
+bool Simulation::removes_drift_after(std::int64_t step) const {
   const DriveSpec& d = w_.scene.drive;
-  if (d.kind == DriveKind::RandomForce && w_.box != BoxKind::Ring1D && d.com_removal_every > 0 &&
-      next % d.com_removal_every == 0)
-    return false;
-  if (w_.scene.health.check_every > 0 && next % w_.scene.health.check_every == 0) return false;
-  return !(sort_every_ > 0 && next % sort_every_ == 0);
+  return d.kind == DriveKind::RandomForce && w_.box != BoxKind::Ring1D &&
+         d.com_removal_every > 0 && step % d.com_removal_every == 0;
+}
+
+bool Simulation::checks_health_after(std::int64_t step) const {
+  return w_.scene.health.check_every > 0 && step % w_.scene.health.check_every == 0;
+}
+
+bool Simulation::sorts_before(std::int64_t step) const {
+  return sort_every_ > 0 && step > 0 && step % sort_every_ == 0;
 }
 
 void Simulation::advance(bool then_predict) {
-  if (sort_every_ > 0 && w_.s.step > 0 && w_.s.step % sort_every_ == 0)
-    sort_particles();
+  if (sorts_before(w_.s.step)) sort_particles();
   auto ch = channels();
   // predict positions and velocities at t + Δt (unless the last step's kick did), evaluate
   // forces there, correct (each particle by the thread that summed its force, inside the force
@@ -353,11 +365,8 @@ void Simulation::advance(bool then_predict) {
   ++w_.s.step;
   ahead_ = ahead;
   // 2D drift control: remove the centre-of-mass velocity every K steps
-  const DriveSpec& d = w_.scene.drive;
-  if (d.kind == DriveKind::RandomForce && w_.box != BoxKind::Ring1D && d.com_removal_every > 0 &&
-      w_.s.step % d.com_removal_every == 0)
-    remove_com_velocity(w_);
-  if (w_.scene.health.check_every > 0 && w_.s.step % w_.scene.health.check_every == 0) {
+  if (removes_drift_after(w_.s.step)) remove_com_velocity(w_);
+  if (checks_health_after(w_.s.step)) {
     health_check();
     w_.rewrap();  // periodic: keep |x| within 32 box lengths (image shifts fit in 8 bits)
   }

@@ -92,6 +92,13 @@ class Simulation {
   /// one step; `then_predict`: the next step follows at once (run())
   void advance(bool then_predict);
   bool may_predict_ahead(std::int64_t from) const;
+  /// does this scene's force pass predict the next step where asked (may_predict_ahead)?
+  bool predicts_in_pass() const;
+  /// what step() does around step `step` (the step count after it): the drift removal and the
+  /// health check after it, the spatial sort before the next
+  bool removes_drift_after(std::int64_t step) const;
+  bool checks_health_after(std::int64_t step) const;
+  bool sorts_before(std::int64_t step) const;
   void health_check();
   /// kinetic + contact elastic + gravitational energy (J); elastic ½k_sδ² (Model S), not
   /// counted for Model P (a lower bound)
