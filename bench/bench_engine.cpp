@@ -50,6 +50,9 @@ void BM_PileStep(benchmark::State& st) {
   std::int64_t steps = 0;
   for (auto _ : st) steps += run_iteration(sim);
   st.SetLabel(std::string(to_string(integ)) + "/" + sim.broadphase().name());
+  const double n = static_cast<double>(sim.world().size());
+  st.counters["contacts/N"] = static_cast<double>(sim.contacts().keys.size()) / n;
+  st.counters["candidates/N"] = static_cast<double>(sim.last_forces().candidates) / n;
   st.counters["particle-steps/s"] = benchmark::Counter(
       static_cast<double>(sim.world().size()) * static_cast<double>(steps),
       benchmark::Counter::kIsRate);

@@ -2,13 +2,31 @@
 // (ContactModel::evaluate_serial: which candidates may touch, and the lines their evaluation
 // will need), and the parallel loop's sums from the few touching pairs
 #include <algorithm>
+#include <limits>
+#include <type_traits>
 
 #include "force/forces.hpp"
 
 namespace gs {
 
+void ContactModel::find_common_radius(const World& w, std::uint64_t generation) {
+  const std::size_t n = w.size();
+  if (generation != 0 && generation == common_radius_generation_ && n == common_radius_n_)
+    return;
+  common_radius_generation_ = generation;  // an unknown list (0) is looked at every time
+  common_radius_n_ = n;
+  common_radius_ = n > 0 ? w.radius[0] : 0.0;
+  for (std::size_t i = 1; i < n; ++i)
+    if (w.radius[i] != common_radius_) {
+      common_radius_ = std::numeric_limits<double>::quiet_NaN();
+      break;
+    }
+}
+
 // the candidates that disk_pair may find touching, in order, into sel_: disk pairs by the
-// very test of disk_disk (same expressions, so the same decisions), wall pairs all
+// very test of disk_disk (same expressions, so the same decisions), wall pairs all. Where
+// every disk has the same radius (find_common_radius) r_i + r_j is that radius twice, the same
+// bits without the loads
 std::size_t ContactModel::select_disk_pairs(const World& w, const std::vector<PairKey>& cand,
                                             std::size_t k0, std::size_t k1) {
   const auto N = static_cast<std::uint32_t>(w.size());
@@ -18,31 +36,38 @@ std::size_t ContactModel::select_disk_pairs(const World& w, const std::vector<Pa
   sel_.resize(k1 - k0);
   std::uint32_t* sel = sel_.data();
   std::size_t m = 0;
-  if (w.box == BoxKind::Ring1D) {
-    // the ring: no walls, every y is 0 and no image is shifted in y, so d.y is exactly 0 and
-    // d.x alone gives disk_disk's decision (norm2(d) = d.x² + 0 to the last bit)
+  const double rc = common_radius_;
+  auto select = [&](auto common) {
+    constexpr bool kCommon = decltype(common)::value;
+    auto reach = [&](std::uint32_t i, std::uint32_t j) { return kCommon ? rc + rc : r[i] + r[j]; };
+    if (w.box == BoxKind::Ring1D) {
+      // the ring: no walls, every y is 0 and no image is shifted in y, so d.y is exactly 0
+      // and d.x alone gives disk_disk's decision (norm2(d) = d.x² + 0 to the last bit)
+      for (std::size_t k = k0; k < k1; ++k) {
+        const PairKey key = cand[k];
+        const std::uint32_t i = key_i(key), j = key_j(key);
+        const double dx = x[j] + image_sx(key_image(key)) * w.Lx - x[i];
+        const double dist2 = dx * dx, rr = reach(i, j);
+        sel[m] = static_cast<std::uint32_t>(k);
+        m += static_cast<std::size_t>(!((dist2 >= rr * rr) | (dist2 == 0.0)));
+      }
+      return;
+    }
     for (std::size_t k = k0; k < k1; ++k) {
       const PairKey key = cand[k];
       const std::uint32_t i = key_i(key), j = key_j(key);
-      const double dx = x[j] + image_sx(key_image(key)) * w.Lx - x[i];
-      const double dist2 = dx * dx, rr = r[i] + r[j];
+      const bool wall = j >= N;
+      const std::uint32_t jj = wall ? i : j;  // a wall's index is no particle: read i instead
+      const std::uint32_t image = key_image(key);
+      const Vec2 d = Vec2{x[jj] + image_sx(image) * w.Lx, y[jj] + image_sy(image) * w.Ly} -
+                     Vec2{x[i], y[i]};
+      const double dist2 = norm2(d), rr = reach(i, jj);
       sel[m] = static_cast<std::uint32_t>(k);
-      m += static_cast<std::size_t>(!((dist2 >= rr * rr) | (dist2 == 0.0)));
+      m += static_cast<std::size_t>(wall | !((dist2 >= rr * rr) | (dist2 == 0.0)));
     }
-    return m;
-  }
-  for (std::size_t k = k0; k < k1; ++k) {
-    const PairKey key = cand[k];
-    const std::uint32_t i = key_i(key), j = key_j(key);
-    const bool wall = j >= N;
-    const std::uint32_t jj = wall ? i : j;  // a wall's index is no particle: read i instead
-    const std::uint32_t image = key_image(key);
-    const Vec2 d = Vec2{x[jj] + image_sx(image) * w.Lx, y[jj] + image_sy(image) * w.Ly} -
-                   Vec2{x[i], y[i]};
-    const double dist2 = norm2(d), rr = r[i] + r[jj];
-    sel[m] = static_cast<std::uint32_t>(k);
-    m += static_cast<std::size_t>(wall | !((dist2 >= rr * rr) | (dist2 == 0.0)));
-  }
+  };
+  if (rc == rc) select(std::true_type{});  // not NaN: one radius
+  else select(std::false_type{});
   return m;
 }
 

@@ -264,6 +264,7 @@ ForceStats ContactModel::evaluate(const World& w, const std::vector<PairKey>& ca
       shapes_.resize(n, max_sides_);
       if (!placed) place_shapes(w, 0, n);
     }
+    if (!poly) find_common_radius(w, generation);
     st = evaluate_serial(w, cand, cs, f, dt);
     if (after) parallel_ranges(n, kParallelMinCheap, after);
   }

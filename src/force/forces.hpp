@@ -135,6 +135,12 @@ class ContactModel {
   std::vector<std::uint32_t> sel_;   ///< serial disk loop: the candidates that may touch
   std::size_t select_disk_pairs(const World& w, const std::vector<PairKey>& cand, std::size_t k0,
                                 std::size_t k1);
+  /// the radius every disk has, or NaN where they differ: then the selection reads no radii
+  /// (at 10⁶ disks a memory stream of its own). Found once per candidate list (generation)
+  void find_common_radius(const World& w, std::uint64_t generation);
+  double common_radius_ = 0.0;
+  std::uint64_t common_radius_generation_ = 0;  ///< 0: not found for any list
+  std::size_t common_radius_n_ = 0;
   void prefetch_disk_pairs(const World& w, const std::vector<PairKey>& cand, std::size_t m,
                            const ForceBuffer& f) const;
   std::vector<PairForce> pair_f_;    ///< per candidate (touching ones only written)

@@ -148,6 +148,23 @@ TEST(ForceSums, DiskPrefilterKeepsThePairs) {
     const World& w = sim.world();
     expect_same_disk_paths(w, 10);
   }
+  {  // the gas with every third disk from the second 2 % larger: the selection reads each pair's radii (one
+     // common radius spares those loads)
+    Simulation sim = forced_gas(3000, 5);
+    sim.run(400);
+    World w = sim.world();
+    const double r0 = w.radius[0];
+    for (std::size_t i = 1; i < w.size(); i += 3) w.radius[i] *= 1.02;
+    w.max_radius *= 1.02;
+    // pairs of large disks 2.01 r0 apart: touching, and apart by one common radius r0
+    std::size_t big = 0;
+    for (std::size_t i = 1; i + 3 < w.size(); i += 30, ++big) {
+      w.s.x[i + 3] = w.s.x[i] + 2.01 * r0;
+      w.s.y[i + 3] = w.s.y[i];
+    }
+    ASSERT_GT(big, 10u);
+    expect_same_disk_paths(w, big);
+  }
   {  // walled box: a loose column of disks shifted onto the left wall and the floor
     SceneSpec s = build::disk_gas(400, 0.3, 0.6, 0.6, 6);
     s.box.kind = BoxKind::Walls;
