@@ -238,7 +238,7 @@ Overlap overlap(const PolyRef& a, const PolyRef& b) {
   int k0 = 0;
   double best_score = -1e300;
   for (int k = 0; k < b.n; ++k) {
-    const double score = b.ey[k] * d.x - b.ex[k] * d.y;
+    const double score = b.ey(k) * d.x - b.ex(k) * d.y;
     if (score > best_score) {
       best_score = score;
       k0 = k;
@@ -248,7 +248,7 @@ Overlap overlap(const PolyRef& a, const PolyRef& b) {
   TaggedRing r1, r2;
   TaggedRing* cur = &r1;
   TaggedRing* nxt = &r2;
-  if (!clip_tagged<true>(a.n, a.x, a.y, nullptr, r1, {b.x[k0], b.y[k0]}, {b.ex[k0], b.ey[k0]})) {
+  if (!clip_tagged<true>(a.n, a.x, a.y, nullptr, r1, {b.x[k0], b.y[k0]}, {b.ex(k0), b.ey(k0)})) {
     r1.n = a.n;
     for (int i = 0; i < a.n; ++i) {
       r1.x[i] = a.x[i];
@@ -278,8 +278,9 @@ Overlap overlap(const PolyRef& a, const PolyRef& b) {
       (1e-9 * (cl1 + 2.0 * b.radius + hx + hy) + 1e-14 * (std::abs(cx) + std::abs(cy))) * b.len;
   // as a bit mask, bit j for edge k0 + 1 + j (clip_all's order)
   auto may_cut = [&](int k) -> std::uint64_t {
-    const double reach = std::abs(b.ey[k]) * hx + std::abs(b.ex[k]) * hy + margin;
-    const double sc = (cx - b.x[k]) * b.ey[k] - (cy - b.y[k]) * b.ex[k];
+    const double ex = b.ex(k), ey = b.ey(k);
+    const double reach = std::abs(ey) * hx + std::abs(ex) * hy + margin;
+    const double sc = (cx - b.x[k]) * ey - (cy - b.y[k]) * ex;
     return !(sc + reach < 0.0);  // NaN: clip
   };
   const int k1 = k0 + 1 == b.n ? 0 : k0 + 1;
@@ -299,7 +300,7 @@ Overlap overlap(const PolyRef& a, const PolyRef& b) {
     const int j = std::countr_zero(cut);
     cut &= cut - 1;
     const int k = k1 + j < b.n ? k1 + j : k1 + j - b.n;
-    if (clip_tagged(*cur, *nxt, {b.x[k], b.y[k]}, {b.ex[k], b.ey[k]})) std::swap(cur, nxt);
+    if (clip_tagged(*cur, *nxt, {b.x[k], b.y[k]}, {b.ex(k), b.ey(k)})) std::swap(cur, nxt);
   }
   return finish(*cur, false);
 }

@@ -11,9 +11,10 @@ namespace gs {
 void PolyStore::resize(std::size_t count, int max_n) {
   // unchanged: nothing written (the hot loop calls this every step; a serial pass over n_
   // would pull every thread's lines to the calling thread)
-  if (count == n_.size() && static_cast<std::size_t>(std::max(max_n, 0)) == stride_) return;
-  stride_ = static_cast<std::size_t>(std::max(max_n, 0));
-  data_.resize(count * 4 * stride_);
+  const std::size_t stride = static_cast<std::size_t>(std::max(max_n, 0)) + 1;
+  if (count == n_.size() && stride == stride_) return;
+  stride_ = stride;
+  data_.resize(count * 2 * stride_);
   n_.assign(count, 0);
   meta_.resize(count);
 }
@@ -87,40 +88,33 @@ BodyExtent body_extent(const Poly& body) {
 //      len ≤ (len_body + 1e-15·(|c.x| + |c.y| + 2·reach))·(1 + 1e-12).
 void PolyStore::set_placed(std::size_t i, const Poly& body, const BodyExtent& ext, Vec2 c,
                            double theta) {
-  assert(static_cast<std::size_t>(body.n) <= stride_);
+  assert(static_cast<std::size_t>(body.n) < stride_);
   const int n = body.n;
   const double cs = std::cos(theta), sn = std::sin(theta);
-  double* __restrict const x = data_.data() + i * 4 * stride_;
+  double* __restrict const x = data_.data() + i * 2 * stride_;
   double* __restrict const y = x + stride_;
-  double* __restrict const ex = y + stride_;
-  double* __restrict const ey = ex + stride_;
   n_[i] = n;
   if (n == 0) {
     meta_[i] = {};
     return;
   }
-  // one pass: each vertex, the edge that ends at it, the running sums of the mean (in vertex
-  // order from zero, as vertex_mean), all from registers
+  // one pass: each vertex and the running sums of the mean (in vertex order from zero, as
+  // vertex_mean), then vertex 0 again
   double x0 = c.x + (cs * body.v[0].x - sn * body.v[0].y);
   double y0 = c.y + (sn * body.v[0].x + cs * body.v[0].y);
   double mx = 0.0 + x0, my = 0.0 + y0;
   x[0] = x0;
   y[0] = y0;
-  double px = x0, py = y0;
   for (int k = 1; k < n; ++k) {
     const double bx = body.v[k].x, by = body.v[k].y;
     const double qx = c.x + (cs * bx - sn * by), qy = c.y + (sn * bx + cs * by);
     x[k] = qx;
     y[k] = qy;
-    ex[k - 1] = qx - px;
-    ey[k - 1] = qy - py;
     mx += qx;
     my += qy;
-    px = qx;
-    py = qy;
   }
-  ex[n - 1] = x0 - px;
-  ey[n - 1] = y0 - py;
+  x[n] = x0;
+  y[n] = y0;
   const Vec2 m{mx / static_cast<double>(n), my / static_cast<double>(n)};
   const double c1 = std::abs(c.x) + std::abs(c.y);
   const double r = (ext.reach + std::abs(m.x - c.x) + std::abs(m.y - c.y)) * (1.0 + 1e-12) +
@@ -133,8 +127,8 @@ void PolyStore::set_placed(std::size_t i, const Poly& body, const BodyExtent& ex
 }
 
 void PolyStore::set(std::size_t i, const Poly& p) {
-  assert(static_cast<std::size_t>(p.n) <= stride_);
-  double* x = data_.data() + i * 4 * stride_;
+  assert(static_cast<std::size_t>(p.n) < stride_);
+  double* x = data_.data() + i * 2 * stride_;
   double* y = x + stride_;
   for (int k = 0; k < p.n; ++k) {
     x[k] = p.v[k].x;
@@ -144,21 +138,19 @@ void PolyStore::set(std::size_t i, const Poly& p) {
   finish(i);
 }
 
-// edge vectors v[k+1] − v[k] (as clip_all and facing_edge) and the vertex mean (as
-// vertex_mean: summed from zero in vertex order, then divided by n); l2: the longest edge²
+// vertex 0 repeated after the last, and the vertex mean (as vertex_mean: summed from zero in
+// vertex order, then divided by n); l2: the longest edge² (edges v[k+1] − v[k], as clip_all)
 Vec2 PolyStore::edges(std::size_t i, double& l2) {
   const int n = n_[i];
-  double* x = data_.data() + i * 4 * stride_;
+  double* x = data_.data() + i * 2 * stride_;
   double* y = x + stride_;
-  double* ex = y + stride_;
-  double* ey = ex + stride_;
+  x[n] = n > 0 ? x[0] : 0.0;
+  y[n] = n > 0 ? y[0] : 0.0;
   Vec2 m{};
   l2 = 0.0;
   for (int k = 0; k < n; ++k) {
-    const int k1 = k + 1 == n ? 0 : k + 1;
-    ex[k] = x[k1] - x[k];
-    ey[k] = y[k1] - y[k];
-    l2 = std::max(l2, ex[k] * ex[k] + ey[k] * ey[k]);
+    const double ex = x[k + 1] - x[k], ey = y[k + 1] - y[k];
+    l2 = std::max(l2, ex * ex + ey * ey);
     m += Vec2{x[k], y[k]};
   }
   if (n > 0) m = m / static_cast<double>(n);
@@ -169,7 +161,7 @@ Vec2 PolyStore::edges(std::size_t i, double& l2) {
 void PolyStore::finish(std::size_t i) {
   double l2 = 0.0;
   const Vec2 m = edges(i, l2);
-  const double* x = data_.data() + i * 4 * stride_;
+  const double* x = data_.data() + i * 2 * stride_;
   const double* y = x + stride_;
   double r2 = 0.0;
   for (int k = 0; k < n_[i]; ++k) r2 = std::max(r2, norm2(Vec2{x[k], y[k]} - m));

@@ -1,6 +1,6 @@
-// prepared convex polygons for the contact hot loop: each grain's world-frame vertices, edge
-// vectors, edge lengths, vertex mean and bounding circle, computed once per step into flat
-// arrays, so that the overlap of a pair needs no per-pair set-up (SPEC 2.1)
+// prepared convex polygons for the contact hot loop: each grain's world-frame vertices, vertex
+// mean, bounding circle and longest edge, computed once per step into flat arrays, so that the
+// overlap of a pair needs no per-pair set-up (SPEC 2.1)
 #pragma once
 #include <cstddef>
 #include <vector>
@@ -13,10 +13,12 @@ namespace gs {
 /// a read-only view of one prepared convex polygon (counter-clockwise vertices)
 struct PolyRef {
   int n = 0;
-  const double* x = nullptr;   ///< vertex abscissae, m
-  const double* y = nullptr;   ///< vertex ordinates, m
-  const double* ex = nullptr;  ///< edge k = vertex k+1 − vertex k, x component, m
-  const double* ey = nullptr;  ///< edge k, y component, m
+  /// vertex abscissae and ordinates, m, n + 1 of each: x[n], y[n] repeat vertex 0, so that
+  /// edge k = vertex k+1 − vertex k is x[k+1] − x[k], y[k+1] − y[k] for every k < n
+  const double* x = nullptr;
+  const double* y = nullptr;
+  double ex(int k) const { return x[k + 1] - x[k]; }  ///< edge k, x component, m
+  double ey(int k) const { return y[k + 1] - y[k]; }  ///< edge k, y component, m
   Vec2 mean;                   ///< vertex mean (the interior point overlap() uses), m
   double radius = 0.0;         ///< a circle about `mean` holding every vertex (rounded up), m
   double len = 0.0;            ///< the longest edge (rounded up), m
@@ -56,10 +58,8 @@ class PolyStore {
   PolyRef ref(std::size_t i) const {
     PolyRef r;
     r.n = n_[i];
-    r.x = data_.data() + i * 4 * stride_;
+    r.x = data_.data() + i * 2 * stride_;
     r.y = r.x + stride_;
-    r.ex = r.y + stride_;
-    r.ey = r.ex + stride_;
     r.mean = meta_[i].mean;
     r.radius = meta_[i].radius;
     r.len = meta_[i].len;
@@ -72,14 +72,14 @@ class PolyStore {
 
  private:
   void finish(std::size_t i);  // edges, mean, radius, longest edge from the vertices
-  Vec2 edges(std::size_t i, double& l2);  // edge vectors; returns the vertex mean
+  Vec2 edges(std::size_t i, double& l2);  // vertex 0 repeated; returns the vertex mean
   struct Meta {
     Vec2 mean;
     double radius = 0.0, len = 0.0;
     double near = 0.0;
   };
-  std::size_t stride_ = 0;
-  std::vector<double> data_;  ///< per polygon: x, y, ex, ey, each `stride_` long
+  std::size_t stride_ = 0;     ///< the most vertices, plus one (the repeated vertex 0)
+  std::vector<double> data_;  ///< per polygon: x, y, each `stride_` long
   std::vector<int> n_;
   std::vector<Meta> meta_;
 };

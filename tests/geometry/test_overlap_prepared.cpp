@@ -73,6 +73,10 @@ TEST(PreparedOverlap, PlacementIsPlace) {
       ASSERT_EQ(r.y[k], p.v[k].y);
       // the bounding circle holds every vertex
       ASSERT_LE(norm(p.v[k] - r.mean), r.radius);
+      // edge k, the last one back to vertex 0 (the repeated vertex after the last)
+      const Vec2 e = p.v[k + 1 == p.n ? 0 : k + 1] - p.v[k];
+      ASSERT_EQ(r.ex(k), e.x) << "edge " << k;
+      ASSERT_EQ(r.ey(k), e.y) << "edge " << k;
     }
   }
 }
