@@ -136,7 +136,8 @@ class ContactModel {
   std::size_t select_disk_pairs(const World& w, const std::vector<PairKey>& cand, std::size_t k0,
                                 std::size_t k1);
   /// the radius every disk has, or NaN where they differ: then the selection reads no radii
-  /// (at 10⁶ disks a memory stream of its own). Found once per candidate list (generation)
+  /// (at 10⁶ disks a memory stream of its own). Found once per candidate list (generation),
+  /// which is made for the radii it is used with
   void find_common_radius(const World& w, std::uint64_t generation);
   double common_radius_ = 0.0;
   std::uint64_t common_radius_generation_ = 0;  ///< 0: not found for any list

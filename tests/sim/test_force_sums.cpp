@@ -148,8 +148,8 @@ TEST(ForceSums, DiskPrefilterKeepsThePairs) {
     const World& w = sim.world();
     expect_same_disk_paths(w, 10);
   }
-  {  // the gas with every third disk from the second 2 % larger: the selection reads each pair's radii (one
-     // common radius spares those loads)
+  {  // the gas with every third disk from the second 2 % larger: the selection reads each
+     // pair's radii (one common radius spares those loads)
     Simulation sim = forced_gas(3000, 5);
     sim.run(400);
     World w = sim.world();
