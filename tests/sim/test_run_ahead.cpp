@@ -65,6 +65,18 @@ void expect_same_state(const Simulation& a, const Simulation& b) {
   EXPECT_TRUE(same_bits(p.ay, q.ay));
   EXPECT_EQ(a.world().id, b.world().id);
   EXPECT_EQ(a.contacts().keys, b.contacts().keys);
+  // the last step's records, which a run keeps for its last step only (keep_records)
+  const std::vector<ContactRecord>& ra = a.contacts().records;
+  const std::vector<ContactRecord>& rb = b.contacts().records;
+  ASSERT_EQ(ra.size(), a.contacts().keys.size());
+  ASSERT_EQ(rb.size(), b.contacts().keys.size());
+  for (std::size_t k = 0; k < ra.size(); ++k) {
+    EXPECT_EQ(ra[k].key, rb[k].key);
+    EXPECT_EQ(std::memcmp(&ra[k].s, &rb[k].s, sizeof(Vec2)), 0) << k;
+    EXPECT_EQ(std::memcmp(&ra[k].n, &rb[k].n, sizeof(Vec2)), 0) << k;
+    EXPECT_TRUE(same_bits({ra[k].fn, ra[k].ft, ra[k].overlap}, {rb[k].fn, rb[k].ft, rb[k].overlap}))
+        << k;
+  }
 }
 
 void steps(Simulation& s, int n) {
