@@ -46,15 +46,44 @@ class BroadPhase {
   /// 0, and unique over every broad phase of the process, so that a broad phase built anew
   /// (after a spatial sort) cannot repeat its predecessor's value
   std::uint64_t generation() const { return generation_; }
+  /// how many lists this broad phase has made (new generations)
+  std::uint64_t builds() const { return builds_; }
+
+  /// a Verlet-skin list's displacement test, for a caller that moves every particle in a pass
+  /// of its own (Simulation's prediction ahead) and may make the test there, on lines it
+  /// already holds: particle i has moved too far when skin_moved(x_i − x0[i], y_i − y0[i],
+  /// lim2). x0 is null where the broad phase has no such test (or no list yet); n particles
+  struct SkinTest {
+    const double* x0 = nullptr;
+    const double* y0 = nullptr;
+    double lim2 = 0.0;
+    std::size_t n = 0;
+  };
+  virtual SkinTest skin_test() const { return {}; }
+  /// the answer of skin_test() over every particle at the positions the next update() will
+  /// see; that update() uses it instead of reading the positions again, and forgets it
+  void set_moved(bool moved) { told_ = moved ? Told::Moved : Told::Still; }
 
  protected:
+  enum class Told { Nothing, Still, Moved };
+  /// what set_moved() said since the last update(), forgotten
+  Told take_told() {
+    const Told t = told_;
+    told_ = Told::Nothing;
+    return t;
+  }
+  Told told_ = Told::Nothing;
   /// a value no broad phase of this process has had
   static std::uint64_t fresh_generation() {
     static std::atomic<std::uint64_t> next{1};
     return next.fetch_add(1, std::memory_order_relaxed);
   }
-  void new_generation() { generation_ = fresh_generation(); }
+  void new_generation() {
+    generation_ = fresh_generation();
+    ++builds_;
+  }
   std::uint64_t generation_ = fresh_generation();
+  std::uint64_t builds_ = 0;
 };
 
 /// the broad phase a scene asks for (Auto: the ring's neighbours in 1D, else the cell grid)
@@ -63,6 +92,10 @@ std::unique_ptr<BroadPhase> make_cell_grid();
 std::unique_ptr<BroadPhase> make_box2d_tree();
 /// 1D ring: only the (i, i+1) neighbour pairs in ring order
 std::unique_ptr<BroadPhase> make_ring_neighbours();
+
+/// the skin test of a displacement (dx, dy) against lim2 = (skin/2)²: one expression for the
+/// broad phase and for a caller that makes the test for it (BroadPhase::SkinTest)
+inline bool skin_moved(double dx, double dy, double lim2) { return dx * dx + dy * dy > lim2; }
 
 /// does a circle (c, r) overlap an axis-aligned box [lo, hi]?
 inline bool circle_box_overlap(Vec2 c, double r, Vec2 lo, Vec2 hi) {

@@ -18,7 +18,11 @@ class CellGrid final : public BroadPhase {
 
   using BroadPhase::update;
   const std::vector<PairKey>& update(const World& w) override {
-    if (needs_rebuild(w)) {
+    // the caller's own test of these positions (set_moved), or ours
+    const Told told = take_told();
+    const bool rebuild = w.size() != bx_.size() ||
+                         (told == Told::Nothing ? needs_rebuild(w) : told == Told::Moved);
+    if (rebuild) {
       build(w);
       new_generation();
     }
@@ -29,17 +33,22 @@ class CellGrid final : public BroadPhase {
   // has a grain of [b, e) moved more than half the skin since the last build? Branch-free
   // (the whole range is read anyway): the loop vectorises
   bool moved_beyond(const World& w, std::size_t b, std::size_t e) const {
-    const double lim = 0.25 * skin_ * skin_;
+    const double lim = lim2();
     const double* __restrict x = w.s.x.data();
     const double* __restrict y = w.s.y.data();
     const double* __restrict x0 = bx_.data();
     const double* __restrict y0 = by_.data();
     int m = 0;
     for (std::size_t i = b; i < e; ++i) {
-      const double dx = x[i] - x0[i], dy = y[i] - y0[i];
-      m |= static_cast<int>(dx * dx + dy * dy > lim);
+      m |= static_cast<int>(skin_moved(x[i] - x0[i], y[i] - y0[i], lim));
     }
     return m != 0;
+  }
+
+  double lim2() const { return 0.25 * skin_ * skin_; }
+  SkinTest skin_test() const override {
+    if (bx_.empty()) return {};
+    return {bx_.data(), by_.data(), lim2(), bx_.size()};
   }
 
   // has any grain moved more than half the skin since the last build?

@@ -1,6 +1,7 @@
 #include "sim/simulation.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <sstream>
 #include <type_traits>
@@ -91,6 +92,7 @@ struct AccelArrays {
   bool ahead;           ///< after the kick, the next step's prediction (vv_predict_dof)
   bool half;            ///< ... of the half-step velocity (KickForm::predict_half)
   bool prefetch;        ///< state beyond the caches: the kick's lines fetched during the noise
+  BroadPhase::SkinTest skin;  ///< ahead: the broad phase's displacement test, made here (x0)
   Vec2 g;
   double sigma;
   std::int64_t index;
@@ -161,11 +163,28 @@ void kick_block(const AccelArrays& a, std::size_t m, const double* an, double* a
   else kick_block<true, false>(m, a.c_new, a.c_old, a.dt, an, acc, v, q);
 }
 
+// has a particle of the block [k, k + m) moved beyond the broad phase's skin? (a.skin, ahead:
+// the positions just predicted, still in the L1 cache)
+bool skin_moved_block(const AccelArrays& a, std::size_t k, std::size_t m) {
+  const double* __restrict x = a.qx + k;
+  const double* __restrict y = a.qy + k;
+  const double* __restrict x0 = a.skin.x0 + k;
+  const double* __restrict y0 = a.skin.y0 + k;
+  const double lim2 = a.skin.lim2;
+  int moved = 0;
+  for (std::size_t q = 0; q < m; ++q) moved |= skin_moved(x[q] - x0[q], y[q] - y0[q], lim2);
+  return moved != 0;
+}
+
 // disks with the fused kick: the accelerations of a block into a buffer that stays in the L1
 // cache, then the kick over the block, which still sees a_n (the noise loop is scalar and full
-// of rare branches; the kick inside it cost 13% more than this at 10⁴ disks)
+// of rare branches; the kick inside it cost 13% more than this at 10⁴ disks); ahead, with
+// a.skin, the broad phase's displacement test of the predicted block too (returned: has any
+// particle of [b, e) moved beyond the skin?)
 template <bool kNoise, bool kRing>
-void accelerate_kick(const AccelArrays& a, std::size_t b, std::size_t e) {
+bool accelerate_kick(const AccelArrays& a, std::size_t b, std::size_t e) {
+  const bool test = a.ahead && a.skin.x0 != nullptr && !kRing;
+  bool moved = false;
   constexpr std::size_t kBlock = 256, kSub = 32;
   alignas(64) double bx[kBlock], by[kBlock];
   AccelArrays to = a;  // particle k + q of `a` is q of `to`
@@ -195,11 +214,17 @@ void accelerate_kick(const AccelArrays& a, std::size_t b, std::size_t e) {
           __builtin_prefetch(a.vy + l, 1);
           if (a.ahead) __builtin_prefetch(a.qy + l, 1);
         }
+        if (test) {
+          __builtin_prefetch(a.skin.x0 + l);
+          __builtin_prefetch(a.skin.y0 + l);
+        }
       }
     }
     kick_block(a, m, bx, a.ax + k, a.vx + k, a.qx + k);
     if (!kRing) kick_block(a, m, by, a.ay + k, a.vy + k, a.qy + k);
+    if (test && !moved) moved = skin_moved_block(a, k, m);
   }
+  return moved;
 }
 
 // the 1D ring's accelerations with noise: the kicks' mean momentum is removed, summed over
@@ -261,12 +286,18 @@ void Simulation::compute_accelerations(std::int64_t index, std::span<const Chann
   forces_.tq.resize(spin ? n : 0);  // evaluate() sizes the buffers too; the arrays below need them
   forces_.fx.resize(n);
   forces_.fy.resize(n);
+  const bool kick = fused_ && !correct.empty();
+  // ahead with the fused kick (disks in a plane): the broad phase's displacement test of the
+  // predicted positions is made in the kick's pass, on lines it holds, not by update()
+  BroadPhase::SkinTest skin;
+  if (ahead && kick && !ring && !spin) skin = broad_->skin_test();
+  if (skin.n != n) skin = {};
   const AccelArrays a{forces_.fx.data(), forces_.fy.data(), forces_.tq.data(),
                       w_.inv_mass.data(), w_.inv_inertia.data(), w_.mass.data(),
                       noise ? noise_keys_.data() : nullptr, s.ax.data(), s.ay.data(),
                       s.aw.data(), s.vx.data(), s.vy.data(), kick_form_.new_frac * dt_,
                       kick_form_.old_frac * dt_, s.x.data(), s.y.data(), dt_, ahead,
-                      kick_form_.predict_half, n >= kPrefetchFrom, gravity_,
+                      kick_form_.predict_half, n >= kPrefetchFrom, skin, gravity_,
                       noise ? std::sqrt(2.0 * w_.scene.drive.D / dt_) : 0.0,  // T.2.16
                       index};
   using T = std::true_type;
@@ -275,7 +306,7 @@ void Simulation::compute_accelerations(std::int64_t index, std::span<const Chann
   // thread that summed the force (and predicts and corrects the particle), except the 1D
   // ring's noise, whose mean kick needs every particle first. A fused kick (disks, velocity
   // Verlet) is the correction, applied where the acceleration is computed
-  const bool kick = fused_ && !correct.empty();
+  std::atomic<bool> moved{false};  // an OR: the same answer whatever the thread count
   if (ahead && !predicts_in_pass())
     throw std::logic_error("compute_accelerations: no prediction ahead on this path");
   auto go = [&](auto nz, auto rg, auto sp) {
@@ -288,7 +319,10 @@ void Simulation::compute_accelerations(std::int64_t index, std::span<const Chann
     } else {
       auto after = [&](std::size_t b, std::size_t e) {
         if constexpr (!kSp) {
-          if (kick) return accelerate_kick<kNz, kRg>(a, b, e);
+          if (kick) {
+            if (accelerate_kick<kNz, kRg>(a, b, e)) moved.store(true, std::memory_order_relaxed);
+            return;
+          }
         }
         accelerate<kNz, kRg, kSp>(a, b, e);
         if (!correct.empty()) integ_->correct_range(correct, b, e);
@@ -300,6 +334,7 @@ void Simulation::compute_accelerations(std::int64_t index, std::span<const Chann
       stats_ = model_.evaluate(w_, cand, contacts_, forces_, dt_, broad_->generation(),
                                RangeFn(after));
       if (ahead && kSp) model_.placed_ahead();
+      if (skin.x0 != nullptr) broad_->set_moved(moved.load());
     }
   };
   if (noise) {

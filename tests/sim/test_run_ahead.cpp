@@ -104,6 +104,28 @@ TEST(RunAhead, GasRunIsBitwiseItsSteps) {
   EXPECT_EQ(b.steps_predicted_ahead(), 0u);
 }
 
+// the kick's pass also makes the cell grid's displacement test of the positions it predicts
+// (BroadPhase::set_moved): the list is made anew on the same steps as by update()'s own test.
+// A test that said "still" too often would leave pairs unseen, one that said "moved" too often
+// would only rebuild more: both show in the count
+TEST(RunAhead, GasListMadeAnewOnTheSameSteps) {
+  SceneSpec s = gas();
+  s.drive.com_removal_every = 0;  // no events: every step but the first predicted ahead
+  s.health.check_every = 0;
+  s.integrator.sort_every = 0;
+  s.drive.D = 1e-6;  // a hotter gas: the list is made anew about every 80 steps
+  Simulation a = make_sim(s);
+  Simulation b = make_sim(s);
+  for (int k = 0; k < 4; ++k) {
+    a.run(100);
+    steps(b, 100);
+    EXPECT_EQ(a.broadphase().builds(), b.broadphase().builds()) << k;
+  }
+  expect_same_state(a, b);
+  EXPECT_EQ(a.steps_predicted_ahead(), 4 * 99u);
+  EXPECT_GE(b.broadphase().builds(), 4u);  // 5 in 400 steps
+}
+
 // a run ends in the plain state: runs of any length, and steps between them, chain
 TEST(RunAhead, RunsOfAnyLengthChain) {
   Simulation a = make_sim(gas());
