@@ -6,7 +6,8 @@
 #            (bench/lammps_twin.py writes the gransim scene with it, the LAMMPS data file and the
 #            LAMMPS parameters)
 # Prints particle-steps per second (LAMMPS: its "Loop time"; gransim: run.json, the stepping) for
-# 1 and 2 threads (gransim, OpenMP) / ranks (LAMMPS, MPI) and the ratios, and the per-core ratio
+# 1 and 2 threads (gransim, OpenMP) / ranks (LAMMPS, MPI) and the ratios (one core: the median of
+# three runs of each code, taken in turn), and the per-core ratio
 # once more with both codes running at the same time on the two CPUs (paired); nothing is asserted.
 # Environment: STEPS (default 10000; QUICK=1: 2000), GS_BUILD_DIR (default build),
 # GS_BENCH_RESULTS (file to append "key value" lines to, for bench/summary.py),
@@ -29,6 +30,12 @@ command -v mpirun >/dev/null || { mpi=0; echo "mpirun missing: LAMMPS on 2 ranks
 python3 bench/lammps_twin.py scenes/bench_settled_10k.toml "$tmp" >"$tmp/settled.vars"
 
 num() { sed 's/.*: *//; s/,.*//'; }
+# the median of its arguments (numbers; nan sorts last)
+median() {
+  python3 -c "import sys
+v = sorted(map(float, sys.argv[1:]), key=lambda x: (x != x, x))
+print(v[(len(v) - 1) // 2])" "$@"
+}
 
 # gransim SCENE_FILE DT THREADS: particle-steps/s of `steps` steps
 gransim() {
@@ -112,15 +119,25 @@ for scene in settled fluid; do
     file=$root/scenes/bench_fluid_10k.toml; in=$root/bench/lammps/forced_fluid.in; vars=()
   fi
   declare -A r=()
-  for t in 1 2; do
-    r[g$t]=$(gransim "$file" 1e-6 "$t")
-    printf '%-46s %16.4g\n' "$scene: gransim ($t thread$([ "$t" = 2 ] && echo s))" "${r[g$t]}"
+  # one core: gransim and LAMMPS one after the other, three times in turn, and the median of
+  # each, so that a slow spell of the host (minutes) falls on both codes alike
+  g_runs=(); l_runs=()
+  for rep in 1 2 3; do
+    g_runs+=("$(gransim "$file" 1e-6 1)")
+    l_runs+=("$(lammps "$in" 1 10000 "${vars[@]}")")
   done
-  for t in 1 2; do
-    if [ "$t" = 2 ] && [ "$mpi" = 0 ]; then r[l2]=""; continue; fi
-    r[l$t]=$(lammps "$in" "$t" 10000 "${vars[@]}")
-    printf '%-46s %16.4g\n' "$scene: LAMMPS gran/hooke/history ($t rank$([ "$t" = 2 ] && echo s))" "${r[l$t]}"
-  done
+  r[g1]=$(median "${g_runs[@]}"); r[l1]=$(median "${l_runs[@]}")
+  printf '%-46s %16.4g  (median of %s)\n' "$scene: gransim (1 thread)" "${r[g1]}" "${g_runs[*]}"
+  printf '%-46s %16.4g  (median of %s)\n' "$scene: LAMMPS gran/hooke/history (1 rank)" "${r[l1]}" \
+    "${l_runs[*]}"
+  r[g2]=$(gransim "$file" 1e-6 2)
+  printf '%-46s %16.4g\n' "$scene: gransim (2 threads)" "${r[g2]}"
+  if [ "$mpi" = 0 ]; then
+    r[l2]=""
+  else
+    r[l2]=$(lammps "$in" 2 10000 "${vars[@]}")
+    printf '%-46s %16.4g\n' "$scene: LAMMPS gran/hooke/history (2 ranks)" "${r[l2]}"
+  fi
   [ "$scene" = settled ] && { settled_check || true; }
   r[pair]=nan
   if [ "$(nproc)" -ge 2 ] && command -v taskset >/dev/null; then
