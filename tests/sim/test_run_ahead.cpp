@@ -109,21 +109,32 @@ TEST(RunAhead, GasRunIsBitwiseItsSteps) {
 // A test that said "still" too often would leave pairs unseen, one that said "moved" too often
 // would only rebuild more: both show in the count
 TEST(RunAhead, GasListMadeAnewOnTheSameSteps) {
-  SceneSpec s = gas();
-  s.drive.com_removal_every = 0;  // no events: every step but the first predicted ahead
-  s.health.check_every = 0;
-  s.integrator.sort_every = 0;
-  s.drive.D = 1e-6;  // a hotter gas: the list is made anew about every 80 steps
-  Simulation a = make_sim(s);
-  Simulation b = make_sim(s);
-  for (int k = 0; k < 4; ++k) {
-    a.run(100);
-    steps(b, 100);
-    EXPECT_EQ(a.broadphase().builds(), b.broadphase().builds()) << k;
+  // 2000 disks (serial), and 10⁴ on two threads (each thread tests its own particles) against
+  // single steps on one
+  for (int n : {2000, 10000}) {
+    SceneSpec s = gas(n);
+    s.drive.com_removal_every = 0;  // no events: every step but the first predicted ahead
+    s.health.check_every = 0;
+    s.integrator.sort_every = 0;
+    s.drive.D = 1e-6;  // a hotter gas: the list is made anew about every 80 steps
+    Simulation a = make_sim(s);
+    Simulation b = make_sim(s);
+    const int parts = n == 2000 ? 4 : 2;
+    for (int k = 0; k < parts; ++k) {
+      {
+        const Threads team(n == 2000 ? 1 : 2);
+        a.run(100);
+      }
+      {
+        const Threads one(1);
+        steps(b, 100);
+      }
+      EXPECT_EQ(a.broadphase().builds(), b.broadphase().builds()) << n << " part " << k;
+    }
+    expect_same_state(a, b);
+    EXPECT_EQ(a.steps_predicted_ahead(), static_cast<std::uint64_t>(parts) * 99u);
+    EXPECT_GE(b.broadphase().builds(), static_cast<std::uint64_t>(parts));  // 2000: 5 in 400
   }
-  expect_same_state(a, b);
-  EXPECT_EQ(a.steps_predicted_ahead(), 4 * 99u);
-  EXPECT_GE(b.broadphase().builds(), 4u);  // 5 in 400 steps
 }
 
 // a run ends in the plain state: runs of any length, and steps between them, chain
