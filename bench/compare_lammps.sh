@@ -7,8 +7,8 @@
 #            LAMMPS parameters)
 # Prints particle-steps per second (LAMMPS: its "Loop time"; gransim: run.json, the stepping) for
 # 1 and 2 threads (gransim, OpenMP) / ranks (LAMMPS, MPI) and the ratios (one core: the median of
-# three runs of each code, taken in turn), and the per-core ratio
-# once more with both codes running at the same time on the two CPUs (paired); nothing is asserted.
+# three runs of each code, taken in turn), and the per-core ratio once more with both codes
+# running at the same time on the two CPUs (paired); nothing is asserted.
 # Environment: STEPS (default 10000; QUICK=1: 2000), GS_BUILD_DIR (default build),
 # GS_BENCH_RESULTS (file to append "key value" lines to, for bench/summary.py),
 # OMP_WAIT_POLICY (default: the runtime's), GS_MPI_ARGS (default "--mca mpi_yield_when_idle 1").
