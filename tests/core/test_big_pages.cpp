@@ -69,6 +69,9 @@ TEST(BigPages, StandardFormsAndFailures) {
   delete[] a;
   void* p = ::operator new(kBigBlockFrom + 1, std::nothrow);
   ASSERT_NE(p, nullptr);
+  if (big_pages_active()) {
+    EXPECT_EQ(reinterpret_cast<std::uintptr_t>(p) % kHugePage, 0u);
+  }
   ::operator delete(p, std::nothrow);
   // small blocks, and zero bytes: distinct, usable pointers
   void* z0 = ::operator new(0);
