@@ -51,10 +51,10 @@ class CellGrid final : public BroadPhase {
     return {bx_.data(), by_.data(), lim2(), bx_.size()};
   }
 
-  // has any grain moved more than half the skin since the last build?
+  // has any grain moved more than half the skin since the last build? (update() has checked
+  // that the list is of these particles)
   bool needs_rebuild(const World& w) const {
     const std::size_t n = w.size();
-    if (n != bx_.size()) return true;
     std::atomic<bool> moved{false};  // an OR: the same answer whatever the thread count
     parallel_ranges(n, kParallelMinCheap, [&](std::size_t b, std::size_t e) {
       if (moved_beyond(w, b, e)) moved.store(true, std::memory_order_relaxed);

@@ -183,7 +183,7 @@ bool skin_moved_block(const AccelArrays& a, std::size_t k, std::size_t m) {
 // particle of [b, e) moved beyond the skin?)
 template <bool kNoise, bool kRing>
 bool accelerate_kick(const AccelArrays& a, std::size_t b, std::size_t e) {
-  const bool test = a.ahead && a.skin.x0 != nullptr && !kRing;
+  const bool test = a.skin.x0 != nullptr;  // given only ahead, disks in a plane
   bool moved = false;
   constexpr std::size_t kBlock = 256, kSub = 32;
   alignas(64) double bx[kBlock], by[kBlock];
