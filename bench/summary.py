@@ -201,10 +201,37 @@ for name, b in list(g1.items()):
     if "fps" in b:
         row(f"frames: {name.removeprefix('BM_').split('/real_time')[0]}", b["fps"], " fps")
 
+
+
+def machine():
+    """machine.txt (bench/machine.sh) as one line; AMD's x86 families named by core generation"""
+    m = {}
+    try:
+        with open(os.path.join(d, "machine.txt")) as fh:
+            for line in fh:
+                k, _, v = line.rstrip("\n").partition(" ")
+                m[k] = v
+    except OSError:
+        return None
+    gen = ""
+    try:
+        fam, mod = int(m.get("family", "")), int(m.get("model", ""))
+        if "AMD" in m.get("cpu", ""):
+            zen4 = 0x10 <= mod <= 0x1F or 0x60 <= mod <= 0x7F or 0xA0 <= mod <= 0xAF
+            gen = {23: "Zen/Zen 2", 25: "Zen 4" if zen4 else "Zen 3", 26: "Zen 5"}.get(fam, "")
+    except ValueError:
+        pass
+    return (f"{m.get('cpu', '?')}, x86 family {m.get('family', '?')} model {m.get('model', '?')}"
+            + (f" ({gen})" if gen else "") + f", L2 {m.get('l2', '?')} per core, "
+            f"{m.get('vector') or 'no AVX'}, {m.get('mhz', '?')} MHz, {m.get('cpus', '?')} CPUs")
+
+
 w = [max(len(r[i]) for r in rows + [("figure", "value", "target", "verdict")]) for i in range(4)]
 line = "-+-".join("-" * x for x in w)
 print("=" * len(line))
 print(f"SUMMARY{' (QUICK mode: short runs, noisy)' if quick else ''}; p-st/s = particle-steps per second")
+if machine():
+    print(f"machine: {machine()}")
 print("=" * len(line))
 for r in [("figure", "value", "target", "verdict")] + rows:
     print(" | ".join(c.ljust(x) for c, x in zip(r, w)))

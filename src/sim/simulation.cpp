@@ -118,23 +118,31 @@ double accelerate(const AccelArrays& a, std::size_t b, std::size_t e) {
   const std::int64_t index = a.index;
   double kick_sum = 0.0;
   const ZigguratTables& zt = ZigguratTables::get();
-  for (std::size_t i = b; i < e; ++i) {
-    const double im = im_[i];
-    double ax = fx[i] * im + gx;
-    double ay = kRing ? 0.0 : fy[i] * im + gy;
-    if constexpr (kNoise) {
-      double z0, z1;
-      noise_normals(zt, keys[i], index, kRing, z0, z1);
-      const double ex = sigma * z0 * im;
-      ax += ex;
-      if constexpr (kRing)
-        kick_sum += ex * a.mass[i];
-      else
-        ay += sigma * z1 * im;
+  // the normals of a sub-block first, its common draws in one pass without branches
+  // (noise_normals_block): this loop, with the rare rejections inline, kept ~8 particles in
+  // flight; the 1D ring's step 13.9 → … µs (Zen 3)
+  constexpr std::size_t kSub = kNoise ? 64 : std::size_t(1) << 62;
+  alignas(64) double z0s[kNoise ? kSub : 1], z1s[kNoise ? kSub : 1];
+  for (std::size_t k = b; k < e; k += kSub) {
+    const std::size_t m = std::min(kSub, e - k);
+    if constexpr (kNoise) noise_normals_block(zt, keys + k, index, kRing, m, z0s, z1s);
+    for (std::size_t q = 0; q < m; ++q) {
+      const std::size_t i = k + q;
+      const double im = im_[i];
+      double ax = fx[i] * im + gx;
+      double ay = kRing ? 0.0 : fy[i] * im + gy;
+      if constexpr (kNoise) {
+        const double ex = sigma * z0s[q] * im;
+        ax += ex;
+        if constexpr (kRing)
+          kick_sum += ex * a.mass[i];
+        else
+          ay += sigma * z1s[q] * im;
+      }
+      axo[i] = ax;
+      if constexpr (!kRing) ayo[i] = ay;
+      if constexpr (kSpin) a.aw[i] = a.tq[i] * a.inv_inertia[i];
     }
-    axo[i] = ax;
-    if constexpr (!kRing) ayo[i] = ay;
-    if constexpr (kSpin) a.aw[i] = a.tq[i] * a.inv_inertia[i];
   }
   return kick_sum;
 }
