@@ -315,6 +315,11 @@ ForceStats ContactModel::evaluate_serial(const World& w, const std::vector<PairK
   ForceStats st;
   PairForce pf;
   PairResult r;
+  // disks of one radius (find_common_radius): the largest overlap over the radius is the
+  // largest overlap divided by it once, the same bits (a correctly rounded division by a
+  // positive constant keeps the order), not a division and two loads per contact
+  const double rc = poly ? 0.0 : common_radius_;
+  const bool one_radius = !poly && rc > 0.0;
   // one loop per model, so that the disk loop is free of polygon branches; `at(q)`: the q-th
   // candidate the loop visits
   auto run = [&](std::size_t count, auto&& at, auto&& pair) {
@@ -333,7 +338,8 @@ ForceStats ContactModel::evaluate_serial(const World& w, const std::vector<PairK
       new_keys_.push_back(key);
       new_records_.push_back({key, r.s, r.n, r.fn, r.ft, r.overlap});
       if (poly) new_state_.push_back(r.state);
-      note_overlap(st, w, key, r.h, r.degenerate);
+      if (one_radius) st.max_overlap = std::max(st.max_overlap, r.h);
+      else note_overlap(st, w, key, r.h, r.degenerate);
     }
   };
   std::size_t hint = 0;
@@ -361,6 +367,7 @@ ForceStats ContactModel::evaluate_serial(const World& w, const std::vector<PairK
           [&](PairKey key) { return disk_pair(w, key, pf, r); });
     }
   }
+  if (one_radius) st.max_overlap_rel = st.max_overlap / rc;
   note_touched(f, N);
   return st;
 }

@@ -190,6 +190,43 @@ TEST(ForceSums, DiskPrefilterKeepsThePairs) {
   }
 }
 
+// the force loop's largest overlap and largest overlap over the smaller radius are those of its
+// contact records, bit for bit: where every disk has one radius the serial loop divides the
+// largest overlap by it once (no division per contact), else it divides per contact
+TEST(ForceSums, LargestOverlapsAreTheRecordsMaxima) {
+  const Threads one(1);  // the serial loop
+  for (const bool mixed : {false, true}) {
+    SceneSpec s = build::disk_gas(400, 0.6, 0.6, 0.6, 9);
+    s.box.kind = BoxKind::Walls;
+    World w = make_world(s);
+    place_particles(w);
+    // grown by 30% (most disks touch, some the walls); mixed: every third 2% more
+    for (double& r : w.radius) r *= 1.3;
+    for (std::size_t i = 1; mixed && i < w.size(); i += 3) w.radius[i] *= 1.02;
+    w.max_radius *= 1.3 * 1.02;
+    auto bp = make_broadphase(BroadPhaseKind::CellGrid, w);
+    const std::vector<PairKey>& cand = bp->update(w);
+    ContactModel model(w);
+    ContactSet cs;
+    ForceBuffer f;
+    const ForceStats st = model.evaluate(w, cand, cs, f, w.scene.integrator.dt, bp->generation());
+    const auto N = static_cast<std::uint32_t>(w.size());
+    double h = 0.0, rel = 0.0;
+    std::size_t walls = 0;
+    for (const ContactRecord& r : cs.records) {
+      const std::uint32_t i = key_i(r.key), j = key_j(r.key);
+      walls += j >= N;
+      h = std::max(h, r.overlap);
+      rel = std::max(rel, r.overlap / (j >= N ? w.radius[i] : std::min(w.radius[i], w.radius[j])));
+    }
+    ASSERT_GT(cs.records.size(), w.size()) << "a packing: more contacts than disks";
+    ASSERT_GT(walls, 0u);
+    EXPECT_EQ(st.max_overlap, h) << "mixed radii: " << mixed;
+    EXPECT_EQ(st.max_overlap_rel, rel) << "mixed radii: " << mixed;
+    EXPECT_GT(rel, 0.1);  // grown by 30%: overlaps of a good part of a radius
+  }
+}
+
 // a dilute periodic gas of 10⁴ disks: its particle loops run on the team, its 10³–8·10³
 // candidate pairs, too cheap for a region of their own, join the team's region
 // (ContactModel::parallel_pairs_from). Two threads give the one-thread serial loop's contacts,
