@@ -246,6 +246,7 @@ ForceStats ContactModel::evaluate(const World& w, const std::vector<PairKey>& ca
   ForceStats st;
   const bool placed = poly && placed_ahead_;  // by the last evaluate()'s `after`
   placed_ahead_ = false;
+  if (!poly) find_common_radius(w, generation);
   if (run_parallel(ncand, parallel_pairs_from(poly, n))) {
     // disks of which few touched last step: each particle's sum from the few touching pairs
     // themselves, not from its candidates (sums_from_touching); else the per-particle index
@@ -264,7 +265,6 @@ ForceStats ContactModel::evaluate(const World& w, const std::vector<PairKey>& ca
       shapes_.resize(n, max_sides_);
       if (!placed) place_shapes(w, 0, n);
     }
-    if (!poly) find_common_radius(w, generation);
     st = evaluate_serial(w, cand, cs, f, dt);
     if (after) parallel_ranges(n, kParallelMinCheap, after);
   }
@@ -295,11 +295,14 @@ void ContactModel::place_shapes(const World& w, std::size_t b, std::size_t e) {
 }
 
 // the contact's statistics: h_eff (or δ) and the same over the smaller grain's radius
-static void note_overlap(ForceStats& st, const World& w, PairKey key, double h, bool degenerate) {
+// (one_radius: disks of one radius, whose max_overlap_rel finish_overlaps makes at the end)
+static void note_overlap(ForceStats& st, const World& w, PairKey key, double h, bool degenerate,
+                         bool one_radius) {
   const std::uint32_t i = key_i(key), j = key_j(key);
-  const double ri = w.radius[i];
   st.degenerate += degenerate;
   st.max_overlap = std::max(st.max_overlap, h);
+  if (one_radius) return;
+  const double ri = w.radius[i];
   st.max_overlap_rel =
       std::max(st.max_overlap_rel, h / (j >= w.size() ? ri : std::min(ri, w.radius[j])));
 }
@@ -315,11 +318,7 @@ ForceStats ContactModel::evaluate_serial(const World& w, const std::vector<PairK
   ForceStats st;
   PairForce pf;
   PairResult r;
-  // disks of one radius (find_common_radius): the largest overlap over the radius is the
-  // largest overlap divided by it once, the same bits (a correctly rounded division by a
-  // positive constant keeps the order), not a division and two loads per contact
-  const double rc = poly ? 0.0 : common_radius_;
-  const bool one_radius = !poly && rc > 0.0;
+  const bool one_radius = one_radius_disks(poly);
   // one loop per model, so that the disk loop is free of polygon branches; `at(q)`: the q-th
   // candidate the loop visits
   auto run = [&](std::size_t count, auto&& at, auto&& pair) {
@@ -338,8 +337,7 @@ ForceStats ContactModel::evaluate_serial(const World& w, const std::vector<PairK
       new_keys_.push_back(key);
       new_records_.push_back({key, r.s, r.n, r.fn, r.ft, r.overlap});
       if (poly) new_state_.push_back(r.state);
-      if (one_radius) st.max_overlap = std::max(st.max_overlap, r.h);
-      else note_overlap(st, w, key, r.h, r.degenerate);
+      note_overlap(st, w, key, r.h, r.degenerate, one_radius);
     }
   };
   std::size_t hint = 0;
@@ -367,7 +365,7 @@ ForceStats ContactModel::evaluate_serial(const World& w, const std::vector<PairK
           [&](PairKey key) { return disk_pair(w, key, pf, r); });
     }
   }
-  if (one_radius) st.max_overlap_rel = st.max_overlap / rc;
+  finish_overlaps(st, one_radius);
   note_touched(f, N);
   return st;
 }
@@ -410,6 +408,7 @@ ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<Pai
   const std::size_t n = w.size();
   const std::size_t ncand = cand.size();
   const bool poly = w.polygons();
+  const bool one_radius = one_radius_disks(poly);
   if (reindex) index_candidates(cand, n);
   f.sparse = false;  // every entry is written below
   touch_.resize(ncand);
@@ -524,7 +523,7 @@ ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<Pai
         new_records_[out] = {key, r.s, r.n, r.fn, r.ft, r.overlap};
         if (poly) new_state_[out] = r.state;
         ++out;
-        note_overlap(chunk_stats_[c], w, key, r.h, r.degenerate);
+        note_overlap(chunk_stats_[c], w, key, r.h, r.degenerate, one_radius);
       }
     }
     if (from_touching) {  // the sums read every thread's compacted pairs
@@ -574,6 +573,7 @@ ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<Pai
     st.max_overlap = std::max(st.max_overlap, b.max_overlap);
     st.max_overlap_rel = std::max(st.max_overlap_rel, b.max_overlap_rel);
   }
+  finish_overlaps(st, one_radius);
   return st;
 }
 

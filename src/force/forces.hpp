@@ -139,6 +139,13 @@ class ContactModel {
   /// (at 10⁶ disks a memory stream of its own). Found once per candidate list (generation),
   /// which is made for the radii it is used with
   void find_common_radius(const World& w, std::uint64_t generation);
+  /// disks of one radius (find_common_radius): their largest overlap over the radius is the
+  /// largest overlap divided by it once, the same bits (a correctly rounded division by a
+  /// positive constant keeps the order), not a division and two loads per contact
+  bool one_radius_disks(bool poly) const { return !poly && common_radius_ > 0.0; }
+  void finish_overlaps(ForceStats& st, bool one_radius) const {
+    if (one_radius) st.max_overlap_rel = st.max_overlap / common_radius_;
+  }
   double common_radius_ = 0.0;
   std::uint64_t common_radius_generation_ = 0;  ///< 0: not found for any list
   std::size_t common_radius_n_ = 0;

@@ -191,12 +191,14 @@ TEST(ForceSums, DiskPrefilterKeepsThePairs) {
 }
 
 // the force loop's largest overlap and largest overlap over the smaller radius are those of its
-// contact records, bit for bit: where every disk has one radius the serial loop divides the
-// largest overlap by it once (no division per contact), else it divides per contact
+// contact records, bit for bit: where every disk has one radius the loops divide the largest
+// overlap by it once (no division per contact), else they divide per contact. The serial loop
+// (one thread) and the parallel one (two)
 TEST(ForceSums, LargestOverlapsAreTheRecordsMaxima) {
-  const Threads one(1);  // the serial loop
+  for (const int threads : {1, 2})
   for (const bool mixed : {false, true}) {
-    SceneSpec s = build::disk_gas(400, 0.6, 0.6, 0.6, 9);
+    const Threads team(threads);
+    SceneSpec s = build::disk_gas(6000, 0.6, 0.6, 0.6, 9);
     s.box.kind = BoxKind::Walls;
     World w = make_world(s);
     place_particles(w);
@@ -206,6 +208,10 @@ TEST(ForceSums, LargestOverlapsAreTheRecordsMaxima) {
     w.max_radius *= 1.3 * 1.02;
     auto bp = make_broadphase(BroadPhaseKind::CellGrid, w);
     const std::vector<PairKey>& cand = bp->update(w);
+#ifdef _OPENMP
+    ASSERT_EQ(run_parallel(cand.size(), ContactModel::parallel_pairs_from(false, w.size())),
+              threads == 2);
+#endif
     ContactModel model(w);
     ContactSet cs;
     ForceBuffer f;
@@ -221,8 +227,8 @@ TEST(ForceSums, LargestOverlapsAreTheRecordsMaxima) {
     }
     ASSERT_GT(cs.records.size(), w.size()) << "a packing: more contacts than disks";
     ASSERT_GT(walls, 0u);
-    EXPECT_EQ(st.max_overlap, h) << "mixed radii: " << mixed;
-    EXPECT_EQ(st.max_overlap_rel, rel) << "mixed radii: " << mixed;
+    EXPECT_EQ(st.max_overlap, h) << threads << " threads, mixed radii: " << mixed;
+    EXPECT_EQ(st.max_overlap_rel, rel) << threads << " threads, mixed radii: " << mixed;
     EXPECT_GT(rel, 0.1);  // grown by 30%: overlaps of a good part of a radius
   }
 }
