@@ -202,7 +202,6 @@ for name, b in list(g1.items()):
         row(f"frames: {name.removeprefix('BM_').split('/real_time')[0]}", b["fps"], " fps")
 
 
-
 def machine():
     """machine.txt (bench/machine.sh) as one line; AMD's x86 families named by core generation"""
     m = {}

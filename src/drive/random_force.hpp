@@ -29,9 +29,10 @@ inline void noise_normals(const ZigguratTables& t, std::uint64_t key, std::int64
 }
 
 /// noise_normals of a block of m ≤ 64 particles (keys[q] → z0[q], and z1[q] off the ring), the
-/// same values bit for bit: first every particle's common case in one pass without branches (the ziggurat's
-/// first try on the stream's first value, and on its second for z1), so that the particles'
-/// draws overlap in the pipeline; then noise_normals itself for the few it rejected
+/// same values bit for bit: first every particle's common case in one pass without branches
+/// (the ziggurat's first try on the stream's first value, and on its second for z1), so that
+/// the particles' draws overlap in the pipeline; then noise_normals itself for the few it
+/// rejected
 inline void noise_normals_block(const ZigguratTables& t, const std::uint64_t* keys,
                                 std::int64_t step, bool ring, std::size_t m, double* z0,
                                 double* z1) {

@@ -121,10 +121,11 @@ double accelerate(const AccelArrays& a, std::size_t b, std::size_t e) {
   // the normals of a sub-block first, its common draws in one pass without branches
   // (noise_normals_block; with the rare rejections inline this loop spilled registers and
   // overlapped few particles): forced fluid 10⁴ +12–30%, 1D ring +6–18% (A/B on one CPU)
-  constexpr std::size_t kSub = kNoise ? 64 : std::size_t(1) << 62;
+  constexpr std::size_t kSub = 64;
   alignas(64) double z0s[kNoise ? kSub : 1], z1s[kNoise ? kSub : 1];
-  for (std::size_t k = b; k < e; k += kSub) {
-    const std::size_t m = std::min(kSub, e - k);
+  const std::size_t sub = kNoise ? kSub : e - b;  // without noise: one block
+  for (std::size_t k = b; k < e; k += sub) {
+    const std::size_t m = std::min(sub, e - k);
     if constexpr (kNoise) noise_normals_block(zt, keys + k, index, kRing, m, z0s, z1s);
     for (std::size_t q = 0; q < m; ++q) {
       const std::size_t i = k + q;
