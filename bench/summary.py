@@ -229,8 +229,9 @@ w = [max(len(r[i]) for r in rows + [("figure", "value", "target", "verdict")]) f
 line = "-+-".join("-" * x for x in w)
 print("=" * len(line))
 print(f"SUMMARY{' (QUICK mode: short runs, noisy)' if quick else ''}; p-st/s = particle-steps per second")
-if machine():
-    print(f"machine: {machine()}")
+host = machine()
+if host:
+    print(f"machine: {host}")
 print("=" * len(line))
 for r in [("figure", "value", "target", "verdict")] + rows:
     print(" | ".join(c.ljust(x) for c, x in zip(r, w)))
