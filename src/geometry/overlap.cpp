@@ -275,8 +275,9 @@ Overlap overlap(const PolyRef& a, const PolyRef& b) {
   // |c − mean_b|₁ + hx + hy + 2·radius_b; that of the centre, the half-widths and the new
   // vertices of later clips ~1e-16 of |c|₁: the margin is wide, also far from the origin.
   const double cl1 = std::abs(cx - b.mean.x) + std::abs(cy - b.mean.y);
-  const double margin =
-      (1e-9 * (cl1 + 2.0 * b.radius + hx + hy) + 1e-14 * (std::abs(cx) + std::abs(cy))) * b.len;
+  const double slack =  // the margin over |e|, a length (the near test below needs no division)
+      1e-9 * (cl1 + 2.0 * b.radius + hx + hy) + 1e-14 * (std::abs(cx) + std::abs(cy));
+  const double margin = slack * b.len;
   // as a bit mask, bit j for edge k0 + 1 + j (clip_all's order)
   auto may_cut = [&](int k) -> std::uint64_t {
     const double ex = b.ex(k), ey = b.ey(k);
@@ -287,10 +288,10 @@ Overlap overlap(const PolyRef& a, const PolyRef& b) {
   const int k1 = k0 + 1 == b.n ? 0 : k0 + 1;
   std::uint64_t cut = 0;
   // a regular b and a cap near the facing edge's midpoint (PolyRef::near): only the two
-  // neighbouring edge lines can cut it (the margin, a length here: that of the side values
-  // over |e|; the bound's own 10⁻⁶ slack is far wider still)
+  // neighbouring edge lines can cut it (the margin as a length, that of the side values over
+  // |e|, to round-off; the bound's own 10⁻⁶ slack is far wider still)
   const double mx = 0.5 * (b.x[k0] + b.x[k1]), my = 0.5 * (b.y[k0] + b.y[k1]);
-  if (b.near > 0.0 && std::abs(cx - mx) + std::abs(cy - my) + hx + hy + margin / b.len < b.near) {
+  if (b.near > 0.0 && std::abs(cx - mx) + std::abs(cy - my) + hx + hy + slack < b.near) {
     cut = may_cut(k1) | may_cut(k0 == 0 ? b.n - 1 : k0 - 1) << (b.n - 2);
   } else {
     for (int k = 0; k < b.n; ++k) cut |= may_cut(k) << k;
