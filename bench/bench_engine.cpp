@@ -1,11 +1,15 @@
-// whole-engine benchmarks: one force evaluation and whole steps of the settled 1184-decagon
-// paper pile, and steps of a 10⁴-disk forced periodic fluid. Counters report particle-steps/s.
+// whole-engine benchmarks: the overlaps of the settled 1184-decagon paper pile's pairs, one
+// force evaluation and whole steps of that pile, and steps of a 10⁴-disk forced periodic fluid.
+// Counters report particle-steps/s.
 #include <benchmark/benchmark.h>
 
 #include <filesystem>
 #include <memory>
+#include <utility>
+#include <vector>
 
 #include "scene/parse.hpp"
+#include "geometry/prepared.hpp"
 #include "sim/builders.hpp"
 #include "sim/simulation.hpp"
 #include "sim/state_file.hpp"
@@ -42,6 +46,36 @@ void BM_PileForceEvaluation(benchmark::State& st) {
                                                   benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_PileForceEvaluation)->Unit(benchmark::kMicrosecond);
+
+// the prepared decagon overlap on the settled pile's own pairs (every grain pair whose bounding
+// circles meet, in index order): the contact hot loop's kernel on the overlaps the pile has,
+// shallow and mostly face to face, which BM_DecagonOverlapPrepared's deep random pairs are not
+void BM_PileOverlaps(benchmark::State& st) {
+  const World w = settled_pile(IntegratorKind::Gear6);
+  PolyStore shapes;
+  shapes.resize(w.size(), 10);
+  for (std::size_t i = 0; i < w.size(); ++i)
+    shapes.set_placed(i, w.species[w.sp[i]].body, {w.s.x[i], w.s.y[i]}, w.s.th[i]);
+  std::vector<std::pair<std::size_t, std::size_t>> pairs;
+  for (std::size_t i = 0; i < w.size(); ++i)
+    for (std::size_t j = i + 1; j < w.size(); ++j) {
+      const double r = shapes.ref(i).radius + shapes.ref(j).radius;
+      if (norm2(shapes.ref(i).mean - shapes.ref(j).mean) < r * r) pairs.push_back({i, j});
+    }
+  std::size_t touching = 0;
+  for (auto _ : st) {
+    touching = 0;
+    for (const auto& [i, j] : pairs) {
+      const Overlap o = overlap(shapes.ref(i), shapes.ref(j));
+      touching += o.area > 0.0;
+      benchmark::DoNotOptimize(o);
+    }
+  }
+  st.counters["pairs"] = static_cast<double>(pairs.size());
+  st.counters["touching"] = static_cast<double>(touching);
+  st.SetItemsProcessed(st.iterations() * static_cast<std::int64_t>(pairs.size()));
+}
+BENCHMARK(BM_PileOverlaps)->Unit(benchmark::kMicrosecond);
 
 void BM_PileStep(benchmark::State& st) {
   const auto integ = static_cast<IntegratorKind>(st.range(0));
