@@ -4,7 +4,7 @@
 #   paper  scenes/paper_negative_g.toml started from the settled pile (bench/data/
 #          paper_pile_settled.csv, via bench/scene_from_state.py; no settling), 1 and 2 threads:
 #          fixed period (Gear 6 at 5e-5 s, the paper's), and early rest with the recommended
-#          settings of scenes/paper_negative_g_fast.toml (velocity Verlet at 1e-4 s; Gear 6 at
+#          settings of scenes/paper_negative_g_fast.toml (velocity Verlet at 1/7500 s; Gear 6 at
 #          the paper's Δt keeps jittering and never meets the rest thresholds)
 #   small  scenes/tap_small_negative_g.toml (settles 1.5 s first), fixed period and early rest
 #   sweep  tap_small at g_p = 4,6,8,10: `gransim sweep --jobs 1` against
