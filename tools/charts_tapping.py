@@ -100,8 +100,19 @@ def control_value(p, c):
     return "control = %s" % c
 
 
+# (protocol, control value) pairs that more than one run shares (an A/B comparison at one g_p):
+# their legend entries name the run as well, or they could not be told apart
+SHARED = set()
+
+
+def run_value(r):
+    """the run's control value for a legend, with the run's label where others share it"""
+    text = control_value(r["protocol"], r["control"])
+    return "%s (%s)" % (text, r["label"]) if (r["protocol"], r["control"]) in SHARED else text
+
+
 def label_of(r):
-    return "%s, %s" % (protocol_name(r["protocol"]), control_value(r["protocol"], r["control"]))
+    return "%s, %s" % (protocol_name(r["protocol"]), run_value(r))
 
 
 # ---- Fig. 4: time series ---------------------------------------------------------------------
@@ -177,7 +188,7 @@ def chart_kde(kde, summary, out, p):
     for r in rows:
         pts = [k for k in kde if k["label"] == r["label"]]
         ax.plot([num(k["phi"]) for k in pts], [num(k["p_normal"]) for k in pts],
-                label=control_value(p, r["control"]))
+                label=run_value(r))
     ax.set_xlabel(PHI)
     ax.set_ylabel(r"probability density $P(\phi)$")
     ax.set_title("%s: kernel density estimates (normal kernel, Silverman h)" % protocol_name(p))
@@ -373,6 +384,8 @@ def main():
     q = read_csv(os.path.join(d, "q_lines.csv")) or []
     beta = read_csv(os.path.join(d, "beta.csv")) or []
     ref = analysis.get("reference", "")
+    keys = [(r["protocol"], r["control"]) for r in summary]
+    SHARED.update(k for k in keys if keys.count(k) > 1)
 
     chart_series(d, out, a.max_series)
     present = protocols_in(summary)
