@@ -8,8 +8,8 @@
 #include <utility>
 #include <vector>
 
-#include "scene/parse.hpp"
 #include "geometry/prepared.hpp"
+#include "scene/parse.hpp"
 #include "sim/builders.hpp"
 #include "sim/simulation.hpp"
 #include "sim/state_file.hpp"

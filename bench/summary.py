@@ -183,9 +183,9 @@ def ends(key):  # how many relaxations ended early
     return " (skipped: QUICK)" if quick and v is None else "" if v is None else f" ({v:.0f} early ends)"
 
 
-row("paper tap, early rest (_fast.toml: VV 1e-4 s), 1 thread", kv.get("tap.paper.rest.t1"), " s",
+row("paper tap, early rest (_fast.toml: VV 1/7500 s), 1 thread", kv.get("tap.paper.rest.t1"), " s",
     note=ends("tap.paper.rest.early.t1"))
-row("paper tap, early rest (_fast.toml: VV 1e-4 s), 2 threads", kv.get("tap.paper.rest.t2"), " s",
+row("paper tap, early rest (_fast.toml: VV 1/7500 s), 2 threads", kv.get("tap.paper.rest.t2"), " s",
     "≤ 5 s", le(5.0), note=ends("tap.paper.rest.early.t2") + runs_note("tap.paper.rest.t2", 5.0))
 row("small pile (250) tap, fixed period, 1 thread", kv.get("tap.small.fixed.t1"), " s")
 row("small pile (250) tap, early rest, 1 thread", kv.get("tap.small.rest.t1"), " s",

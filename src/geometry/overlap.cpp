@@ -234,8 +234,8 @@ Overlap overlap(const PolyRef& a, const PolyRef& b) {
   const double rr = a.radius + b.radius;
   if (norm2(dc) > rr * rr) return {};
   // facing edge of b, as facing_edge(): the first edge of the highest score, chosen without
-  // a branch (which way each comparison goes is data, and mispredicted it cost a tenth of the
-  // pile's step)
+  // a branch (which way each comparison goes is data: with branches this loop took a fifth of
+  // the overlap's time in the settled pile)
   const Vec2 d = a.mean - b.mean;
   int k0 = 0;
   double best_score = -1e300;
