@@ -110,6 +110,10 @@ for bp, bpname in (("box2d_tree", "Box2D tree"), ("cell_grid", "cell grid")):
     row(f"1184-decagon pile, Gear 6, {bpname}, 2 threads", pile(g2, "gear6/" + bp), " p-st/s",
         "≥ 5e6 p-st/s", ge(5e6), note=reps_note(pile_entry(g2, "gear6/" + bp), "≥ 5e6", ge(5e6)))
 row("1184-decagon pile, velocity Verlet, 2 threads", pile(g2, "velocity_verlet/box2d_tree"), " p-st/s")
+# the overlap kernel on the settled pile's own pairs, ns per pair (the step's largest part)
+ov = g1.get("BM_PileOverlaps", {})
+row("decagon overlap on the settled pile's pairs, 1 thread",
+    1e9 / ov["items_per_second"] if ov.get("items_per_second") else None, " ns per pair")
 
 # gransim against LAMMPS
 for sc, label in (("settled", "10⁴ disks settled under gravity"), ("fluid", "10⁴-disk forced fluid")):
