@@ -3,6 +3,7 @@
 // by (seed, particle) and counted by the step, so they never depend on thread count or order.
 #pragma once
 #include <bit>
+#include <cassert>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -36,6 +37,7 @@ inline void noise_normals(const ZigguratTables& t, std::uint64_t key, std::int64
 inline void noise_normals_block(const ZigguratTables& t, const std::uint64_t* keys,
                                 std::int64_t step, bool ring, std::size_t m, double* z0,
                                 double* z1) {
+  assert(m <= 64);  // one bit of `redo` per particle
   const auto c = static_cast<std::uint64_t>(step) << 8;  // noise_normals' counter
   std::uint64_t redo = 0;  // bit q: particle q drawn again in full
   for (std::size_t q = 0; q < m; ++q) {
