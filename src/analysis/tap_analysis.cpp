@@ -64,9 +64,19 @@ int find_label(const std::vector<TapRunSummary>& runs, const std::string& label)
 
 // quadron fit (P.26) over the runs whose index passes `use`, with β̂ against the reference
 QuadronFit fit_runs(const TapAnalysisResult& r, const TapAnalysisOptions& opts,
-                    const std::vector<int>& use) {
+                    const std::vector<int>& use, bool joint = false) {
   std::vector<double> b, be, p, pe;
   for (int i : use) {
+    if (joint) {
+      const MultiBeta& m = r.multi.joint[i];
+      if (!m.valid || !(m.dbeta_err > 0.0 || i == r.ref)) continue;
+      b.push_back(m.dbeta);
+      // the reference's own β̂ is 0 by definition; its weight comes from the others' errors
+      be.push_back(i == r.ref ? 0.0 : m.dbeta_err);
+      p.push_back(r.runs[i].phi_mean);
+      pe.push_back(r.runs[i].phi_err);
+      continue;
+    }
     if (!r.beta[i].valid) continue;
     b.push_back(r.beta[i].dbeta);
     be.push_back(r.beta[i].dbeta_err);
@@ -195,10 +205,21 @@ TapAnalysisResult run_tap_analysis(const std::vector<TapRunInput>& runs,
     }
   }
 
+  // β̂ through neighbours, for the runs the reference does not overlap
+  if (runs.size() > 1) {
+    MultiHistOptions mo;
+    mo.overlap = opts.overlap;
+    mo.bootstrap = opts.bootstrap;
+    for (const auto& s : r.runs) mo.tau_int.push_back(s.tau.tau_int);
+    r.multi = multi_histogram_beta(phis, r.ref, r.v_g, mo);
+    for (const auto& n : r.multi.notes) r.notes.push_back("multiple histograms: " + n);
+  }
+
   // ideal quadron fit (P.26) over all runs and per protocol
   std::vector<int> all(runs.size());
   for (std::size_t i = 0; i < runs.size(); ++i) all[i] = static_cast<int>(i);
   r.quadron["all"] = fit_runs(r, opts, all);
+  if (runs.size() > 1) r.quadron["joint"] = fit_runs(r, opts, all, true);
   std::set<std::string> protocols;
   for (const auto& run : runs) protocols.insert(run.protocol);
   if (protocols.size() > 1) {

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "analysis/kde.hpp"
+#include "analysis/multi_hist.hpp"
 #include "analysis/overlap_hist.hpp"
 #include "analysis/quadron.hpp"
 #include "analysis/stats.hpp"
@@ -58,6 +59,7 @@ struct TapAnalysisOptions {
   OverlapOptions overlap;      ///< density method, bins, 5 % threshold
   int kde_points = 200;        ///< grid points of each written KDE
   QuadronParams quadron;       ///< φ_rlp, φ_rcp of (P.26)
+  int bootstrap = 200;         ///< bootstrap replicas of the multiple-histogram errors
 };
 
 /// statistics of one run (after the transient)
@@ -106,7 +108,10 @@ struct TapAnalysisResult {
   double ref_offset_err = 0.0;              ///< its standard error, 1/m²
   double ref_offset_chi2 = 0.0;             ///< χ² of "the difference is constant"
   int ref_offset_dof = 0;                   ///< its degrees of freedom
-  std::map<std::string, QuadronFit> quadron;  ///< "all" and each protocol
+  MultiHistResult multi;                    ///< β̂ through neighbours: chain and joint fit
+                                            ///< (runs that do not overlap the reference too)
+  std::map<std::string, QuadronFit> quadron;  ///< "all" and each protocol (direct β̂), and
+                                              ///< "joint" (every run, β̂ of the joint fit)
   std::vector<TapPairTest> pairs;           ///< every pair at the same protocol and control
   std::vector<std::string> notes;           ///< what was skipped and why
 };

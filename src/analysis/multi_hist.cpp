@@ -1,0 +1,356 @@
+#include "analysis/multi_hist.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <random>
+
+#include <Eigen/Dense>
+
+#include "analysis/stats.hpp"
+#include "core/error.hpp"
+
+namespace gs {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// the pooled distinct values of x over every run and each run's count at each of them
+struct Pooled {
+  std::vector<double> x;
+  std::vector<std::vector<double>> counts;
+};
+
+Pooled pool(const std::vector<std::vector<double>>& xs) {
+  Pooled p;
+  for (const auto& v : xs) p.x.insert(p.x.end(), v.begin(), v.end());
+  std::sort(p.x.begin(), p.x.end());
+  p.x.erase(std::unique(p.x.begin(), p.x.end()), p.x.end());
+  p.counts.assign(xs.size(), std::vector<double>(p.x.size(), 0.0));
+  for (std::size_t k = 0; k < xs.size(); ++k)
+    for (double v : xs[k])
+      p.counts[k][std::lower_bound(p.x.begin(), p.x.end(), v) - p.x.begin()] += 1.0;
+  return p;
+}
+
+// runs linked to the reference through pairs that each hold ≥ 3 values in the other's range
+std::vector<bool> linked_runs(const std::vector<std::vector<double>>& xs, int ref) {
+  const int K = static_cast<int>(xs.size());
+  auto inside = [&](int k, int l) {
+    const auto [lo, hi] = std::minmax_element(xs[l].begin(), xs[l].end());
+    return std::count_if(xs[k].begin(), xs[k].end(),
+                         [&](double v) { return v >= *lo && v <= *hi; }) >= 3;
+  };
+  std::vector<bool> c(K, false);
+  c[ref] = true;
+  for (bool grew = true; grew;) {
+    grew = false;
+    for (int k = 0; k < K; ++k)
+      for (int l = 0; l < K && !c[k]; ++l)
+        if (c[l] && inside(k, l) && inside(l, k)) c[k] = grew = true;
+  }
+  return c;
+}
+
+std::vector<double> inverse(const std::vector<double>& phi) {
+  std::vector<double> x(phi.size());
+  for (std::size_t i = 0; i < phi.size(); ++i) x[i] = 1.0 / phi[i];
+  return x;
+}
+
+// the chain of neighbour fits summed from the reference outwards (input order)
+std::vector<MultiBeta> sum_chain(const std::vector<int>& order,
+                                 const std::vector<BetaEstimate>& links, int ref) {
+  std::vector<MultiBeta> out(order.size());
+  const int p_ref =
+      static_cast<int>(std::find(order.begin(), order.end(), ref) - order.begin());
+  out[ref].valid = true;
+  for (int p = p_ref + 1; p < static_cast<int>(order.size()); ++p) {
+    const MultiBeta& prev = out[order[p - 1]];
+    const BetaEstimate& l = links[p - 1];
+    MultiBeta& m = out[order[p]];
+    m.valid = prev.valid && l.valid;
+    m.dbeta = prev.dbeta + l.dbeta;
+    m.dlnz = prev.dlnz + l.dlnz;
+    m.dbeta_err = std::hypot(prev.dbeta_err, l.dbeta_err);
+    m.dlnz_err = std::hypot(prev.dlnz_err, l.dlnz_err);
+  }
+  for (int p = p_ref - 1; p >= 0; --p) {
+    const MultiBeta& next = out[order[p + 1]];
+    const BetaEstimate& l = links[p];  // run order[p+1] against run order[p]
+    MultiBeta& m = out[order[p]];
+    m.valid = next.valid && l.valid;
+    m.dbeta = next.dbeta - l.dbeta;
+    m.dlnz = next.dlnz - l.dlnz;
+    m.dbeta_err = std::hypot(next.dbeta_err, l.dbeta_err);
+    m.dlnz_err = std::hypot(next.dlnz_err, l.dlnz_err);
+  }
+  return out;
+}
+
+std::vector<BetaEstimate> chain_links(const std::vector<std::vector<double>>& phi,
+                                      const std::vector<int>& order, double v_g,
+                                      const MultiHistOptions& opts) {
+  std::vector<BetaEstimate> links;
+  for (std::size_t p = 0; p + 1 < order.size(); ++p) {
+    const auto& a = phi[order[p]];
+    const auto& b = phi[order[p + 1]];
+    OverlapOptions o = opts.overlap;
+    if (o.bins == 0 && opts.chain_bins_per_scott > 1) {
+      // Scott's width of the pair, as q_fit takes it, divided
+      const double w = 3.49 * std::min(stddev(a) * std::pow(double(a.size()), -1.0 / 3.0),
+                                       stddev(b) * std::pow(double(b.size()), -1.0 / 3.0));
+      const auto [lo_a, hi_a] = std::minmax_element(a.begin(), a.end());
+      const auto [lo_b, hi_b] = std::minmax_element(b.begin(), b.end());
+      const double range = std::max(*hi_a, *hi_b) - std::min(*lo_a, *lo_b);
+      if (w > 0.0) o.bins = std::clamp(static_cast<int>(std::ceil(range / w)) *
+                                           opts.chain_bins_per_scott, 5, 2000);
+    }
+    BetaEstimate l = beta_from_phi(a, b, v_g, o);
+    if (opts.tau_int.size() == phi.size())
+      l = with_variance_factor(l, opts.tau_int[order[p]] + opts.tau_int[order[p + 1]]);
+    links.push_back(std::move(l));
+  }
+  return links;
+}
+
+// a moving-block bootstrap resample of a series
+std::vector<double> resample(const std::vector<double>& x, int block, std::mt19937_64& rng) {
+  const int n = static_cast<int>(x.size());
+  block = std::clamp(block, 1, n);
+  std::uniform_int_distribution<int> start(0, n - block);
+  std::vector<double> out;
+  out.reserve(n + block);
+  while (static_cast<int>(out.size()) < n) {
+    const int s = start(rng);
+    out.insert(out.end(), x.begin() + s, x.begin() + s + block);
+  }
+  out.resize(n);
+  return out;
+}
+
+}  // namespace
+
+JointFit joint_histogram_fit(const std::vector<std::vector<double>>& counts,
+                             const std::vector<double>& x, int ref,
+                             const std::vector<double>& b_start, int max_iterations,
+                             double tolerance, const std::vector<bool>& connected) {
+  const int K = static_cast<int>(counts.size());
+  const int B = static_cast<int>(x.size());
+  JointFit f;
+  f.b.assign(K, kNaN);
+  f.dlnz.assign(K, kNaN);
+  f.connected.assign(K, false);
+
+  // which runs reach the reference through bins that two runs share (unless given)
+  f.connected[ref] = true;
+  if (connected.size() == static_cast<std::size_t>(K)) f.connected = connected;
+  for (bool grew = connected.empty(); grew;) {
+    grew = false;
+    for (int k = 0; k < K; ++k) {
+      if (f.connected[k]) continue;
+      for (int l = 0; l < K && !f.connected[k]; ++l)
+        if (f.connected[l])
+          for (int j = 0; j < B; ++j)
+            if (counts[k][j] > 0.0 && counts[l][j] > 0.0) {
+              f.connected[k] = grew = true;
+              break;
+            }
+    }
+  }
+  std::vector<int> use;  // the reference first: its f and b are fixed at 0 (the gauge)
+  use.push_back(ref);
+  for (int k = 0; k < K; ++k)
+    if (f.connected[k] && k != ref) use.push_back(k);
+  const int U = static_cast<int>(use.size());
+  std::vector<int> bins;
+  std::vector<double> total(B, 0.0), n_run(U, 0.0);
+  for (int j = 0; j < B; ++j) {
+    for (int u = 0; u < U; ++u) total[j] += counts[use[u]][j];
+    if (total[j] > 0.0) bins.push_back(j);
+  }
+  for (int u = 0; u < U; ++u)
+    for (int j : bins) n_run[u] += counts[use[u]][j];
+
+  // the convex objective of the multiple-histogram likelihood (as MBAR's), with
+  // a_kj = f_k − b_k x_j: F = Σ_j T_j ln Σ_k N_k e^{a_kj} − Σ_kj c_kj a_kj; its minimum has
+  // f_k = −ln Z_k and every run's model mean of x equal to its sample mean
+  const int P = 2 * (U - 1);  // (f_k, b_k) of every run but the reference
+  Eigen::VectorXd theta = Eigen::VectorXd::Zero(P);
+  for (int u = 1; u < U; ++u)
+    if (b_start.size() == static_cast<std::size_t>(K) && std::isfinite(b_start[use[u]]))
+      theta[2 * (u - 1) + 1] = b_start[use[u]];
+  const double x0 = x.empty() ? 0.0 : x[bins.empty() ? 0 : bins[bins.size() / 2]];
+  auto exponent = [&](const Eigen::VectorXd& t, int u, int j) {
+    if (u == 0) return 0.0;
+    return t[2 * (u - 1)] - t[2 * (u - 1) + 1] * (x[j] - x0);  // x centred: f stays O(1)
+  };
+  std::vector<double> p(U);
+  auto objective = [&](const Eigen::VectorXd& t, Eigen::VectorXd* grad, Eigen::MatrixXd* hess) {
+    double F = 0.0;
+    if (grad) grad->setZero(P);
+    if (hess) hess->setZero(P, P);
+    for (int j : bins) {
+      double m = -std::numeric_limits<double>::infinity();
+      for (int u = 0; u < U; ++u) {
+        p[u] = std::log(n_run[u]) + exponent(t, u, j);
+        m = std::max(m, p[u]);
+      }
+      double s = 0.0;
+      for (int u = 0; u < U; ++u) s += (p[u] = std::exp(p[u] - m));
+      F += total[j] * (m + std::log(s));
+      for (int u = 0; u < U; ++u) {
+        p[u] /= s;
+        F -= counts[use[u]][j] * exponent(t, u, j);
+      }
+      if (!grad) continue;
+      const double dx = x[j] - x0;
+      for (int u = 1; u < U; ++u) {
+        const double r = total[j] * p[u] - counts[use[u]][j];
+        (*grad)[2 * (u - 1)] += r;
+        (*grad)[2 * (u - 1) + 1] -= r * dx;
+        if (!hess) continue;
+        for (int v = 1; v < U; ++v) {
+          const double h = total[j] * ((u == v ? p[u] : 0.0) - p[u] * p[v]);
+          const int a = 2 * (u - 1), c = 2 * (v - 1);
+          (*hess)(a, c) += h;
+          (*hess)(a, c + 1) -= h * dx;
+          (*hess)(a + 1, c) -= h * dx;
+          (*hess)(a + 1, c + 1) += h * dx * dx;
+        }
+      }
+    }
+    return F;
+  };
+
+  // Newton's method with a backtracking line search (the objective is convex)
+  const double x_range = bins.empty() ? 1.0 : std::max(x[bins.back()] - x[bins.front()], 1e-300);
+  Eigen::VectorXd grad(P), step(P);
+  Eigen::MatrixXd hess(P, P);
+  f.converged = P == 0;
+  for (f.iterations = 0; f.iterations < max_iterations && !f.converged; ++f.iterations) {
+    const double F = objective(theta, &grad, &hess);
+    // a tiny ridge keeps the step defined for a run whose bins carry no information on b
+    hess.diagonal().array() += 1e-12 * (1.0 + hess.diagonal().array().abs());
+    step = hess.ldlt().solve(-grad);
+    double t = 1.0;
+    Eigen::VectorXd next = theta + step;
+    while (t > 1e-10 && !(objective(next, nullptr, nullptr) <= F + 1e-4 * t * grad.dot(step))) {
+      t *= 0.5;
+      next = theta + t * step;
+    }
+    double moved = 0.0;
+    for (int u = 1; u < U; ++u) moved = std::max(moved, std::abs(t * step[2 * (u - 1) + 1]) * x_range);
+    theta = next;
+    if (moved < tolerance) f.converged = true;
+  }
+  // b_k, and ln Z_k − ln Z_ref with the centring undone: ln Z_k = −f_k − b_k x0
+  for (int u = 0; u < U; ++u) {
+    const int k = use[u];
+    const double fk = u == 0 ? 0.0 : theta[2 * (u - 1)];
+    f.b[k] = u == 0 ? 0.0 : theta[2 * (u - 1) + 1];
+    f.dlnz[k] = -fk - f.b[k] * x0;
+  }
+  return f;
+}
+
+MultiHistResult multi_histogram_beta(const std::vector<std::vector<double>>& phi, int ref,
+                                     double v_g, const MultiHistOptions& opts) {
+  const int K = static_cast<int>(phi.size());
+  if (K < 2) throw InputError("", "runs", "the multiple-histogram estimate needs two runs or more");
+  if (ref < 0 || ref >= K) throw InputError("", "reference", "no such run");
+  if (!(v_g > 0.0)) throw InputError("", "v_g", "must be > 0 (m²)");
+  for (int k = 0; k < K; ++k) {
+    if (phi[k].size() < 3)
+      throw InputError("", "runs", "run " + std::to_string(k) + " has fewer than 3 taps");
+    for (double v : phi[k])
+      if (!(v > 0.0 && v <= 1.0))
+        throw InputError("", "phi", "run " + std::to_string(k) + ": φ = " + std::to_string(v) +
+                                        " is not in (0, 1]");
+  }
+  MultiHistResult r;
+
+  // the chain: runs by φ̄, each fitted against its neighbour below
+  std::vector<double> means(K);
+  for (int k = 0; k < K; ++k) means[k] = mean(phi[k]);
+  r.order.resize(K);
+  std::iota(r.order.begin(), r.order.end(), 0);
+  std::stable_sort(r.order.begin(), r.order.end(),
+                   [&](int a, int b) { return means[a] < means[b]; });
+  r.links = chain_links(phi, r.order, v_g, opts);
+  r.chain = sum_chain(r.order, r.links, ref);
+  for (std::size_t p = 0; p < r.links.size(); ++p)
+    if (!r.links[p].valid)
+      r.notes.push_back("chain: runs " + std::to_string(r.order[p]) + " and " +
+                        std::to_string(r.order[p + 1]) + " do not overlap (" +
+                        r.links[p].fit.note + ")");
+
+  // the joint fit on the pooled values of x = 1/φ (unbinned)
+  std::vector<std::vector<double>> xs(K);
+  for (int k = 0; k < K; ++k) xs[k] = inverse(phi[k]);
+  const std::vector<bool> linked = linked_runs(xs, ref);
+  const Pooled pooled = pool(xs);
+  r.values = static_cast<int>(pooled.x.size());
+  r.joint.assign(K, MultiBeta{});
+  const JointFit jf = joint_histogram_fit(pooled.counts, pooled.x, ref, {}, opts.max_iterations,
+                                          opts.tolerance, linked);
+  r.joint_converged = jf.converged;
+  r.joint_iterations = jf.iterations;
+  for (int k = 0; k < K; ++k) {
+    r.joint[k].valid = jf.connected[k] && jf.converged;
+    r.joint[k].dbeta = jf.b[k] / v_g;
+    r.joint[k].dlnz = jf.dlnz[k];
+    if (!jf.connected[k])
+      r.notes.push_back("joint fit: run " + std::to_string(k) +
+                        " does not overlap the runs linked to the reference");
+  }
+  if (!jf.converged)
+    r.notes.push_back("joint fit: not converged after " + std::to_string(jf.iterations) +
+                      " Newton steps");
+
+  // errors: a moving-block bootstrap over taps, the binning held fixed
+  // (without a bootstrap the chain keeps the links' own errors added in quadrature, which
+  // ignore that neighbouring links share a run; the joint fit has none)
+  for (MultiBeta& m : r.joint) m.dbeta_err = m.dlnz_err = kNaN;
+  if (opts.bootstrap > 0)
+    for (MultiBeta& m : r.chain) m.dbeta_err = m.dlnz_err = kNaN;
+  if (opts.bootstrap > 0) {
+    std::mt19937_64 rng(opts.seed);
+    std::vector<std::vector<double>> cb(K), cz(K), jb(K), jz(K);
+    std::vector<std::vector<double>> sample(K), sample_x(K);
+    for (int rep = 0; rep < opts.bootstrap; ++rep) {
+      for (int k = 0; k < K; ++k) {
+        const double tau = opts.tau_int.size() == static_cast<std::size_t>(K) ? opts.tau_int[k] : 0.5;
+        sample[k] = resample(phi[k], static_cast<int>(std::lround(2.0 * tau)), rng);
+        sample_x[k] = inverse(sample[k]);
+      }
+      MultiHistOptions o = opts;
+      const auto links = chain_links(sample, r.order, v_g, o);
+      const auto chain = sum_chain(r.order, links, ref);
+      for (int k = 0; k < K; ++k)
+        if (chain[k].valid) cb[k].push_back(chain[k].dbeta), cz[k].push_back(chain[k].dlnz);
+      {
+        const Pooled ps = pool(sample_x);
+        const JointFit f = joint_histogram_fit(ps.counts, ps.x, ref, jf.b, opts.max_iterations,
+                                               opts.tolerance, linked);
+        if (f.converged)
+          for (int k = 0; k < K; ++k)
+            if (f.connected[k]) jb[k].push_back(f.b[k] / v_g), jz[k].push_back(f.dlnz[k]);
+      }
+    }
+    // a run's error needs most replicas to have reached it
+    const std::size_t need = static_cast<std::size_t>(opts.bootstrap) / 2 + 1;
+    for (int k = 0; k < K; ++k) {
+      if (cb[k].size() >= need) r.chain[k].dbeta_err = stddev(cb[k]), r.chain[k].dlnz_err = stddev(cz[k]);
+      if (jb[k].size() >= need) r.joint[k].dbeta_err = stddev(jb[k]), r.joint[k].dlnz_err = stddev(jz[k]);
+    }
+    r.chain[ref].dbeta_err = r.chain[ref].dlnz_err = 0.0;
+    r.joint[ref].dbeta_err = r.joint[ref].dlnz_err = 0.0;
+    r.replicas = opts.bootstrap;
+  }
+  return r;
+}
+
+}  // namespace gs
