@@ -92,7 +92,7 @@ struct ModelSpec {
   bool hdot_finite_difference = false;  ///< Model P: ḣ_eff by finite difference (else analytic)
   /// Model P: spread the normal dashpot along the contact line, so it also damps relative
   /// rotation (a couple γ√(E m⊥)·L³/(12 l)·ω_rel); the paper's point dashpot leaves rocking
-  /// on a face undamped (docs/model-notes.md)
+  /// on a face undamped (docs/physics.md §2.2)
   bool rocking_damping = true;
   bool clip_attractive = false;         ///< Model S: clip attractive normal force
   bool rotation = true;                 ///< integrate rotation (auto-off for frictionless disks)
