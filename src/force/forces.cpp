@@ -120,7 +120,7 @@ ContactModel::PolyPairConst ContactModel::poly_pair_const(const World& w, std::s
   return c;
 }
 
-// Model P (SPEC 2.2): overlap-area normal force with Cundall–Strack friction
+// Model P (docs/physics.md §2.2): overlap-area normal force with Cundall–Strack friction
 bool ContactModel::polygon_pair(const World& w, PairKey key, const ContactSet& cs,
                                 std::size_t& hint, double dt, PairForce& pf,
                                 PairResult& pr) const {
@@ -189,7 +189,7 @@ bool ContactModel::polygon_pair(const World& w, PairKey key, const ContactSet& c
   return true;
 }
 
-// Model S (SPEC 3): linear spring, normal and tangential dashpots, optional friction
+// Model S (docs/physics.md §3): linear spring, normal and tangential dashpots, optional friction
 [[gnu::always_inline]] inline bool ContactModel::disk_pair(const World& w, PairKey key,
                                                             PairForce& pf, PairResult& pr) const {
   const std::uint32_t N = static_cast<std::uint32_t>(w.size());
