@@ -1,5 +1,6 @@
 // geometry kernels of the polygon DEM hot loop: decagon–decagon overlap (in contact and the
-// separated pairs a broad phase hands over), and decagon ∩ rectangle area for φ (SPEC 2.1, 2.5)
+// separated pairs a broad phase hands over), and decagon ∩ rectangle area for φ
+// (docs/physics.md §2.1, §2.5)
 #include <benchmark/benchmark.h>
 
 #include <cmath>

@@ -4,15 +4,14 @@
 // the cost per particle-step relative to N = 10⁴.
 //
 // Every size is measured in the same *stationary* state. Out of its lattice-like start the
-// fluid needs ≈ 10⁴ steps to settle (candidate pairs per disk 1.2 → 0.41); before session 7
-// each size got 100 warm-up steps and Google Benchmark then ran it for as many steps as its
-// time allowed (10⁴ disks: 12 000, 10⁶: 100), so the sizes were measured in different states.
-// Now: N = 10³ and 10⁴ run 12 000 steps from their start; 10⁵ and 10⁶ are the settled 10⁴ box
-// tiled 5 × 2 and 10 × 10 (a periodic state of the larger box; the copies' random forces differ,
-// so they decorrelate), in the cell order the spatial sort keeps (integrator.sort_every, auto
-// from 5·10⁴ disks). BM_FluidMixedOrder gives the same 10⁶ state with the particles numbered at
-// random — where an unsorted run drifts as the fluid mixes — (and 5·10⁴, 10⁵: where the
-// auto sort starts) and BM_SortParticles one sort.
+// fluid needs ≈ 10⁴ steps to settle (candidate pairs per disk 1.2 → 0.41), and Google Benchmark
+// runs a small system for many more steps than a large one, so a plain warm-up would compare
+// sizes in different states. Hence N = 10³ and 10⁴ run 12 000 steps from their start; 10⁵ and
+// 10⁶ are the settled 10⁴ box tiled 5 × 2 and 10 × 10 (a periodic state of the larger box; the
+// copies' random forces differ, so they decorrelate), in the cell order the spatial sort keeps
+// (integrator.sort_every, auto from 5·10⁴ disks). BM_FluidMixedOrder gives the same 10⁶ state
+// with the particles numbered at random — where an unsorted run drifts as the fluid mixes — (and
+// 5·10⁴, 10⁵: where the auto sort starts) and BM_SortParticles one sort.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>

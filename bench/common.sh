@@ -1,7 +1,7 @@
 # sourced by the bench scripts (from the repository root): wait policy, MPI arguments, binary
 # OpenMP's wait policy stays the runtime default (spin a while, then sleep) unless set: `passive`
-# costs 3.5× on an idle machine (several short parallel regions per step), `active` stalls on a
-# busy one (docs/benchmarks-sessions.md). MPI ranks yield while they wait.
+# is slow on an idle machine (several short parallel regions per step), `active` stalls on a
+# busy one (docs/threads.md). MPI ranks yield while they wait.
 read -r -a mpi_args <<<"${GS_MPI_ARGS---mca mpi_yield_when_idle 1}"
 root=$PWD
 gs=$root/${GS_BUILD_DIR:-build}/gransim

@@ -28,7 +28,7 @@ else out=$(mktemp -d); trap 'rm -rf "$out"' EXIT; fi
 export GS_BENCH_RESULTS=$out/results.txt
 : >"$GS_BENCH_RESULTS"
 # the machine: the targets are absolute speeds, and VMs of one kind land on different CPUs
-# (a Zen 3 host ran the pile at half a Zen 5 host's speed: docs/benchmarks-sessions-14.md)
+# (one CPU generation can run the pile at half another's speed: docs/benchmarks.md)
 bench/machine.sh >"$out/machine.txt" || true
 
 if [ "$quick" = 1 ]; then mt=0.1; mt_scan=0.2; else mt=1; mt_scan=1; fi

@@ -102,8 +102,7 @@ if [ "$quick" = 1 ]; then
   ntaps=1
 else
   # the two-thread runs, whose figures have targets, three times: the host's slow spells come
-  # and go within minutes (docs/benchmarks-sessions.md); the median and the fastest run are
-  # reported
+  # and go within minutes (docs/threads.md); the median and the fastest run are reported
   tap paper.fixed "$tmp/paper.toml" 1 1 "${paper[@]}" --set drive.taps=2
   CONTROL=1 REPS=3 tap paper.fixed "$tmp/paper.toml" 2 1 "${paper[@]}" --set drive.taps=2
   tap paper.rest "$tmp/fast.toml" 1 1 "${paper[@]}" --set drive.taps=2

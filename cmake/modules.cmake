@@ -1,4 +1,4 @@
-# the modules in data-path order (DESIGN.md): each uses only those above it
+# the modules in data-path order (docs/architecture.md): each uses only those above it
 gs_module(core DEPS Eigen3::Eigen)
 gs_module(geometry DEPS gs_core)
 gs_module(integrate DEPS gs_core)

@@ -11,10 +11,10 @@ namespace {
 
 // libgomp reads its wait policy when it is loaded, before main. Its default lets a waiting
 // thread spin for ~300 000 rounds and then sleep; on virtual machines the wake-up that follows
-// costs so much that a 2-thread paper tap ran at 0.9–1.4·10⁶ particle-steps/s against 2.9·10⁶
-// on one thread (4.0–4.1·10⁶ with a longer spin, docs/speed-accuracy.md). Unless the user chose
-// a policy or a spin count (or runs one thread), start again once with a longer spin: a waiting
-// thread still sleeps after ~10⁷ rounds, so an idle team does not burn a core for long.
+// costs so much that two threads can run a paper tap slower than one (docs/threads.md). Unless
+// the user chose a policy or a spin count (or runs one thread), start again once with a longer
+// spin: a waiting thread still sleeps after ~10⁷ rounds, so an idle team does not burn a core
+// for long.
 void ensure_spin_count(char** argv) {
   // set and not empty (libgomp ignores an empty value as it ignores a missing one)
   auto given = [](const char* name) {
@@ -27,8 +27,8 @@ void ensure_spin_count(char** argv) {
   if (sysconf(_SC_NPROCESSORS_ONLN) < 2) return;
   if (setenv("GOMP_SPINCOUNT", "10000000", 1) != 0) return;
   // with OMP_PROC_BIND the runtime has bound this thread to one CPU already; the new process
-  // would inherit that mask and bind all its threads to that CPU (a 2-thread paper tap at
-  // 2.1·10⁶ particle-steps/s against 4.4·10⁶): give it back every CPU of the places first
+  // would inherit that mask and bind all its threads to that CPU: give it back every CPU of the
+  // places first
   gs::widen_to_places();
   execv("/proc/self/exe", argv);  // returns only on failure: carry on as we are
 }

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Charts of the tapping study (SPEC 2.6; the tapping paper's Figs 4-11 and 13).
+"""Charts of the tapping study (docs/physics.md §2.6; the tapping paper's Figs 4-11 and 13).
 
 Reads the folder written by the C++ tapping analysis (gs::analyze_tapping: summary.csv,
 series.csv, kde.csv, q_lines.csv, beta.csv, quadron.json, analysis.json) and writes PNG charts

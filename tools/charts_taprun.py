@@ -1,6 +1,6 @@
 #!/usr/bin/python3
-"""Per-run charts of a tapping study: proof of rest, segregation, stress (SPEC 2.5; paper
-section IV and Fig. 12).
+"""Per-run charts of a tapping study: proof of rest, segregation, stress (docs/physics.md §2.5;
+paper section IV and Fig. 12).
 
 Reads ANALYSIS_DIR/runs.csv (written by `gransim analyze`: label, dir, protocol, control, ...)
 and each run's taps.csv and segregation.csv, and writes into ANALYSIS_DIR (or --out):

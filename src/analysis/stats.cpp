@@ -1,4 +1,5 @@
-// descriptive statistics, intervals, autocorrelation time and the normality test (SPEC 2.6)
+// descriptive statistics, intervals, autocorrelation time and the normality test
+// (docs/physics.md §2.6)
 #include "analysis/stats.hpp"
 
 #include <algorithm>

@@ -1,5 +1,5 @@
-// descriptive statistics of a series of measurements (SPEC 2.6): mean, standard deviation,
-// confidence intervals (Student t for the mean, chi-square for σ), the integrated
+// descriptive statistics of a series of measurements (docs/physics.md §2.6): mean, standard
+// deviation, confidence intervals (Student t for the mean, chi-square for σ), the integrated
 // autocorrelation time of correlated series (Sokal's automatic window) and a binned
 // chi-square test of normality. Pure functions on std::vector<double>; the distribution
 // functions and quantiles they need (incomplete gamma and beta) live here as well.

@@ -24,7 +24,7 @@ std::string format_control(double c) {
   return s.str();
 }
 
-// per-run statistics (SPEC 2.6): φ̄, σ_φ with CIs, τ_int, normality, the halves
+// per-run statistics (docs/physics.md §2.6): φ̄, σ_φ with CIs, τ_int, normality, the halves
 TapRunSummary summarize(const TapRunInput& run, const std::vector<double>& phi,
                         const TapAnalysisOptions& opts) {
   TapRunSummary s;

@@ -1,5 +1,5 @@
-// `gransim analyze`: the tapping study's statistics over run and sweep directories (SPEC 2.6):
-// finds the tapping runs (taps.csv), reads protocol and control value from each run's
+// `gransim analyze`: the tapping study's statistics over run and sweep directories (docs/physics.md
+// §2.6): finds the tapping runs (taps.csv), reads protocol and control value from each run's
 // scene.toml, writes the analysis (gs::analyze_tapping) and draws the charts with
 // tools/charts_tapping.py and tools/charts_taprun.py
 #pragma once

@@ -1,5 +1,5 @@
-// `gransim analyze` for Random Force Model runs (SPEC 5.3, docs/rfm.md): the fits of the
-// thesis on what the RFM observer wrote (measure/rfm_observer.hpp), per run and across system
+// `gransim analyze` for Random Force Model runs (docs/physics.md §5.3, docs/rfm.md): the fits of
+// the thesis on what the RFM observer wrote (measure/rfm_observer.hpp), per run and across system
 // sizes, as CSV/JSON plus charts drawn by tools/charts_rfm.py.
 //   per run (OUT/<run name>/): temperature.csv, velocity.csv with the tail scan (appendix A:
 //   counts 50…5000, accept α while χ²_r < 1.2) and the crossover fit (T.5.32), tail_scan.csv,

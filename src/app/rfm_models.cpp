@@ -1,4 +1,4 @@
-// `gransim model …`: the auxiliary models of the thesis as commands (SPEC 5.4)
+// `gransim model …`: the auxiliary models of the thesis as commands (docs/physics.md §5.4)
 #include "app/rfm_models.hpp"
 
 #include <CLI/CLI.hpp>
@@ -270,8 +270,8 @@ void add_model_command(CLI::App& app) {
   };
   auto all = std::make_shared<All>();
   auto* model = app.add_subcommand("model",
-                                   "the thesis' auxiliary models (SPEC 5.4): bisection, walk, "
-                                   "interval, cascade");
+                                   "the thesis' auxiliary models (docs/physics.md §5.4): "
+                                   "bisection, walk, interval, cascade");
   model->require_subcommand(1);
 
   auto* b = model->add_subcommand("bisection", "uniform multiplicative bisection (T.3.26–3.38)");

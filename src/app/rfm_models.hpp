@@ -1,5 +1,5 @@
 // `gransim model bisection|walk|interval|cascade [options] --out DIR`: the thesis' auxiliary
-// models (SPEC 5.4, src/models/) as commands writing their CSV files and charts
+// models (docs/physics.md §5.4, src/models/) as commands writing their CSV files and charts
 // (tools/charts_rfm.py) into DIR: bisection.csv; walk_l<l>.csv, walk_spm.csv, heating.csv;
 // interval.csv; cascade_<kind>.csv; plus model.json with the headline numbers
 #pragma once

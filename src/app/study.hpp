@@ -1,6 +1,6 @@
-// `gransim study`: speed against accuracy (SPEC 7). A study file lists reference problems and
-// a matrix of integrators × Δt (in contact times) × broad phase × model switches; every
-// combination runs in-process and study.csv/json record its cost and its error; an optional
+// `gransim study`: speed against accuracy (docs/speed-accuracy.md). A study file lists reference
+// problems and a matrix of integrators × Δt (in contact times) × broad phase × model switches;
+// every combination runs in-process and study.csv/json record its cost and its error; an optional
 // Δt sweep finds the largest stable Δt per integrator and model (docs/speed-accuracy.md)
 #pragma once
 #include <string>
@@ -22,7 +22,7 @@ struct StudyOptions {
   bool quiet = false;  ///< no per-row progress lines
 };
 
-/// the reference problems (SPEC 7)
+/// the reference problems (docs/speed-accuracy.md)
 enum class StudyProblem : std::uint8_t {
   TwoDisk,     ///< head-on two-disk collision, Model S: realised ε against the exact ε
   TwoDecagon,  ///< face-to-face two-decagon collision, Model P: against the reference Δt

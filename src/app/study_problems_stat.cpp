@@ -1,7 +1,7 @@
-// the statistical reference problems of `gransim study` (SPEC 7): a short negative-g tapping
-// run of a small decagon pile (φ̄ and σ_φ over the taps) and a randomly forced periodic disk
-// fluid (steady granular temperature). Their values scatter from run to run, so each carries
-// a 95% confidence half-width; study.cpp compares it with the small-Δt reference's
+// the statistical reference problems of `gransim study` (docs/speed-accuracy.md): a short
+// negative-g tapping run of a small decagon pile (φ̄ and σ_φ over the taps) and a randomly forced
+// periodic disk fluid (steady granular temperature). Their values scatter from run to run, so each
+// carries a 95% confidence half-width; study.cpp compares it with the small-Δt reference's
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -76,7 +76,7 @@ SceneSpec tapping_scene(const StudySizes& z, const StudyCase& c) {
 }
 
 // settle, then tap as `gransim run` does (the protocol clock drives the pulses and early
-// rest); φ of the test rectangle just before every excitation (measure_tap, SPEC 2.5)
+// rest); φ of the test rectangle just before every excitation (measure_tap, docs/physics.md §2.5)
 void run_tapping(const StudySizes& z, const StudyCase& c, StudyOutcome& o) {
   SceneSpec s = tapping_scene(z, c);
   s.integrator.dt = o.dt;
@@ -113,7 +113,8 @@ void run_tapping(const StudySizes& z, const StudyCase& c, StudyOutcome& o) {
     o.note = "fewer than 3 taps after the discarded ones";
     return;
   }
-  // φ̄ with the autocorrelation-aware interval (SPEC 2.6), σ_φ with its chi-square interval
+  // φ̄ with the autocorrelation-aware interval, σ_φ with its chi-square interval
+  // (docs/physics.md §2.6)
   const AutocorrTime ac = autocorr_time(phis);
   o.tau_int = std::max(0.5, ac.tau_int);
   o.value = mean(phis);

@@ -197,10 +197,10 @@ class CellGrid final : public BroadPhase {
 std::unique_ptr<BroadPhase> make_cell_grid() { return std::make_unique<CellGrid>(); }
 
 std::unique_ptr<BroadPhase> make_broadphase(BroadPhaseKind kind, const World& w) {
-  // the 1D ring: neighbour contacts only, order preserved (SPEC 5.2)
+  // the 1D ring: neighbour contacts only, order preserved (docs/physics.md §5.2)
   if (kind == BroadPhaseKind::Auto && w.box == BoxKind::Ring1D) return make_ring_neighbours();
-  // Auto: the cell grid everywhere, measured faster than Box2D's tree in both walled benchmark
-  // scenes (10⁴ settled disks 1.5×, the settled 1184-decagon pile 7 %); the tree stays selectable
+  // Auto: the cell grid everywhere, faster than Box2D's tree in both walled benchmark scenes
+  // (docs/benchmarks.md); the tree stays selectable
   if (kind == BroadPhaseKind::Auto) kind = BroadPhaseKind::CellGrid;
   if (kind == BroadPhaseKind::Box2DTree && w.box != BoxKind::Walls)
     kind = BroadPhaseKind::CellGrid;  // Box2D has no periodic wrapping

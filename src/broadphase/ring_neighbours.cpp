@@ -1,5 +1,5 @@
-// the 1D ring's broad phase (SPEC 5.2): the disks keep their order along the line, so the
-// only pairs that can ever touch are ring neighbours (i, i+1) and (N−1, 0). Every step emits
+// the 1D ring's broad phase (docs/physics.md §5.2): the disks keep their order along the line, so
+// the only pairs that can ever touch are ring neighbours (i, i+1) and (N−1, 0). Every step emits
 // exactly those N pairs (N = 2: the two sides of the one pair), each with the periodic image
 // that puts the partner *ahead* of its predecessor: the forward gap x_{i+1} + s·L − x_i lies
 // in [−d, L − d), so a neighbour is found even when it overlaps by up to a whole diameter and

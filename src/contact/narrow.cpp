@@ -5,7 +5,8 @@
 namespace gs {
 namespace {
 
-// the SPEC 2.1 contact frame from an exact polygon overlap; `toward` points from i to j
+// the contact frame (docs/physics.md §2.1) from an exact polygon overlap; `toward` points from
+// i to j
 ContactGeom from_overlap(const Overlap& ov, Vec2 toward) {
   ContactGeom g;
   if (ov.area <= 0.0) return g;
@@ -22,7 +23,7 @@ ContactGeom from_overlap(const Overlap& ov, Vec2 toward) {
     g.n = perp(d) * (g.chord * inv2);
     if (dot(g.n, toward) < 0.0) g.n = -g.n;
   } else {
-    // one polygon inside the other: unphysical, use the centre direction (SPEC 2.1)
+    // one polygon inside the other: unphysical, use the centre direction (docs/physics.md §2.1)
     g.degenerate = true;
     g.s = ov.centroid;
     const double d = norm(toward);

@@ -1,6 +1,6 @@
 // narrow phase: a [shape][partner] table of pure functions from two placed bodies to the
-// contact geometry (SPEC 2.1 for polygons, SPEC 3 for disks). Periodic images arrive as a shift
-// already applied to the partner's position.
+// contact geometry (docs/physics.md §2.1 for polygons, §3 for disks). Periodic images arrive as a
+// shift already applied to the partner's position.
 #pragma once
 #include <cmath>
 

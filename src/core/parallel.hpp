@@ -61,7 +61,7 @@ inline int max_team_size() {
 #endif
 }
 /// the relative speeds of a team's threads, as the force pass measures them on its
-/// per-particle work (the two vCPUs of the project's VMs differ by up to 1.8× and drift,
+/// per-particle work (the vCPUs of a virtual machine can run at different, drifting speeds:
 /// docs/threads.md). Every per-particle split follows them, so equal work takes equal time.
 /// Only where work goes changes, never a result. Updated between parallel regions by the
 /// thread that runs the team; read inside regions. One per process: it describes the

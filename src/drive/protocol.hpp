@@ -1,6 +1,6 @@
 // what applies a tapping protocol: the protocol clock. It starts the schedule after the
-// settling time and ends a relaxation early once the pile is at rest (SPEC 2.4) by moving the
-// clock origin back (the protocol time t − origin jumps to the next excitation), so the
+// settling time and ends a relaxation early once the pile is at rest (docs/physics.md §2.4) by
+// moving the clock origin back (the protocol time t − origin jumps to the next excitation), so the
 // schedules stay pure functions of (drive, t). With drive.quench it also says when the run
 // should zero every velocity (kinetic damping of the ringing pile, so that rest can come).
 #pragma once

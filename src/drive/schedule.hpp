@@ -63,7 +63,7 @@ inline DrivePhase drive_phase(const DriveSpec& d, double t) {
 }
 
 /// does the step from t to t + dt enter a new excitation window? (the per-tap measurement is
-/// taken at t, "just before the next excitation", SPEC 2.5)
+/// taken at t, "just before the next excitation", docs/physics.md §2.5)
 inline bool excitation_starts_next(const DriveSpec& d, double t, double dt) {
   if (!is_tapping(d)) return false;
   const DrivePhase now = drive_phase(d, t), next = drive_phase(d, t + dt);
@@ -84,8 +84,8 @@ inline std::int64_t steps_before_excitation(const DriveSpec& d, double t, double
 
 /// gravitational acceleration at time t, m/s²:
 /// negative g (P.37): g·e_y·(g_p if t̃ < t1 else −1);
-/// rotating g (P.38, window t̃ < 2π/ω per SPEC 9.3): g·(sin ωt̃, −cos ωt̃), else (0, −g);
-/// before the protocol clock starts (settling): (0, −g) for the tapping protocols; none and
+/// rotating g (P.38, window t̃ < 2π/ω per docs/physics.md §8.3): g·(sin ωt̃, −cos ωt̃), else (0,
+/// −g); before the protocol clock starts (settling): (0, −g) for the tapping protocols; none and
 /// random force have no gravity
 inline Vec2 gravity_at(const DriveSpec& d, double t) {
   if (d.kind == DriveKind::Gravity) {

@@ -120,7 +120,7 @@ ContactModel::PolyPairConst ContactModel::poly_pair_const(const World& w, std::s
   return c;
 }
 
-// Model P (SPEC 2.2): overlap-area normal force with Cundall–Strack friction
+// Model P (docs/physics.md §2.2): overlap-area normal force with Cundall–Strack friction
 bool ContactModel::polygon_pair(const World& w, PairKey key, const ContactSet& cs,
                                 std::size_t& hint, double dt, PairForce& pf,
                                 PairResult& pr) const {
@@ -189,7 +189,7 @@ bool ContactModel::polygon_pair(const World& w, PairKey key, const ContactSet& c
   return true;
 }
 
-// Model S (SPEC 3): linear spring, normal and tangential dashpots, optional friction
+// Model S (docs/physics.md §3): linear spring, normal and tangential dashpots, optional friction
 [[gnu::always_inline]] inline bool ContactModel::disk_pair(const World& w, PairKey key,
                                                             PairForce& pf, PairResult& pr) const {
   const std::uint32_t N = static_cast<std::uint32_t>(w.size());
@@ -220,9 +220,8 @@ bool ContactModel::polygon_pair(const World& w, PairKey key, const ContactSet& c
 
 // disk pairs cost a few ns: a parallel region of their own from kParallelMinCheap pairs. But
 // where the particle loops run in parallel anyway (n ≥ kParallelMinCheap: the accelerations
-// come in the same region), the pairs join it from kParallelMin: the first thread no longer
-// evaluates them alone while the team waits, reading the others' positions (the stationary
-// 2-thread 10⁴-disk fluid, 4400 candidates: 128–133 → 119–124 µs a step)
+// come in the same region), the pairs join it from kParallelMin, so that the first thread does
+// not evaluate them alone while the team waits, reading the others' positions
 std::size_t ContactModel::parallel_pairs_from(bool polygons, std::size_t n) {
   return polygons || n >= kParallelMinCheap ? kParallelMin : kParallelMinCheap;
 }
@@ -441,9 +440,9 @@ ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<Pai
     // so that a thread sums, accelerates and corrects the grains it predicted
     const int tid = team_thread(), nt = team_size();
     const auto [p_begin, p_end] = thread_share(n, tid, nt);
-    // polygons placed over ranges of their own, balanced on the placing's own time: the
-    // barrier after it waited for the slower thread (≈ 9 µs of a 2-thread pile step split
-    // by ThreadSpeeds, whose ranges balance summing + correcting)
+    // polygons placed over ranges of their own, balanced on the placing's own time: split by
+    // ThreadSpeeds (whose ranges balance summing + correcting) the barrier after it would wait
+    // for the slower thread
     if (poly && !placed) {
       const bool own = static_cast<std::size_t>(nt) == place_balance_.threads();
       const double t0 = wall_seconds();
@@ -458,8 +457,8 @@ ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<Pai
     // contiguous ranges of chunks, one per thread, in the pair loop and in the compaction
     // below: candidates come sorted by their first particle, so a thread's pairs are mostly
     // those of the particles it placed, and its slots stay in its own cache from step to step.
-    // (Chunks handed out dynamically made a 2-thread pile step slower than one thread on a VM
-    // whose cores exchange a cache line in ~230 ns: docs/threads.md.) The split points follow
+    // (Chunks handed out dynamically move the pair slots between the cores every step, which
+    // on a VM can make two threads slower than one: docs/threads.md.) The split points follow
     // the measured cost (RangeBalancer): where the grains touch more, a chunk costs more. What
     // the last step's times cannot foresee (the host's jitter) a thread that is done first
     // takes over from the back of the other's range, chunk by chunk (StealRanges).

@@ -1,4 +1,4 @@
-// exact area of a disk inside an axis-aligned rectangle (φ of disk packings, SPEC 2.5):
+// exact area of a disk inside an axis-aligned rectangle (φ of disk packings, docs/physics.md §2.5):
 // inclusion–exclusion over four "quadrant" areas, each an integral of chord lengths with the
 // closed-form antiderivative ∫√(1−x²)dx = (x√(1−x²) + asin x)/2
 #include <algorithm>

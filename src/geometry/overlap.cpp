@@ -1,5 +1,5 @@
-// overlap of two convex polygons (SPEC 2.1): Sutherland–Hodgman clipping of a by the edge
-// lines of b, tracking which vertices of the result lie on both boundaries (the crossings)
+// overlap of two convex polygons (docs/physics.md §2.1): Sutherland–Hodgman clipping of a by the
+// edge lines of b, tracking which vertices of the result lie on both boundaries (the crossings)
 #include <algorithm>
 #include <bit>
 #include <cmath>

@@ -1,4 +1,5 @@
-// convex polygons: construction, areas, moments, half-plane and rectangle clipping (SPEC 1, 2.5)
+// convex polygons: construction, areas, moments, half-plane and rectangle clipping
+// (docs/physics.md §1.1, §2.5)
 #include "geometry/polygon.hpp"
 
 #include <algorithm>
@@ -127,20 +128,20 @@ double polar_moment(const Poly& p, Vec2 o) {
   return j / 12.0;
 }
 
-// n isosceles triangles of apex angle 2π/n (SPEC 1)
+// n isosceles triangles of apex angle 2π/n (docs/physics.md §1.1)
 double ngon_area(int n, double r) {
   check_ngon(n, "ngon_area");
   return 0.5 * n * r * r * std::sin(2.0 * std::numbers::pi / n);
 }
 
-// J = (m r²/6)(1 + 2cos²(π/n)) (SPEC 1)
+// J = (m r²/6)(1 + 2cos²(π/n)) (docs/physics.md §1.1)
 double ngon_inertia(int n, double r, double mass) {
   check_ngon(n, "ngon_inertia");
   const double c = std::cos(std::numbers::pi / n);
   return mass * r * r / 6.0 * (1.0 + 2.0 * c * c);
 }
 
-// J = m r²/2 (SPEC 1)
+// J = m r²/2 (docs/physics.md §1.1)
 double disk_inertia(double r, double mass) { return 0.5 * mass * r * r; }
 
 }  // namespace gs

@@ -55,7 +55,7 @@ bool contains(const Poly& p, Vec2 x);
 /// polar second moment of area about the point o: ∫|x − o|² dA, m⁴ (J = ρ × this)
 double polar_moment(const Poly& p, Vec2 o);
 
-/// result of the overlap of two convex polygons (SPEC 2.1)
+/// result of the overlap of two convex polygons (docs/physics.md §2.1)
 struct Overlap {
   double area = 0.0;   ///< area of the intersection polygon, m²
   int crossings = 0;   ///< number of boundary crossing points found (2 for a normal contact)
@@ -67,9 +67,11 @@ struct Overlap {
 /// apart; with none (one inside the other) crossings = 0.
 Overlap overlap(const Poly& a, const Poly& b);
 
-/// area of a regular n-gon of circumradius r: (n/2) r² sin(2π/n), m² (SPEC 1; mass = ρ × area)
+/// area of a regular n-gon of circumradius r: (n/2) r² sin(2π/n), m²; mass = ρ × area
+/// (docs/physics.md §1.1)
 double ngon_area(int n, double r);
-/// moment of inertia of a regular n-gon about its centre: (m r²/6)(1 + 2cos²(π/n)) (SPEC 1)
+/// moment of inertia of a regular n-gon about its centre: (m r²/6)(1 + 2cos²(π/n))
+/// (docs/physics.md §1.1)
 double ngon_inertia(int n, double r, double mass);
 /// moment of inertia of a disk: m r²/2
 double disk_inertia(double r, double mass);

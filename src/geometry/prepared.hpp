@@ -1,6 +1,6 @@
 // prepared convex polygons for the contact hot loop: each grain's world-frame vertices, vertex
 // mean, bounding circle and longest edge, computed once per step into flat arrays, so that the
-// overlap of a pair needs no per-pair set-up (SPEC 2.1)
+// overlap of a pair needs no per-pair set-up (docs/physics.md §2.1)
 #pragma once
 #include <cstddef>
 #include <vector>

@@ -1,4 +1,4 @@
-// sixth-order Gear predictor–corrector for second-order equations (SPEC 2.3)
+// sixth-order Gear predictor–corrector for second-order equations (docs/physics.md §2.3)
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -12,7 +12,7 @@
 namespace gs {
 
 namespace {
-// corrector coefficients for q'' = a(q, q') with velocity-dependent forces (SPEC 2.3)
+// corrector coefficients for q'' = a(q, q') with velocity-dependent forces (docs/physics.md §2.3)
 constexpr double kC[6] = {3.0 / 16.0, 251.0 / 360.0, 1.0, 11.0 / 18.0, 1.0 / 6.0, 1.0 / 60.0};
 constexpr int kN = 6;  // values per degree of freedom
 

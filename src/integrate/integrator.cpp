@@ -37,8 +37,8 @@ bool parse_integrator(std::string_view s, IntegratorKind& out) {
 }
 
 // global order of positions and velocities. Gear6 with the customary start r3 = r4 = r5 = 0
-// (SPEC 2.3) is second order: the O(Δt³) error in r3 = Δt³·q'''/6 becomes an O(Δt²) error
-// in v = r1/Δt after the first correction, and it persists. Its corrector alone is fifth
+// (docs/physics.md §2.3) is second order: the O(Δt³) error in r3 = Δt³·q'''/6 becomes an O(Δt²)
+// error in v = r1/Δt after the first correction, and it persists. Its corrector alone is fifth
 // order (tests/integrate measures 5.0 with an exact start) and its error constant is small.
 int integrator_order(IntegratorKind k) {
   switch (k) {

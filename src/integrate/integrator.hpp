@@ -25,7 +25,7 @@
 namespace gs {
 
 enum class IntegratorKind : std::uint8_t {
-  Gear6,              ///< sixth-order Gear predictor–corrector (SPEC 2.3)
+  Gear6,              ///< sixth-order Gear predictor–corrector (docs/physics.md §2.3)
   VelocityVerlet,     ///< kick–drift–kick; forces at half-step velocities
   PositionVerlet,     ///< Störmer–Verlet (T.2.3) with a consistent velocity estimate
   SemiImplicitEuler,  ///< symplectic Euler: v += a dt, then x += v dt

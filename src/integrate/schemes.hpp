@@ -33,8 +33,8 @@ class ChannelLayout {
   std::vector<std::size_t> sizes_;
 };
 
-/// sixth-order Gear predictor–corrector for q'' = a(q, q') (SPEC 2.3, P: "sixth-order Gear").
-/// Per degree of freedom it keeps the scaled derivatives r_k = Δt^k/k!·d^k q/dt^k, k = 0…5.
+/// sixth-order Gear predictor–corrector for q'' = a(q, q') (docs/physics.md §2.3, P: "sixth-order
+/// Gear"). Per degree of freedom it keeps the scaled derivatives r_k = Δt^k/k!·d^k q/dt^k, k = 0…5.
 /// predict(): Pascal-triangle Taylor step; writes q = r0ᵖ, v = r1ᵖ/Δt.
 /// correct(): Δr2 = a·Δt²/2 − r2ᵖ, r_k += c_k·Δr2 with (c0…c5) = (3/16, 251/360, 1, 11/18,
 /// 1/6, 1/60) (3/16: forces depend on velocity); writes q = r0, v = r1/Δt.

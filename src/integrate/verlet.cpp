@@ -126,7 +126,7 @@ void VelocityVerlet::permute(std::span<const std::uint32_t> perm) {
 }
 
 // history: the header only. a_n is the channels' acceleration (the state's, which a checkpoint
-// stores); v_{n+½} lives within a step. Until session 7 a copy of a_n followed the header:
+// stores); v_{n+½} lives within a step. Older checkpoints have a copy of a_n after the header:
 // such a history still loads (the copy equals the state's acceleration and is not needed).
 std::vector<double> VelocityVerlet::save() const {
   std::vector<double> out;

@@ -1,4 +1,5 @@
-// read-only packing observers: φ in a rectangle (exact clipping), coordination, stress (SPEC 2.5)
+// read-only packing observers: φ in a rectangle (exact clipping), coordination, stress
+// (docs/physics.md §2.5)
 #pragma once
 #include <array>
 

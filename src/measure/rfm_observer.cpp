@@ -89,7 +89,7 @@ void RfmObserver::setup(const Simulation& sim, const std::string& run_dir) {
   for (std::size_t i = 0; i < n_; ++i)
     if (std::abs(2.0 * w.radius[i] - diameter_) > 1e-12 * diameter_)
       throw InputError(scene_.path, "species",
-                       "the RFM measurements need disks of one size (SPEC 5)");
+                       "the RFM measurements need disks of one size (docs/physics.md §5)");
   if (dim_ == 1) l_reduced_ = rfm::reduced_length(box_, static_cast<long>(n_), diameter_);
 
   // structure (2D, square box): S(k) up to |n| ≈ 1.2 L/d (past the first peak), g(R) to L/4

@@ -1,5 +1,5 @@
-// the Random Force Model observer (SPEC 5.3): read-only measurements of a 2D periodic disk
-// fluid or a 1D ring, sampled every rfm.sample_every steps once rfm.discard_time is over, and
+// the Random Force Model observer (docs/physics.md §5.3): read-only measurements of a 2D periodic
+// disk fluid or a 1D ring, sampled every rfm.sample_every steps once rfm.discard_time is over, and
 // written into the run directory when the run ends (files listed in docs/rfm.md):
 //   every sample (transient included): rfm_series.csv   t, T (T.2.19), T_x, T_y, mean velocity
 //   steady state: temperature.csv (T.2.19 with block means T.2.20), moments.csv (⟨|v|^m⟩,
@@ -12,7 +12,7 @@
 //   rfm.json: the system (N, L, L′, d, M, ε, D, Δt, φ) and the run's summary.
 // Contacts are followed every step from sim.contacts().keys at O(contacts) cost: a particle
 // whose contact count drops to 0 starts a free path at its unwrapped position, which ends at
-// its next contact (SPEC 5.3). Velocities are taken in the centre-of-mass frame.
+// its next contact (docs/physics.md §5.3). Velocities are taken in the centre-of-mass frame.
 #pragma once
 #include <cstdint>
 #include <memory>

@@ -1,5 +1,5 @@
-// the per-tap measurements of the tapping study (SPEC 2.5): one record of a pile at rest,
-// taken just before the next excitation; pure functions of the World and its contacts
+// the per-tap measurements of the tapping study (docs/physics.md §2.5): one record of a pile at
+// rest, taken just before the next excitation; pure functions of the World and its contacts
 #pragma once
 #include <array>
 #include <string>
@@ -30,8 +30,8 @@ TapMeasurement measure_tap(const World& w, const ContactSet& cs, const double re
 /// the fixed height grid of the segregation curves: h_k = k·dh for k = 1 … ⌈top/dh⌉, m
 std::vector<double> height_grid(double top, double dh);
 
-/// segregation (SPEC 2.5): n_s(h) = number of grains of species s with centre height y < h,
-/// for every h of the grid; species-major (all h of species 0, then species 1, …)
+/// segregation (docs/physics.md §2.5): n_s(h) = number of grains of species s with centre height y
+/// < h, for every h of the grid; species-major (all h of species 0, then species 1, …)
 std::vector<double> cumulative_counts(const World& w, const std::vector<double>& grid);
 
 /// the column names of cumulative_counts: "<species>@<h>" with h in mm ("big@10", …)

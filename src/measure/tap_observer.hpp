@@ -1,5 +1,5 @@
 // the tapping study's observer: one row per tap in DIR/taps.csv and DIR/segregation.csv,
-// measured just before the next excitation (SPEC 2.5), appended and flushed
+// measured just before the next excitation (docs/physics.md §2.5), appended and flushed
 #pragma once
 #include <memory>
 

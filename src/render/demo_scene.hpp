@@ -14,9 +14,9 @@ struct DemoScene {
   RenderOverlays overlays;
 };
 
-/// the tapping paper's pile (SPEC 2.2): n_big decagons of r = 9 mm and n_small of r = 6.36 mm
-/// filling a box `width` m wide to ≈ 0.53 m (for 544 + 640 in 0.48 m), walls on three sides,
-/// the top layers moving upward as after a tap, the 0.40 m test square drawn
+/// the tapping paper's pile (docs/physics.md §2.2): n_big decagons of r = 9 mm and n_small of r =
+/// 6.36 mm filling a box `width` m wide to ≈ 0.53 m (for 544 + 640 in 0.48 m), walls on three
+/// sides, the top layers moving upward as after a tap, the 0.40 m test square drawn
 DemoScene demo_decagon_pile(int n_big = 544, int n_small = 640, double width = 0.48,
                             std::uint64_t seed = 1);
 

@@ -132,7 +132,7 @@ std::vector<SpeciesRead> read_species(const Ctx& ctx, const TableReader& top, Sc
     ShapeKind def_shape = s.model.kind == ModelKind::S ? ShapeKind::Disk : ShapeKind::Polygon;
     sp.shape = r.choice("shape", def_shape);
     if (s.model.kind == ModelKind::S && sp.shape != ShapeKind::Disk)
-      r.fail("shape", "model S (soft disks, SPEC 3) needs shape = \"disk\"");
+      r.fail("shape", "model S (soft disks, docs/physics.md §3) needs shape = \"disk\"");
     // sides: regular n-gons with 3..64 sides, polygons only
     if (sp.shape == ShapeKind::Disk && r.has("sides"))
       r.fail("sides", "only for shape = \"polygon\" (this species is a disk)");
@@ -160,7 +160,7 @@ void read_box(const Ctx& ctx, const TableReader& top, SceneSpec& s) {
   b.kind = r.choice("kind", BoxKind::Walls);
   b.reduced_length = r.number_optional("reduced_length", Range::positive());
   if (b.reduced_length) {
-    // ring: L = L′ + N·d (SPEC 5.2); the two lengths are not given together
+    // ring: L = L′ + N·d (docs/physics.md §5.2); the two lengths are not given together
     if (b.kind != BoxKind::Ring1D)
       r.fail("reduced_length", "only for kind = \"ring\" (the 1D periodic line)");
     if (r.has("width"))
@@ -181,8 +181,8 @@ void read_box(const Ctx& ctx, const TableReader& top, SceneSpec& s) {
   if (b.kind == BoxKind::Ring1D)
     for (const auto& sp : s.species)
       if (sp.shape != ShapeKind::Disk)
-        r.fail("kind", "a ring (1D RFM, SPEC 5.2) holds disks only; species " + quote(sp.name) +
-                           " is a polygon");
+        r.fail("kind", "a ring (1D RFM, docs/physics.md §5.2) holds disks only; species " +
+                           quote(sp.name) + " is a polygon");
   // at most 10⁶ grain diameters a side: placement lattices and cell grids stay finite
   double d = 0;
   for (const auto& sp : s.species) d = std::max(d, 2.0 * sp.radius);
@@ -270,8 +270,8 @@ void read_preparation(const Ctx& ctx, const TableReader& top, SceneSpec& s,
 }
 
 // ---------------------------------------------------------------------------------------
-// [integrator]: Model P defaults to Gear 6 at 5e-5 s (SPEC 2.3), Model S to velocity Verlet
-// at 1e-6 s (SPEC 3)
+// [integrator]: Model P defaults to Gear 6 at 5e-5 s (docs/physics.md §2.3), Model S to velocity
+// Verlet at 1e-6 s (docs/physics.md §3)
 
 void read_integrator(const Ctx& ctx, const TableReader& top, SceneSpec& s) {
   TableReader r(ctx, table_or_empty(sub_table(top, "integrator")), "integrator",
@@ -324,7 +324,7 @@ void read_drive(const Ctx& ctx, const TableReader& top, SceneSpec& s) {
     r.fail("D", "must be > 0 for kind = \"random_force\" (got 0)");
   d.com_removal_every =
       static_cast<int>(r.integer("com_removal_every", d.com_removal_every, 0, kIntMax));
-  // early end of a relaxation once at rest (SPEC 2.4)
+  // early end of a relaxation once at rest (docs/physics.md §2.4)
   d.early_rest = r.boolean("early_rest", d.early_rest);
   d.rest_speed = r.number("rest_speed", d.rest_speed, Range::positive());
   d.rest_energy = r.number("rest_energy", d.rest_energy, Range::positive());
@@ -443,7 +443,7 @@ SceneSpec parse_scene_string(std::string_view text, const std::string& name_for_
   auto species = read_species(ctx, top, s);
   read_box(ctx, top, s);
   read_preparation(ctx, top, s, species);
-  // a ring given by L′ gets its full length L = L′ + N·d (SPEC 5.2)
+  // a ring given by L′ gets its full length L = L′ + N·d (docs/physics.md §5.2)
   if (s.box.reduced_length) {
     double nd = 0;
     for (const auto& sp : s.species) nd += sp.count * 2.0 * sp.radius;

@@ -1,5 +1,5 @@
-// [rfm]: when and how the Random Force Model observers sample (SPEC 5.3, docs/rfm.md); checked
-// once here like every other section (docs/scene-format.md)
+// [rfm]: when and how the Random Force Model observers sample (docs/physics.md §5.3, docs/rfm.md);
+// checked once here like every other section (docs/scene-format.md)
 #include "scene/rfm_section.hpp"
 
 #include <algorithm>

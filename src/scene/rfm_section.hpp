@@ -1,4 +1,4 @@
-// the [rfm] section of a scene: the Random Force Model measurements (SPEC 5.3). RfmSpec
+// the [rfm] section of a scene: the Random Force Model measurements (docs/physics.md §5.3). RfmSpec
 // itself lives in spec.hpp; this reads and writes it for parse.cpp / write.cpp.
 #pragma once
 #include <string>

@@ -14,8 +14,8 @@ namespace gs {
 
 enum class ShapeKind : std::uint8_t { Disk, Polygon };
 enum class ModelKind : std::uint8_t {
-  P,  ///< polygon DEM: overlap-area normal force + Cundall–Strack (SPEC 2)
-  S,  ///< soft disks: linear spring–dashpot (SPEC 3)
+  P,  ///< polygon DEM: overlap-area normal force + Cundall–Strack (docs/physics.md §2)
+  S,  ///< soft disks: linear spring–dashpot (docs/physics.md §3)
 };
 enum class BoxKind : std::uint8_t {
   Walls,     ///< closed box of wall rectangles (optionally without lid)
@@ -92,7 +92,7 @@ struct ModelSpec {
   bool hdot_finite_difference = false;  ///< Model P: ḣ_eff by finite difference (else analytic)
   /// Model P: spread the normal dashpot along the contact line, so it also damps relative
   /// rotation (a couple γ√(E m⊥)·L³/(12 l)·ω_rel); the paper's point dashpot leaves rocking
-  /// on a face undamped (docs/model-notes.md)
+  /// on a face undamped (docs/physics.md §2.2)
   bool rocking_damping = true;
   bool clip_attractive = false;         ///< Model S: clip attractive normal force
   bool rotation = true;                 ///< integrate rotation (auto-off for frictionless disks)
@@ -198,8 +198,8 @@ struct RenderSpec {
   int trajectory_every = 0;      ///< steps between DIR/trajectory.xyz frames (0 = off)
 };
 
-/// [rfm]: the Random Force Model measurements (SPEC 5.3), taken by read-only observers on a
-/// sampling interval (parsed in scene/rfm_section.cpp; measure/rfm_observer.hpp; docs/rfm.md)
+/// [rfm]: the Random Force Model measurements (docs/physics.md §5.3), taken by read-only observers
+/// on a sampling interval (parsed in scene/rfm_section.cpp; measure/rfm_observer.hpp; docs/rfm.md)
 struct RfmSpec {
   bool given = false;          ///< the scene has an [rfm] section (not a key)
   bool enabled = false;        ///< measure (default: true with [rfm] or drive.kind = "random_force")

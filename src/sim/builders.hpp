@@ -4,9 +4,9 @@
 
 namespace gs::build {
 
-/// the paper's grain material (SPEC 2.2): E = 1000 N/m, γ = 0.5, μ = 0.6
+/// the paper's grain material (docs/physics.md §2.2): E = 1000 N/m, γ = 0.5, μ = 0.6
 MaterialSpec paper_material();
-/// thesis disk material (SPEC 3): k_s = 5·10⁵ N/m, ε_n, ε_t
+/// thesis disk material (docs/physics.md §3): k_s = 5·10⁵ N/m, ε_n, ε_t
 MaterialSpec disk_material(double eps_n, double eps_t, double ks = 5e5);
 
 /// two explicit particles of one species, no gravity (collision tests)
@@ -17,7 +17,7 @@ SceneSpec two_body(ModelKind model, ShapeKind shape, double radius, double mass,
 /// from a loose column under gravity
 SceneSpec decagon_pile(int n, double width, double height, std::uint64_t seed);
 
-/// a periodic box of N equal disks at area fraction φ, thesis particles (SPEC 3)
+/// a periodic box of N equal disks at area fraction φ, thesis particles (docs/physics.md §3)
 SceneSpec disk_gas(int n, double phi, double eps_n, double eps_t, std::uint64_t seed);
 
 }  // namespace gs::build

@@ -119,8 +119,8 @@ double accelerate(const AccelArrays& a, std::size_t b, std::size_t e) {
   double kick_sum = 0.0;
   const ZigguratTables& zt = ZigguratTables::get();
   // the normals of a sub-block first, its common draws in one pass without branches
-  // (noise_normals_block; with the rare rejections inline this loop spilled registers and
-  // overlapped few particles): forced fluid 10⁴ +12–30%, 1D ring +6–18% (A/B on one CPU)
+  // (noise_normals_block): with the rare rejections inline this loop spilled registers and
+  // overlapped few particles' draws
   constexpr std::size_t kSub = 64;
   alignas(64) double z0s[kNoise ? kSub : 1], z1s[kNoise ? kSub : 1];
   const std::size_t sub = kNoise ? kSub : e - b;  // without noise: one block

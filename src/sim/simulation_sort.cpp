@@ -1,7 +1,7 @@
 // the periodic spatial sort: particles renumbered in cell order, so that the neighbours the
 // force loop visits are near in memory. Random forcing mixes a fluid, and a 10⁶-disk system's
-// neighbours end up scattered over the arrays (a step 1.8–2× slower than in cell order,
-// docs/benchmarks.md); LAMMPS sorts its atoms every 1000 steps for the same reason.
+// neighbours end up scattered over the arrays, which makes every step slower; LAMMPS sorts its
+// atoms every 1000 steps for the same reason.
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>

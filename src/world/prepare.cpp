@@ -99,7 +99,7 @@ void place_particles(World& w) {
       case PlacementKind::Random: {
         // n sites drawn at random from a fine lattice (no overlaps), numbered in lattice order:
         // grains that are neighbours in space are then near in memory too (cache locality of
-        // the pair loop: a 10⁶-disk fluid steps 2.9× faster than with random numbering)
+        // the pair loop, which matters most for large fluids)
         const std::vector<Vec2> all = lattice(x0, y0, x1, y1, a, true, n);
         std::vector<std::size_t> pick(all.size());
         for (std::size_t i = 0; i < pick.size(); ++i) pick[i] = i;

@@ -1,4 +1,5 @@
-// initial placement of the grains (SPEC 2.4, 5.1; thesis fig. 2.4): deterministic from the seed
+// initial placement of the grains (docs/physics.md §2.4, §5.1; thesis fig. 2.4):
+// deterministic from the seed
 #pragma once
 #include "world/world.hpp"
 

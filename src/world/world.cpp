@@ -130,7 +130,7 @@ World make_world(const SceneSpec& sc) {
   if (w.materials.empty()) w.materials.push_back(MaterialSpec{});
   w.box = sc.box.kind;
 
-  // species: shape, mass and inertia (SPEC 1)
+  // species: shape, mass and inertia (docs/physics.md §1.1)
   bool any_poly = false, any_disk = false;
   for (const auto& s : sc.species) {
     Species k;
@@ -170,7 +170,7 @@ World make_world(const SceneSpec& sc) {
   w.Lx = sc.box.width;
   w.Ly = sc.box.height;
   if (sc.box.kind == BoxKind::Ring1D && sc.box.reduced_length) {
-    // the ring's length from the reduced length L′ = L − N·d (SPEC 5.2)
+    // the ring's length from the reduced length L′ = L − N·d (docs/physics.md §5.2)
     double occupied = 0.0;
     for (const auto& s : sc.species) occupied += s.count * 2.0 * s.radius;
     w.Lx = *sc.box.reduced_length + occupied;

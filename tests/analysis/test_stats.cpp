@@ -1,5 +1,5 @@
-// statistics of series (SPEC 2.6): quantiles against tables, CI coverage, the autocorrelation
-// time of an AR(1) process, and the chi-square normality test
+// statistics of series (docs/physics.md §2.6): quantiles against tables, CI coverage, the
+// autocorrelation time of an AR(1) process, and the chi-square normality test
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -67,9 +67,9 @@ TEST_F(Threads, RunJsonReportsTheTeam) {
   EXPECT_EQ(json_int(js, "omp_cpus"), allowed_cpus());
 }
 
-// two threads with binding on: two CPUs (the bug: both threads bound to the first one, after
-// the restart inherited the first thread's one-CPU mask, and a 2-thread paper tap ran at
-// 2.1·10⁶ particle-steps/s against 4.4·10⁶)
+// two threads with binding on: two CPUs (the failure guarded against: both threads bound to the
+// first one, after the restart inherited the first thread's one-CPU mask, which leaves a
+// 2-thread run slower than one thread)
 TEST_F(Threads, BoundThreadsKeepTheirOwnCpusAfterTheRestart) {
   if (allowed_cpus() < 2) GTEST_SKIP() << "this machine gives the test one CPU";
   for (const char* bind : {"OMP_PROC_BIND=true", "OMP_PROC_BIND=close"}) {

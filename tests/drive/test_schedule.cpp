@@ -1,6 +1,6 @@
 // the tapping drivers as pure schedules (P.37, P.38): hand values of g(t) at the phase
 // boundaries, the settling phase before the protocol clock, the measurement trigger, and the
-// protocol clock's early rest (SPEC 2.4)
+// protocol clock's early rest (docs/physics.md §2.4)
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -59,8 +59,8 @@ TEST(NegativeG, HandValuesAtThePhaseBoundaries) {
   EXPECT_DOUBLE_EQ(excitation_length(d), 0.1);
 }
 
-// (P.38) with the window t̃ < 2π/ω (SPEC 9.3): f = 0.5 Hz turns gravity once in 2 s, then
-// 3 s of relaxation, T = 2π/ω + 3 s = 5 s
+// (P.38) with the window t̃ < 2π/ω (docs/physics.md §8.3): f = 0.5 Hz turns gravity once in 2 s,
+// then 3 s of relaxation, T = 2π/ω + 3 s = 5 s
 TEST(RotatingG, HandValuesOverOneTurn) {
   const DriveSpec d = rotating_g(0.5, 3.0);
   EXPECT_DOUBLE_EQ(drive_period(d), 5.0);

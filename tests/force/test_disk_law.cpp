@@ -1,4 +1,4 @@
-// Model S: the thesis's linear spring–dashpot (T.2.4–T.2.12, SPEC 3)
+// Model S: the thesis's linear spring–dashpot (T.2.4–T.2.12, docs/physics.md §3)
 #include <gtest/gtest.h>
 
 #include <array>

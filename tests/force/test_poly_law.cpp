@@ -1,4 +1,4 @@
-// Model P: the overlap-area normal force (P.34, SPEC 2.2) and Cundall–Strack friction
+// Model P: the overlap-area normal force (P.34, docs/physics.md §2.2) and Cundall–Strack friction
 // (P.35–P.36)
 #include <gtest/gtest.h>
 
@@ -38,7 +38,7 @@ TEST(PolyNormal, LinearInPenetrationWithSlopeE) {
 }
 
 // the dashpot γ√(E m⊥)·ḣ adds repulsion while the overlap grows and removes it while it
-// shrinks (the corrected sign of SPEC 9.2)
+// shrinks (the corrected sign of docs/physics.md §8.2)
 TEST(PolyNormal, DashpotAddsWhileApproachingSubtractsWhileSeparating) {
   const double h = 1e-4, hd = 0.01;
   const double f0 = law::poly_normal_force(kPaper, h, 0.0, kMperp);

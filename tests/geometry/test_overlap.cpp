@@ -1,5 +1,5 @@
-// overlap of convex polygons (SPEC 2.1, 8): areas against analytic values, boundary crossings
-// at known coordinates, containment and touching, and properties of random pairs
+// overlap of convex polygons (docs/physics.md §2.1, §7): areas against analytic values, boundary
+// crossings at known coordinates, containment and touching, and properties of random pairs
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -1,5 +1,5 @@
-// polygon construction, areas, centroids, mass and inertia (SPEC 1), half-plane and rectangle
-// clipping (SPEC 2.5, 8)
+// polygon construction, areas, centroids, mass and inertia (docs/physics.md §1.1), half-plane and
+// rectangle clipping (docs/physics.md §2.5, §7)
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,7 +1,7 @@
-// the random force (SPEC 4, T.2.16, T.2.18) on free particles: each component of the velocity
-// diffuses with 2D/M² per unit time, so in 2D d⟨|v|²⟩/dt = 4D/M², the same at any Δt
-// (SPEC 8). In 1D the kicks are symmetrised every step: the total momentum stays exactly what
-// it was and ⟨v²⟩ grows at 2D/M²·(1 − 1/N).
+// the random force (docs/physics.md §4, T.2.16, T.2.18) on free particles: each component of the
+// velocity diffuses with 2D/M² per unit time, so in 2D d⟨|v|²⟩/dt = 4D/M², the same at any Δt
+// (docs/physics.md §7). In 1D the kicks are symmetrised every step: the total momentum stays
+// exactly what it was and ⟨v²⟩ grows at 2D/M²·(1 − 1/N).
 #include <gtest/gtest.h>
 
 #include <cmath>

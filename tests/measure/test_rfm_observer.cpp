@@ -112,8 +112,8 @@ TEST(RfmObserver, TinyRunWritesSaneFiles) {
   for (double x : T) EXPECT_GT(x, 0.0);
   const double t_mean = std::accumulate(T.begin(), T.begin() + 150, 0.0) / 150.0;
   EXPECT_NEAR(r.json("T_mean"), t_mean, 1e-12 * t_mean);
-  // a driven dissipative fluid: between the ε = 0.6 steady value ~0.1–0.3 m²/s² (SPEC 9.5)
-  // and the noise-only bound (initial + 4D/M²·t = 0.04 + 1.3 m²/s²)
+  // a driven dissipative fluid: between the ε = 0.6 steady value ~0.1–0.3 m²/s² (docs/physics.md
+  // §8.5) and the noise-only bound (initial + 4D/M²·t = 0.04 + 1.3 m²/s²)
   EXPECT_GT(t_mean, 0.01);
   EXPECT_LT(t_mean, 1.4);
 

@@ -1,7 +1,7 @@
-// the 1D ring (SPEC 5.2): an elastic gas (ε = 1) of equal masses only exchanges velocities,
-// so in reduced coordinates (T.3.16) the particles are independent "ghosts" and, once they
-// have moved many spacings, the N gaps on L′ are those of N uniform points: R/L′ ~ Beta(1, N−1)
-// with ⟨R⟩ = L′/N, ⟨R²⟩ = 2L′²/(N(N+1)), ⟨R³⟩ = 6L′³/(N(N+1)(N+2)) (exponential for large N).
+// the 1D ring (docs/physics.md §5.2): an elastic gas (ε = 1) of equal masses only exchanges
+// velocities, so in reduced coordinates (T.3.16) the particles are independent "ghosts" and, once
+// they have moved many spacings, the N gaps on L′ are those of N uniform points: R/L′ ~ Beta(1,
+// N−1) with ⟨R⟩ = L′/N, ⟨R²⟩ = 2L′²/(N(N+1)), ⟨R³⟩ = 6L′³/(N(N+1)(N+2)) (exponential for large N).
 // Also: the ring-neighbour broad phase emits exactly the neighbour pairs with the right image.
 #include <gtest/gtest.h>
 #include <unistd.h>

@@ -1,6 +1,6 @@
-// the per-tap measurements (SPEC 2.5) on hand-built packings with exact answers: φ of the test
-// rectangle and its halves, segregation counts n(h), and the force-moment tensor (P.41) of a
-// decagon resting on the floor
+// the per-tap measurements (docs/physics.md §2.5) on hand-built packings with exact answers: φ of
+// the test rectangle and its halves, segregation counts n(h), and the force-moment tensor (P.41) of
+// a decagon resting on the floor
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -28,7 +28,7 @@ SceneSpec two_species_scene() {
   return s;
 }
 
-// regular decagon area (SPEC 1): (n/2) r² sin(2π/n)
+// regular decagon area (docs/physics.md §1.1): (n/2) r² sin(2π/n)
 double decagon_area(double r) { return 5.0 * r * r * std::sin(2.0 * M_PI / 10.0); }
 
 // a decagon with θ = 0 is mirror-symmetric about the horizontal and vertical lines through its

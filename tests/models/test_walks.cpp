@@ -23,9 +23,10 @@ WalkParams unit_params(long walks, double dt, std::uint64_t seed) {
 }
 
 TEST(Walks, FreeParticleHeating) {
-  // ⟨v_x²⟩ = 2 D t/M² (SPEC §8) and ⟨x²⟩ = 2 D_v Δt³ (n−1) n (2n−1)/6 for the first-order update
-  // T.5.11, both exact in expectation; 5000 particles × 2 components give ≈ 1.4 % errors; 5σ.
-  // The same time reached with a 4× larger step must give the same ⟨v²⟩ (Δt independence).
+  // ⟨v_x²⟩ = 2 D t/M² (docs/physics.md §7) and ⟨x²⟩ = 2 D_v Δt³ (n−1) n (2n−1)/6 for the
+  // first-order update T.5.11, both exact in expectation; 5000 particles × 2 components give
+  // ≈ 1.4 % errors; 5σ. The same time reached with a 4× larger step must give the same ⟨v²⟩
+  // (Δt independence).
   WalkParams p = unit_params(2, 1e-3, 7);
   p.noise = 2e-9;
   p.mass = 3.53e-5;

@@ -132,7 +132,7 @@ TEST(SceneParse, ResolvedListsEveryKey) {
   EXPECT_EQ(r.at("drive.quench"), "true");
 }
 
-// defaults: a minimal Model P scene takes the documented defaults (spec.hpp, SPEC 2)
+// defaults: a minimal Model P scene takes the documented defaults (spec.hpp, docs/physics.md §2)
 TEST(SceneParse, DefaultsApply) {
   const char* text = R"(
 [[species]]
@@ -149,7 +149,7 @@ width = 0.48
   EXPECT_EQ(s.model.kind, ModelKind::P);
   ASSERT_EQ(s.materials.size(), 1u);
   EXPECT_EQ(s.materials[0].name, "default");
-  EXPECT_EQ(s.materials[0].E, 1000.0);  // paper parameters (SPEC 2.2)
+  EXPECT_EQ(s.materials[0].E, 1000.0);  // paper parameters (docs/physics.md §2.2)
   EXPECT_EQ(s.materials[0].gamma, 0.5);
   EXPECT_EQ(s.materials[0].mu, 0.6);
   EXPECT_EQ(s.species[0].shape, ShapeKind::Polygon);
@@ -162,8 +162,8 @@ width = 0.48
   EXPECT_EQ(s.box.material, "default");
   EXPECT_EQ(s.prep.placement, PlacementKind::LooseColumn);
   EXPECT_EQ(s.prep.seed, 1u);
-  EXPECT_EQ(s.integrator.kind, IntegratorKind::Gear6);  // SPEC 2.3
-  EXPECT_EQ(s.integrator.dt, 5e-5);                     // SPEC 2.2
+  EXPECT_EQ(s.integrator.kind, IntegratorKind::Gear6);  // docs/physics.md §2.3
+  EXPECT_EQ(s.integrator.dt, 5e-5);                     // docs/physics.md §2.2
   EXPECT_EQ(s.drive.kind, DriveKind::Gravity);
   EXPECT_EQ(s.drive.g, 9.81);
   EXPECT_EQ(s.drive.g_p, 6.0);
@@ -173,13 +173,14 @@ width = 0.48
   EXPECT_FALSE(s.drive.quench);  // opt-in (docs/tapping.md)
   EXPECT_EQ(s.drive.quench_speed, 0.05);
   EXPECT_EQ(s.drive.quench_hold, 0.3);
-  EXPECT_EQ(s.output.discard_taps, 10);  // SPEC 2.5
+  EXPECT_EQ(s.output.discard_taps, 10);  // docs/physics.md §2.5
   EXPECT_EQ(s.output.test_rect[2], 0.44);
   EXPECT_EQ(s.resolved.at("integrator.kind"), "\"gear6\"");
   EXPECT_EQ(s.resolved.at("species[0].sides"), "10");
 }
 
-// Model S defaults: disks, velocity Verlet at 1e-6 s (SPEC 3), square periodic box, no drive
+// Model S defaults (docs/physics.md §3): disks, velocity Verlet at 1e-6 s, square periodic box,
+// no drive
 TEST(SceneParse, SoftDiskDefaults) {
   const char* text = R"(
 [model]
@@ -204,7 +205,8 @@ width = 0.2
   EXPECT_FALSE(s.resolved.count("species[0].sides"));  // disks have no sides
 }
 
-// a ring given by L′: L = L′ + N·d (SPEC 5.2); 1 + 100·0.003 = 1.3 up to one rounding each
+// a ring given by L′: L = L′ + N·d (docs/physics.md §5.2); 1 + 100·0.003 = 1.3 up to one
+// rounding each
 TEST(SceneParse, RingLengthFromReducedLength) {
   const char* text = R"(
 model.kind = "soft_disk"
@@ -405,8 +407,9 @@ std::vector<std::string> doc_examples() {
 }
 
 // the documented examples parse and describe the published systems: the paper's grains cover
-// 0.2056 m² (SPEC 2.2: n/2·r²·sin(2π/n) per decagon), the thesis fluid has φ = Nπr²/L² = 0.353
-// (T.2.24), and the ring length is L′ + N·d; tolerances are the rounding of the quoted values
+// 0.2056 m² (docs/physics.md §1.1: n/2·r²·sin(2π/n) per decagon), the thesis fluid has
+// φ = Nπr²/L² = 0.353 (T.2.24), and the ring length is L′ + N·d; tolerances are the rounding of
+// the quoted values
 TEST(SceneDocs, ExamplesParseToThePublishedSystems) {
   auto ex = doc_examples();
   ASSERT_EQ(ex.size(), 3u) << "docs/scene-format.md should hold three ```toml examples";

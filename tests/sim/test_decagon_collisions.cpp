@@ -69,8 +69,8 @@ TEST(DecagonCollision, VertexToFaceLosesEnergy) {
   EXPECT_LT(o.momentum_error, 1e-15);
 }
 
-// SPEC 2.1: ḣ_eff from the contact-line velocity and from a finite difference of h_eff must
-// give the same restitution within 1%
+// docs/physics.md §2.1: ḣ_eff from the contact-line velocity and from a finite difference of h_eff
+// must give the same restitution within 1%
 TEST(DecagonCollision, AnalyticAndFiniteDifferenceRateAgree) {
   for (auto [t1, t2] : {std::pair{M_PI / 10, M_PI / 10}, std::pair{0.0, M_PI / 10}}) {
     const double a = collide(0.5, t1, t2, false).restitution;

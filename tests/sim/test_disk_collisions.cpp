@@ -43,7 +43,7 @@ TEST_P(DiskCollision, HeadOnRealisesTargetRestitution) {
   // T.2.6 makes the linear dashpot's restitution exact; what remains is the integrator's
   // resolution of a contact sampled 200 times: 1% is the acceptance
   EXPECT_NEAR(realised, eps, 0.01 * eps) << to_string(integ);
-  // lost fraction of CM kinetic energy 1 − ε² (T.2.13, SPEC 9.7)
+  // lost fraction of CM kinetic energy 1 − ε² (T.2.13, docs/physics.md §8.7)
   const double lost = 1.0 - cm_energy(tw.v(0), tw.v(1)) / e0;
   EXPECT_NEAR(lost, 1.0 - eps * eps, 0.02 * eps * eps);
   // momentum: forces are equal and opposite, so only round-off remains. Position Verlet
@@ -71,7 +71,8 @@ INSTANTIATE_TEST_SUITE_P(
     });
 
 // simulations 2–4 of Table 2.1: the energy lost is 1 − ε_n² cos²θ − ε_t,eff² sin²θ with
-// ε_t,eff = ε_t^√(1+(ln ε_n/π)²) (SPEC 3) and θ the angle between relative velocity and normal
+// ε_t,eff = ε_t^√(1+(ln ε_n/π)²) (docs/physics.md §3) and θ the angle between relative velocity
+// and normal
 struct Oblique {
   Vec2 x2, v1;
 };

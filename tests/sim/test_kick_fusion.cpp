@@ -117,8 +117,8 @@ TEST(KickFusion, RingWithSymmetrisedNoiseFollowsTheOwnCorrection) {
   EXPECT_LT(std::abs(momentum(fused.world()) - p0), 1e-15);
 }
 
-// the ring without noise: the kick in the force pass's callback, x alone (until session 8's
-// review this path called the integrator's correct_range, which refuses while the caller kicks)
+// the ring without noise: the kick in the force pass's callback, x alone (this path must not
+// call the integrator's correct_range, which refuses while the caller kicks)
 TEST(KickFusion, RingWithoutNoiseFollowsTheOwnCorrection) {
   Simulation fused = make_sim(ring(false));
   Simulation own = make_sim(ring(false));

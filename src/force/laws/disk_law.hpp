@@ -1,4 +1,4 @@
-// Model S: the thesis's linear spring–dashpot for soft disks (SPEC 3; T.2.4–T.2.12)
+// Model S: the thesis's linear spring–dashpot for soft disks (docs/physics.md §3; T.2.4–T.2.12)
 #pragma once
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,5 @@
-// Model P: the tapping paper's overlap-area normal force and Cundall–Strack friction (SPEC 2.2)
+// Model P: the tapping paper's overlap-area normal force and Cundall–Strack friction
+// (docs/physics.md §2.2)
 #pragma once
 #include <algorithm>
 #include <cmath>
@@ -12,7 +13,7 @@ struct PolyLawParams {
   double mu = 0.6;     ///< Coulomb friction coefficient
 };
 
-/// normal force magnitude (P.34), corrected dashpot sign (SPEC 9.2):
+/// normal force magnitude (P.34), corrected dashpot sign (docs/physics.md §8.2):
 /// F⊥ = max(E·h_eff + γ·√(E m⊥)·ḣ_eff, 0); ḣ_eff > 0 while the overlap grows. N.
 inline double poly_normal_force_damped(const PolyLawParams& p, double h_eff, double hdot_eff,
                                        double damp_n) {

@@ -111,8 +111,8 @@ class GlRenderer final : public Renderer {
 
     // resolve the samples straight into OSMesa's buffer (framebuffer 0) and wait for it:
     // the buffer then holds the picture top row first (OSMESA_Y_UP = 0), so no glReadPixels
-    // and no flip are needed (measured 15-20% faster than a resolve FBO + glReadPixels + flip;
-    // byte-identical with MSAA, a handful of edge pixels differ without it)
+    // and no flip are needed (faster than a resolve FBO + glReadPixels + flip; byte-identical
+    // with MSAA, a handful of edge pixels differ without it)
     if (ms_fbo_) {
       gl_.BindFramebuffer(GL_READ_FRAMEBUFFER, ms_fbo_);
       gl_.BindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
