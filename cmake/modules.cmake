@@ -48,7 +48,9 @@ if(FFMPEG_FOUND)
   endif()
 endif()
 
-gs_module(app DEPS gs_measure gs_render gs_output gs_analysis gs_models CLI11::CLI11 Threads::Threads)
+gs_module(app DIRS app app/reproduce
+  DEPS gs_measure gs_render gs_output gs_analysis gs_models CLI11::CLI11 Threads::Threads
+  nlohmann_json::nlohmann_json)
 if(TARGET gs_render_gl)
   target_link_libraries(gs_app PUBLIC gs_render_gl)
 endif()

@@ -12,6 +12,7 @@ packages=(
   libpng-dev libfftw3-dev libfreetype-dev fonts-dejavu-core
   libosmesa6-dev libavcodec-dev libavformat-dev libswscale-dev libavutil-dev
   libopenmpi-dev openmpi-bin
+  nlohmann-json3-dev
   python3 python3-numpy python3-matplotlib
 )
 

@@ -6,6 +6,7 @@
 
 #include "app/analyze.hpp"
 #include "app/render_cmd.hpp"
+#include "app/reproduce/reproduce.hpp"
 #include "app/rfm_models.hpp"
 #include "app/run.hpp"
 #include "app/study.hpp"
@@ -79,6 +80,10 @@ int run_cli(int argc, char** argv) {
   // render and movie (app/render_cmd.cpp)
   auto render_cmds = add_render_commands(app);
 
+  // reproduce: a study's sweeps, analysis and report of claims (app/reproduce/)
+  ReproduceOptions rpo;
+  auto* reproduce = add_reproduce_command(app, rpo);
+
   // model: the thesis' auxiliary models, run from their own callbacks (app/rfm_models.cpp)
   add_model_command(app);
 
@@ -95,6 +100,7 @@ int run_cli(int argc, char** argv) {
     if (*sweep) return sweep_command(so);
     if (*analyze) return analyze_command(ao);
     if (*study) return study_command(sto);
+    if (*reproduce) return reproduce_command(rpo);
   } catch (const InputError& e) {
     std::fprintf(stderr, "gransim: error: %s\n", e.what());
     return kExitBadInput;

@@ -1,0 +1,239 @@
+#include "app/reproduce/reproduce.hpp"
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "app/analyze.hpp"
+#include "app/reproduce/plan.hpp"
+#include "app/run_info.hpp"
+#include "app/subprocess.hpp"
+#include "app/sweep.hpp"
+#include "core/error.hpp"
+
+namespace gs {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+namespace {
+
+// the shipped scenes: $GS_SCENES_DIR, else beside the executable (build tree or install)
+std::string find_scenes_dir(const std::string& scene) {
+  std::error_code ec;
+  if (const char* env = std::getenv("GS_SCENES_DIR"); env && *env) {
+    if (fs::exists(fs::path(env) / scene, ec)) return env;
+    throw InputError(env, "GS_SCENES_DIR", "has no " + scene);
+  }
+  const fs::path exe = fs::path(self_executable()).parent_path();
+  for (const fs::path& d : {exe / ".." / "scenes", exe / ".." / "share" / "gransim" / "scenes"})
+    if (fs::exists(d / scene, ec)) return fs::weakly_canonical(d, ec).string();
+  throw InputError(scene, "", "the shipped scenes are not beside the executable (set GS_SCENES_DIR)");
+}
+
+int mpi_rank() {
+  for (const char* v : {"OMPI_COMM_WORLD_RANK", "PMI_RANK", "PMIX_RANK"})
+    if (const char* s = std::getenv(v); s && *s) return std::atoi(s);
+  return 0;
+}
+
+std::string shell_quote(const std::string& s) {
+  if (s.find_first_of(" '\"\\$`*?[]{}()<>|&;") == std::string::npos) return s;
+  std::string o = "'";
+  for (char c : s) o += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return o + "'";
+}
+
+void print_plan(const ReproducePlan& p, const std::string& out, int cores) {
+  std::printf("gransim reproduce %s --budget %s: %s\n", p.study.c_str(), budget_name(p.budget),
+              p.purpose.c_str());
+  for (const auto& s : p.sweeps) {
+    std::printf("  %-11s %s --param %s", s.name.c_str(), s.scene.c_str(), s.params[0].c_str());
+    for (const auto& x : s.sets) std::printf(" --set %s", x.c_str());
+    std::printf("  (≈ %.2g core-h)\n", s.particle_steps * s.seconds_per_particle_step / 3600.0);
+  }
+  std::printf("  projected: %.3g core-hours, ≈ %.2g h on %d cores; into %s\n", p.core_hours(),
+              p.core_hours() / cores, cores, out.c_str());
+}
+
+// the cluster commands for a budget too large for one machine: one rank per run of the
+// widest sweep; a run's taps follow one another, so the longest run bounds the wall time
+void print_cluster_commands(const ReproducePlan& p, const std::string& out) {
+  const int ranks = p.widest_sweep();
+  const double wall = std::max(p.core_hours() / ranks, p.longest_run_hours());
+  std::printf(
+      "\nThe %s budget is a cluster job: %.0f core-hours (≈ %.1f days on 2 cores). With %d ranks "
+      "(one per run of the widest sweep) it takes ≈ %.0f h: its longest run alone is ≈ %.0f h, as "
+      "a run's taps follow one another. Nothing was started. To run it:\n"
+      "  mpirun -np %d gransim reproduce %s --budget %s --run --out %s\n"
+      "  sbatch -n %d --wrap 'srun --mpi=pmix gransim reproduce %s --budget %s --run --out %s'\n"
+      "Each sweep's runs spread over the ranks (one thread each); started again, the command "
+      "resumes where it stopped; rank 0 writes the report at the end.\n",
+      budget_name(p.budget), p.core_hours(), p.core_hours() / 2 / 24, ranks, wall,
+      p.longest_run_hours(), ranks, p.study.c_str(), budget_name(p.budget), out.c_str(), ranks,
+      p.study.c_str(), budget_name(p.budget), out.c_str());
+}
+
+// wall time spent on this directory over every sitting
+double add_wall_time(const fs::path& out, double seconds) {
+  json j = json::object();
+  const fs::path f = out / "progress.json";
+  if (std::ifstream in(f); in) {
+    try {
+      in >> j;
+    } catch (const json::exception&) {
+      j = json::object();
+    }
+  }
+  const double total = j.value("wall_seconds", 0.0) + seconds;
+  j["wall_seconds"] = total;
+  if (seconds > 0.0) j["sittings"] = j.value("sittings", 0) + 1;
+  std::ofstream o(f);
+  o << j.dump(2) << '\n';
+  if (!o) throw OutputError(f.string() + ": cannot be written");
+  return total;
+}
+
+void write_plan_json(const ReproducePlan& p, const fs::path& out, const std::string& command) {
+  json j;
+  j["study"] = p.study;
+  j["budget"] = budget_name(p.budget);
+  j["purpose"] = p.purpose;
+  j["command"] = command;
+  j["projected_core_hours"] = p.core_hours();
+  j["sweeps"] = json::array();
+  for (const auto& s : p.sweeps)
+    j["sweeps"].push_back({{"name", s.name}, {"scene", s.scene}, {"params", s.params},
+                           {"sets", s.sets}});
+  std::ofstream o(out / "plan.json");
+  o << j.dump(2) << '\n';
+  if (!o) throw OutputError((out / "plan.json").string() + ": cannot be written");
+}
+
+}  // namespace
+
+int reproduce_command(const ReproduceOptions& opt) {
+  const ReproducePlan plan = make_plan(opt.study, parse_budget(opt.budget));
+  const std::string out =
+      opt.out.empty() ? "runs/reproduce-" + opt.study + "-" + opt.budget : opt.out;
+  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const bool root = mpi_rank() == 0;
+  if (root && !opt.quiet) print_plan(plan, out, cores);
+  if (plan.budget == Budget::Full && !opt.run_full && !opt.report_only) {
+    if (root) print_cluster_commands(plan, out);
+    return kExitOk;
+  }
+
+  // every scene is found before anything starts
+  std::vector<std::string> scenes;
+  for (const auto& s : plan.sweeps) scenes.push_back(find_scenes_dir(s.scene) + "/" + s.scene);
+  const fs::path dir(out);
+  std::error_code ec;
+  fs::create_directories(dir / "sweeps", ec);
+  if (ec) throw OutputError(out + ": cannot create the directory: " + ec.message());
+  std::string command = "gransim reproduce " + opt.study + " --budget " + opt.budget +
+                        " --out " + shell_quote(out);
+  if (root) write_plan_json(plan, dir, command);
+
+  // the sweeps: completed runs are kept, interrupted ones resume from their checkpoints
+  const auto t0 = std::chrono::steady_clock::now();
+  auto elapsed = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  };
+  int code = kExitOk;
+  if (!opt.report_only) {
+    for (std::size_t i = 0; i < plan.sweeps.size() && code == kExitOk; ++i) {
+      const PlannedSweep& s = plan.sweeps[i];
+      SweepOptions so;
+      so.scene = scenes[i];
+      so.params = s.params;
+      so.sets = s.sets;
+      so.out = (dir / "sweeps" / s.name).string();
+      so.jobs = opt.jobs;
+      so.quiet = opt.quiet;
+      if (root && !opt.quiet) std::printf("reproduce: sweep %s\n", s.name.c_str());
+      code = sweep_command(so);
+    }
+  }
+  if (!root) return code;
+  const double wall = add_wall_time(dir, opt.report_only ? 0.0 : elapsed());
+  if (code == kExitInterrupted) {
+    std::fprintf(stderr,
+                 "reproduce: interrupted; run the same command again to continue (finished runs "
+                 "are kept, interrupted runs resume from their checkpoints)\n");
+    return code;
+  }
+  if (code != kExitOk) {
+    std::fprintf(stderr, "reproduce: a run failed (exit %d); see %s/sweeps/*/logs\n", code,
+                 out.c_str());
+    return code;
+  }
+
+  // the analyses: tapping over both protocols at once (the joint quadron fit needs both);
+  // each RFM sweep on its own
+  fs::create_directories(dir / "analysis", ec);
+  if (plan.study == "tapping") {
+    AnalyzeOptions ao;
+    for (const auto& s : plan.sweeps) ao.dirs.push_back((dir / "sweeps" / s.name).string());
+    ao.out = (dir / "analysis").string();
+    ao.quiet = opt.quiet;
+    code = analyze_command(ao);
+  } else {
+    for (const auto& s : plan.sweeps) {
+      AnalyzeOptions ao;
+      ao.dirs = {(dir / "sweeps" / s.name).string()};
+      ao.out = (dir / "analysis" / s.name).string();
+      ao.quiet = opt.quiet;
+      code = std::max(code, analyze_command(ao));
+    }
+  }
+  if (code != kExitOk) return code;
+
+  // the report
+  const std::string tools = find_tools_dir("reproduce_report.py");
+  if (tools.empty())
+    throw InputError("reproduce_report.py", "",
+                     "the report script is not beside the executable (set GS_TOOLS_DIR)");
+  char wall_text[32];
+  std::snprintf(wall_text, sizeof wall_text, "%.0f", wall);
+  const std::string err = run_process({python_interpreter(), tools + "/reproduce_report.py",
+                                       "--study", plan.study, "--budget", opt.budget, "--wall",
+                                       wall_text, "--cores", std::to_string(cores), "--command",
+                                       command, out});
+  if (!err.empty()) {
+    std::fprintf(stderr, "reproduce: the report could not be written: %s\n", err.c_str());
+    return kExitFailure;
+  }
+  std::printf("reproduce: %s/report.md and %s/report.html (%.0f s of wall time in all)\n",
+              out.c_str(), out.c_str(), wall);
+  return kExitOk;
+}
+
+CLI::App* add_reproduce_command(CLI::App& app, ReproduceOptions& opt) {
+  auto* c = app.add_subcommand(
+      "reproduce",
+      "run a study's sweeps at a budget (resumable), analyse them and write a report of the "
+      "sources' claims beside the program's results");
+  c->add_option("study", opt.study, "tapping (the paper) or rfm (the thesis)")
+      ->required()
+      ->check(CLI::IsMember({"tapping", "rfm"}));
+  c->add_option("--budget", opt.budget,
+                "smoke (minutes: the pipeline), quick (< 1 h on 2 cores), standard (one night), "
+                "full (the sources' scale: prints the cluster command)")
+      ->check(CLI::IsMember({"smoke", "quick", "standard", "full"}));
+  c->add_option("-o,--out", opt.out, "directory (default runs/reproduce-<study>-<budget>)");
+  c->add_option("-j,--jobs", opt.jobs, "runs at a time (default: the number of cores)")
+      ->check(CLI::NonNegativeNumber);
+  c->add_flag("--run", opt.run_full, "run the full budget here instead of printing its commands");
+  c->add_flag("--report-only", opt.report_only, "analyse and report what is there; start no run");
+  c->add_flag("-q,--quiet", opt.quiet, "no progress display");
+  return c;
+}
+
+}  // namespace gs

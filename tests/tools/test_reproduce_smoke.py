@@ -1,0 +1,98 @@
+"""`gransim reproduce STUDY --budget smoke` end to end: the command runs, the report has a row for
+every claim with a verdict, and report.html opens in headless Chromium without errors and shows
+a page that is not blank. Needs GS_BINARY (the gransim executable); GS_STUDY picks one study.
+Run: GS_BINARY=build/gransim python3 -m unittest tests/tools/test_reproduce_smoke.py"""
+import csv
+import os
+import shutil
+import subprocess
+import tempfile
+import unittest
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.image as mpimg  # noqa: E402
+
+BINARY = os.environ.get("GS_BINARY", "build/gransim")
+CLAIMS = {
+    "tapping": ["steady-state", "neg-minimum", "neg-sigma-maximum", "rot-crossover", "rot-levels",
+                "halves-mean", "halves-sigma", "normality", "q-linear", "two-references",
+                "one-curve", "quadron-a", "protocol-fits", "lnz", "sigma-phi", "stress",
+                "segregation"],
+}
+VERDICTS = {"agrees", "disagrees", "not resolved"}
+
+
+def chromium():
+    for name in ("chromium", "chromium-browser", "google-chrome"):
+        path = shutil.which(name)
+        if path:
+            return path
+    return None
+
+
+class ReproduceSmoke(unittest.TestCase):
+    def run_study(self, study):
+        out = tempfile.mkdtemp(prefix=f"gs-reproduce-{study}-")
+        self.addCleanup(shutil.rmtree, out, ignore_errors=True)
+        p = subprocess.run([BINARY, "reproduce", study, "--budget", "smoke", "--out", out, "-q"],
+                           capture_output=True, text=True, timeout=1500)
+        self.assertEqual(p.returncode, 0, p.stdout[-3000:] + p.stderr[-3000:])
+        for f in ("report.md", "report.html", "claims.csv", "plan.json", "progress.json"):
+            self.assertTrue(os.path.exists(os.path.join(out, f)), f)
+        with open(os.path.join(out, "claims.csv"), newline="") as f:
+            rows = list(csv.DictReader(f))
+        ids = [r["id"] for r in rows]
+        if study in CLAIMS:
+            self.assertEqual(ids, CLAIMS[study])
+        self.assertGreaterEqual(len(ids), 5)
+        for r in rows:
+            self.assertIn(r["verdict"], VERDICTS, r["id"])
+            self.assertTrue(r["reason"], r["id"])
+        with open(os.path.join(out, "report.md")) as f:
+            md = f.read()
+        for i in ids:
+            self.assertIn(f"[{i}](#{i})", md)
+        self.check_html(os.path.join(out, "report.html"), ids)
+        # a second call continues the same directory: nothing to run, the report again
+        p = subprocess.run([BINARY, "reproduce", study, "--budget", "smoke", "--out", out, "-q"],
+                           capture_output=True, text=True, timeout=600)
+        self.assertEqual(p.returncode, 0, p.stderr[-3000:])
+
+    def check_html(self, path, ids):
+        exe = chromium()
+        if exe is None:
+            self.skipTest("chromium is not installed (tools/test.sh installs it)")
+        shot = path + ".png"
+        args = [exe, "--headless=new", "--no-sandbox", "--disable-gpu", "--hide-scrollbars",
+                "--enable-logging=stderr", "--v=0", "--window-size=1200,1600"]
+        p = subprocess.run(args + [f"--screenshot={shot}", "file://" + path],
+                           capture_output=True, text=True, timeout=180)
+        self.assertEqual(p.returncode, 0, p.stderr[-2000:])
+        for bad in ("Uncaught", "ERR_FILE_NOT_FOUND", "Failed to load resource"):
+            self.assertNotIn(bad, p.stderr)
+        img = mpimg.imread(shot)
+        self.assertGreater(img.shape[0], 500)
+        # not blank: many distinct shades, a sizeable share of non-white pixels
+        gray = img[..., :3].mean(axis=2)
+        self.assertGreater((gray < 0.9).mean(), 0.02)
+        self.assertGreater(len(set((gray * 255).astype(int).ravel().tolist())), 20)
+        dom = subprocess.run(args + ["--dump-dom", "file://" + path], capture_output=True,
+                             text=True, timeout=180)
+        self.assertEqual(dom.returncode, 0, dom.stderr[-2000:])
+        for i in ids:
+            self.assertIn(f'id="{i}"', dom.stdout)
+        self.assertIn("data:image/png;base64,", dom.stdout)
+
+    def test_tapping(self):
+        if os.environ.get("GS_STUDY", "tapping") == "tapping":
+            self.run_study("tapping")
+
+    def test_rfm(self):
+        if os.environ.get("GS_STUDY", "rfm") == "rfm":
+            self.run_study("rfm")
+
+
+if __name__ == "__main__":
+    unittest.main()

@@ -1,0 +1,124 @@
+"""Reading a tapping reproduction: the analysis files of `gransim analyze` and the runs' own
+taps.csv and segregation.csv, plus the ideal-quadron formulas (P.17, P.26) the claims need."""
+import csv
+import json
+import math
+import os
+
+import numpy as np
+
+from verdicts import mean_err, tau_int
+
+
+def read_csv(path):
+    """rows of a CSV as dicts of floats where the text is a number"""
+    if not os.path.exists(path):
+        return []
+    with open(path, newline="") as f:
+        rows = []
+        for r in csv.DictReader(line for line in f if not line.startswith("#")):
+            d = {}
+            for k, v in r.items():
+                try:
+                    d[k] = float(v)
+                except (TypeError, ValueError):
+                    d[k] = v
+            rows.append(d)
+        return rows
+
+
+def read_json(path):
+    if not os.path.exists(path):
+        return {}
+    with open(path) as f:
+        return json.load(f)
+
+
+def column(rows, key):
+    return np.array([r.get(key, float("nan")) for r in rows], float)
+
+
+class Study:
+    """everything a tapping report reads, by run label"""
+
+    def __init__(self, folder):
+        a = os.path.join(folder, "analysis")
+        self.folder = folder
+        self.summary = read_csv(os.path.join(a, "summary.csv"))
+        self.beta = read_csv(os.path.join(a, "beta.csv"))
+        self.beta_multi = read_csv(os.path.join(a, "beta_multi.csv"))
+        self.q_lines = read_csv(os.path.join(a, "q_lines.csv"))
+        self.quadron = read_json(os.path.join(a, "quadron.json"))
+        self.info = read_json(os.path.join(a, "analysis.json"))
+        self.discard = int(self.info.get("discard", 10))
+        runs = read_csv(os.path.join(a, "runs.csv"))
+        self.run_dir = {r["label"]: str(r.get("dir", r.get("run_dir", ""))) for r in runs}
+        self._taps = {}
+
+    def runs(self, protocol=None):
+        rows = [r for r in self.summary if protocol is None or r["protocol"] == protocol]
+        return sorted(rows, key=lambda r: r["control"])
+
+    def taps(self, label):
+        """taps.csv of a run, tap 0 (the prepared pile) included"""
+        if label not in self._taps:
+            d = self.run_dir.get(label, "")
+            self._taps[label] = read_csv(os.path.join(d, "taps.csv")) if d else []
+        return self._taps[label]
+
+    def used(self, label, key):
+        """a taps.csv column after tap 0 and the discarded transient"""
+        rows = [r for r in self.taps(label) if r.get("tap", 0) > self.discard]
+        return column(rows, key)
+
+    def segregation(self, label):
+        d = self.run_dir.get(label, "")
+        return read_csv(os.path.join(d, "segregation.csv")) if d else []
+
+    def primary_beta(self):
+        ref = self.info.get("reference")
+        return [r for r in self.beta if r.get("reference") == ref]
+
+
+def sigma_err(row):
+    """standard error of σ_φ from its τ-corrected 95 % chi-square interval"""
+    return (row["sigma_hi_tau"] - row["sigma_lo_tau"]) / (2 * 1.96)
+
+
+def block_bootstrap(x_cols, stat, reps=400, seed=7):
+    """standard error of stat(*columns) under a moving-block bootstrap over taps, blocks of
+    2τ_int of the first column"""
+    cols = [np.asarray(c, float) for c in x_cols]
+    n = len(cols[0])
+    if n < 4:
+        return float("nan")
+    block = max(1, int(round(2 * tau_int(cols[0]))))
+    rng = np.random.default_rng(seed)
+    vals = []
+    for _ in range(reps):
+        starts = rng.integers(0, n - block + 1, size=(n + block - 1) // block)
+        idx = np.concatenate([np.arange(s, s + block) for s in starts])[:n]
+        vals.append(stat(*(c[idx] for c in cols)))
+    return float(np.std(vals, ddof=1))
+
+
+def quadron_phi(beta, a, phi_rlp=0.81, phi_rcp=0.855):
+    """(P.26): 1/φ̄ = 1/φ_rlp + a/β − Δ·coth(βΔ/a), Δ = 1/φ_rlp − 1/φ_rcp, a = N z̄/V_g"""
+    d = 1 / phi_rlp - 1 / phi_rcp
+    u = beta * d / a
+    coth = 1 / math.tanh(u) if abs(u) > 1e-8 else 1 / u + u / 3
+    return 1 / (1 / phi_rlp + a / beta - d * coth)
+
+
+def taps_needed(n, err, target):
+    """taps per value for the standard error to fall from err (with n taps) to target"""
+    if not (err > 0 and target > 0):
+        return float("nan")
+    return n * (err / target) ** 2
+
+
+def steady_window(label, study, lo, hi):
+    """mean ± error of φ over taps lo…hi and over the steady taps after the transient"""
+    rows = study.taps(label)
+    phi = column([r for r in rows if lo <= r.get("tap", -1) <= hi], "phi")
+    return mean_err(phi), mean_err(study.used(label, "phi"))
