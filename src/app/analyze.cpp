@@ -19,6 +19,7 @@
 #include "app/run_info.hpp"
 #include "core/error.hpp"
 #include "drive/schedule.hpp"
+#include "output/run_dir.hpp"
 #include "scene/names.hpp"
 #include "scene/parse.hpp"
 
@@ -121,6 +122,21 @@ int analyze_command(const AnalyzeOptions& opt) {
                      "several directories are analysed together into one folder: "
                      "give it with --out");
   const std::string out = opt.out.empty() ? (fs::path(opt.dirs[0]) / "analysis").string() : opt.out;
+  // the analysis never writes over a run or an input: its files (series.csv, …) would
+  // replace the run's own
+  {
+    std::error_code ec;
+    const fs::path o = fs::weakly_canonical(out, ec);
+    for (const auto& d : opt.dirs)
+      if (fs::weakly_canonical(d, ec) == o)
+        throw InputError(out, "--out", "is one of the directories analysed; choose another --out");
+    for (const char* f : {"run.json", "taps.csv", "rfm.json", "scene.toml", "sweep.json"})
+      if (fs::exists(o / f, ec))
+        throw InputError(out, "--out",
+                         std::string("holds a run or sweep (") + f +
+                             "); the analysis would overwrite its files: choose another --out");
+  }
+  const DirLock lock(out, "analyze");
   // Random Force Model runs (DIR/rfm.json or DIR/*/rfm.json): app/rfm_analyze.cpp
   if (std::all_of(opt.dirs.begin(), opt.dirs.end(),
                   [](const std::string& d) { return is_rfm_run(d); }))

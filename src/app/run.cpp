@@ -2,11 +2,13 @@
 // and hand it to the run loop (app/run_loop.cpp)
 #include "app/run.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <ctime>
+#include <filesystem>
 #include <sstream>
 
 #include "app/observers.hpp"
@@ -38,6 +40,30 @@ std::string default_out(const std::string& name) {
   const std::time_t now = std::time(nullptr);
   std::strftime(buf, sizeof buf, "%Y%m%d-%H%M%S", std::localtime(&now));
   return "runs/" + (name.empty() ? std::string("run") : name) + "-" + buf;
+}
+
+// the number of steps must be one the run can count and finish: a tiny Δt or a huge duration
+// (or settle time, or tap count) is refused up front, naming the keys that make it
+void check_step_count(const SceneSpec& scene, double nominal) {
+  const double dt = scene.integrator.dt;
+  const double steps = nominal / dt;
+  double particles = 0.0;
+  for (const auto& sp : scene.species) particles += std::max(sp.count, 0);
+  const double particle_steps = steps * std::max(particles, 1.0);
+  constexpr double kMaxSteps = 1e15;          // far beyond any run; well inside int64 and exact doubles
+  constexpr double kMaxParticleSteps = 1e15;  // ≈ 3 years at 10⁷ particle-steps per second
+  if (std::isfinite(steps) && steps >= 0.0 && steps <= kMaxSteps && particle_steps <= kMaxParticleSteps)
+    return;
+  const std::string keys = is_tapping(scene.drive)
+                               ? "drive.taps × the period, preparation.settle_time"
+                               : "scene.duration, preparation.settle_time";
+  std::ostringstream m;
+  m << "the run would take " << steps << " steps (" << nominal << " s of simulated time at dt = "
+    << dt << " s";
+  if (std::isfinite(particle_steps))
+    m << ", ≈ " << particle_steps / 1e7 / 3.15e7 << " years on one core at 10⁷ particle-steps/s";
+  m << "); lower " << keys << " or raise integrator.dt";
+  throw InputError(scene.path, "integrator.dt", m.str());
 }
 
 void print_banner(const SceneSpec& scene, const Simulation& sim, const ProtocolClock& clock) {
@@ -100,7 +126,9 @@ int run_command(const RunOptions& opt) {
       << " s resolves each contact with 20 steps), or pass --allow-unstable to run it anyway";
     throw InputError(scene.path, "integrator.dt", m.str());
   }
+  check_step_count(scene, clock.nominal_duration());
   const std::string out = opt.out.empty() ? default_out(scene.name) : opt.out;
+  const DirLock lock(out, "run");
   prepare_run_dir(out, opt.force);
   write_file_atomic(out + "/scene.toml", scene_to_toml(scene));
 
@@ -131,6 +159,9 @@ int resume_command(const ResumeOptions& opt) {
       return kExitOk;
     }
   }
+  if (std::error_code ec; !std::filesystem::is_directory(opt.dir, ec))
+    throw InputError(opt.dir, "DIR", "not a run directory (it does not exist)");
+  const DirLock lock(opt.dir, "resume");
   const Checkpoint c = newest_valid_checkpoint(opt.dir);
   Simulation sim = restore_simulation(c);
   SceneSpec scene = sim.world().scene;

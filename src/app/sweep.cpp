@@ -16,6 +16,7 @@
 #include "core/error.hpp"
 #include "core/rng.hpp"
 #include "drive/schedule.hpp"
+#include "output/run_dir.hpp"
 #include "scene/parse.hpp"
 
 namespace gs {
@@ -217,6 +218,9 @@ SweepPlan plan_sweep(const SweepOptions& opt, bool check_dirs) {
 int sweep_command(const SweepOptions& opt) {
   // started by mpirun/srun: the MPI driver (sweep_mpi.cpp) spreads the runs over the ranks
   if (sweep_detail::mpi_launch_detected()) return sweep_detail::sweep_mpi(opt);
+  // one sweep at a time in a directory: the lock is taken before the plan looks at the runs
+  const SweepPlan preview = sweep_detail::plan_sweep(opt, false);
+  const DirLock lock(preview.out, "sweep");
   SweepPlan plan = sweep_detail::plan_sweep(opt, true);
   int pending = 0;
   for (const Job& j : plan.jobs) pending += j.state == "pending";

@@ -99,7 +99,7 @@ ReproducePlan tapping_plan(Budget b) {
       p.sweeps.push_back(tapping_sweep("negative_g", neg, "drive.g_p", {2, 6, 12, 20, 30}, 60,
                                        3.0, 1184, dt));
       p.sweeps.push_back(
-          tapping_sweep("rotating_g", rot, "drive.f", {0.5, 1.25, 2}, 50, 3.0, 1184, dt));
+          tapping_sweep("rotating_g", rot, "drive.f", {0.5, 2}, 50, 3.0, 1184, dt));
       p.purpose = "the paper's pile, 50–60 taps per value: the shape of φ̄(g_p) and φ̄(f), the "
                   "transient, the test square's halves";
       break;

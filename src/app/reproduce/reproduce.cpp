@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <thread>
 
@@ -16,6 +17,7 @@
 #include "app/subprocess.hpp"
 #include "app/sweep.hpp"
 #include "core/error.hpp"
+#include "output/run_dir.hpp"
 
 namespace gs {
 
@@ -135,6 +137,8 @@ int reproduce_command(const ReproduceOptions& opt) {
   for (const auto& s : plan.sweeps) scenes.push_back(find_scenes_dir(s.scene) + "/" + s.scene);
   const fs::path dir(out);
   std::error_code ec;
+  std::unique_ptr<DirLock> lock;
+  if (root) lock = std::make_unique<DirLock>(out, "reproduce");
   fs::create_directories(dir / "sweeps", ec);
   if (ec) throw OutputError(out + ": cannot create the directory: " + ec.message());
   std::string command = "gransim reproduce " + opt.study + " --budget " + opt.budget +
