@@ -136,7 +136,8 @@ std::vector<double> resample(const std::vector<double>& x, int block, std::mt199
 JointFit joint_histogram_fit(const std::vector<std::vector<double>>& counts,
                              const std::vector<double>& x, int ref,
                              const std::vector<double>& b_start, int max_iterations,
-                             double tolerance, const std::vector<bool>& connected) {
+                             double tolerance, const std::vector<bool>& connected,
+                             const std::vector<double>& dlnz_start) {
   const int K = static_cast<int>(counts.size());
   const int B = static_cast<int>(x.size());
   JointFit f;
@@ -179,10 +180,16 @@ JointFit joint_histogram_fit(const std::vector<std::vector<double>>& counts,
   // f_k = −ln Z_k and every run's model mean of x equal to its sample mean
   const int P = 2 * (U - 1);  // (f_k, b_k) of every run but the reference
   Eigen::VectorXd theta = Eigen::VectorXd::Zero(P);
-  for (int u = 1; u < U; ++u)
-    if (b_start.size() == static_cast<std::size_t>(K) && std::isfinite(b_start[use[u]]))
-      theta[2 * (u - 1) + 1] = b_start[use[u]];
   const double x0 = x.empty() ? 0.0 : x[bins.empty() ? 0 : bins[bins.size() / 2]];
+  // a warm start (a bootstrap replica starts from the full sample's answer): f_k = −ln Z_k − b_k x0
+  for (int u = 1; u < U; ++u) {
+    const int k = use[u];
+    if (b_start.size() == static_cast<std::size_t>(K) && std::isfinite(b_start[k])) {
+      theta[2 * (u - 1) + 1] = b_start[k];
+      if (dlnz_start.size() == static_cast<std::size_t>(K) && std::isfinite(dlnz_start[k]))
+        theta[2 * (u - 1)] = -dlnz_start[k] - b_start[k] * x0;
+    }
+  }
   auto exponent = [&](const Eigen::VectorXd& t, int u, int j) {
     if (u == 0) return 0.0;
     return t[2 * (u - 1)] - t[2 * (u - 1) + 1] * (x[j] - x0);  // x centred: f stays O(1)
@@ -334,7 +341,7 @@ MultiHistResult multi_histogram_beta(const std::vector<std::vector<double>>& phi
       {
         const Pooled ps = pool(sample_x);
         const JointFit f = joint_histogram_fit(ps.counts, ps.x, ref, jf.b, opts.max_iterations,
-                                               opts.tolerance, linked);
+                                               opts.tolerance, linked, jf.dlnz);
         if (f.converged)
           for (int k = 0; k < K; ++k)
             if (f.connected[k]) jb[k].push_back(f.b[k] / v_g), jz[k].push_back(f.dlnz[k]);

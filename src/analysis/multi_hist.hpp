@@ -25,7 +25,7 @@ namespace gs {
 struct MultiHistOptions {
   int chain_bins_per_scott = 4; ///< chain: bins per Scott width of the pair (finer bins keep
                                 ///< the tilt across one bin small, which biases the slope)
-  int bootstrap = 200;          ///< bootstrap replicas for the errors (0: none, errors NaN)
+  int bootstrap = 100;          ///< bootstrap replicas for the errors (0: none, errors NaN)
   std::vector<double> tau_int;  ///< per run, taps; blocks of max(1, round(2τ_int)) (empty: 1)
   std::uint64_t seed = 20150827;  ///< seed of the bootstrap draws
   int max_iterations = 20000;   ///< joint fit: alternations before it gives up
@@ -75,6 +75,7 @@ struct JointFit {
 JointFit joint_histogram_fit(const std::vector<std::vector<double>>& counts,
                              const std::vector<double>& x, int ref,
                              const std::vector<double>& b_start, int max_iterations,
-                             double tolerance, const std::vector<bool>& connected = {});
+                             double tolerance, const std::vector<bool>& connected = {},
+                             const std::vector<double>& dlnz_start = {});
 
 }  // namespace gs

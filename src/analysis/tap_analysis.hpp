@@ -59,7 +59,7 @@ struct TapAnalysisOptions {
   OverlapOptions overlap;      ///< density method, bins, 5 % threshold
   int kde_points = 200;        ///< grid points of each written KDE
   QuadronParams quadron;       ///< φ_rlp, φ_rcp of (P.26)
-  int bootstrap = 200;         ///< bootstrap replicas of the multiple-histogram errors
+  int bootstrap = 100;         ///< bootstrap replicas of the multiple-histogram errors
 };
 
 /// statistics of one run (after the transient)

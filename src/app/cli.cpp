@@ -19,7 +19,7 @@ namespace gs {
 int run_cli(int argc, char** argv) {
   CLI::App app{"gransim: headless 2D granular dynamics (polygon DEM tapping, Random Force Model)",
                "gransim"};
-  app.set_version_flag("--version", std::string(program_version()));
+  app.set_version_flag("--version", version_text());
   app.require_subcommand(1);
 
   // run

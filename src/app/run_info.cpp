@@ -75,7 +75,8 @@ std::string find_tools_dir(const std::string& script) {
   if (const char* env = std::getenv("GS_TOOLS_DIR"); env && *env)
     return fs::exists(fs::path(env) / script, ec) ? std::string(env) : std::string();
   const fs::path exe_dir = fs::path(self_executable()).parent_path();
-  for (const fs::path& d : {exe_dir / ".." / "tools", exe_dir / "tools"})
+  for (const fs::path& d :
+       {exe_dir / ".." / "tools", exe_dir / "tools", exe_dir / ".." / "share" / "gransim" / "tools"})
     if (fs::exists(d / script, ec)) return fs::weakly_canonical(d, ec).string();
   return "";
 }

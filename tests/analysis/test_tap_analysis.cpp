@@ -48,6 +48,7 @@ struct Study {
     add("rotating_g", 2.0, 1.6, 9);
     // V_T such that V_g = V_T φ̄_ref is the gas' grain volume
     opts.test_area = gas.v_g / quadron_phi(beta[0], quadron_gas_a(gas), gas.limits);
+    opts.bootstrap = 20;  // the multiple-histogram errors are tested in test_multi_hist.cpp
   }
 };
 

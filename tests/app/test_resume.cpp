@@ -28,13 +28,16 @@ using testing::run_binary;
 
 const std::string kSource = GS_SOURCE_DIR;
 
-// every output file of a run directory except run.json (wall times) and the checkpoints
+// every output file of a run directory except run.json (wall times), the checkpoints and the
+// writer's lock (it holds the writer's PID)
 std::map<std::string, std::string> outputs(const fs::path& dir) {
   std::map<std::string, std::string> m;
   for (const auto& e : fs::recursive_directory_iterator(dir)) {
     if (!e.is_regular_file()) continue;
     const std::string name = fs::relative(e.path(), dir).string();
-    if (name == "run.json" || name.rfind("checkpoint-", 0) == 0) continue;
+    if (name == "run.json" || name.rfind("checkpoint-", 0) == 0 ||
+        e.path().filename() == ".lock")
+      continue;
     m[name] = slurp(e.path());
   }
   return m;

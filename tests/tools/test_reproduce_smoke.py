@@ -20,6 +20,8 @@ CLAIMS = {
                 "halves-mean", "halves-sigma", "normality", "q-linear", "two-references",
                 "one-curve", "quadron-a", "protocol-fits", "lnz", "sigma-phi", "stress",
                 "segregation"],
+    "rfm": ["T-start", "T-mean-field", "transient", "Df-Sk", "Df-freepath", "alpha-reference",
+            "alpha-structure", "xi2", "xi-m", "G1-bisection"],
 }
 VERDICTS = {"agrees", "disagrees", "not resolved"}
 

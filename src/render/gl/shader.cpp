@@ -2,6 +2,7 @@
 #include "render/gl/shader.hpp"
 
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -42,6 +43,13 @@ GLuint compile(const Api& gl, GLenum stage, const std::string& path, const std::
 
 std::string shader_dir() {
   if (const char* env = std::getenv("GS_SHADER_DIR"); env && *env) return env;
+  // beside the executable: the build tree (build/../shaders) or an install
+  // (bin/../share/gransim/shaders), so a moved or installed binary finds its own
+  std::error_code ec;
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec).parent_path();
+  if (!ec)
+    for (const auto& d : {exe / ".." / "shaders", exe / ".." / "share" / "gransim" / "shaders"})
+      if (std::filesystem::exists(d / "common.glsl", ec)) return d.lexically_normal().string();
 #ifdef GS_SHADER_DIR
   return GS_SHADER_DIR;
 #else

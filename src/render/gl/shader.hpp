@@ -16,7 +16,8 @@ inline constexpr AttribBinding kAttribs[] = {
     {"a_pos", kPos},     {"a_color", kColor}, {"a_uv", kUv},      {"a_center", kCenter},
     {"a_shape", kShape}, {"a_fill", kFill},   {"a_sides", kSides}};
 
-/// the shader folder: $GS_SHADER_DIR if set, else the GS_SHADER_DIR the build was given
+/// the shader folder: $GS_SHADER_DIR if set, else shaders/ beside the executable (build tree,
+/// or share/gransim/shaders of an install), else the GS_SHADER_DIR the build was given
 std::string shader_dir();
 
 /// compile and link <dir>/<name>.vert + <dir>/<name>.frag (GLSL 3.30 core); throws RenderError
