@@ -73,10 +73,16 @@ class FrameRecorder final : public Observer {
     if (due(sim)) capture(sim);
   }
 
-  void finish(const Simulation&) override {
+  // the movie is closed, and the last state drawn to DIR/final.png: the still a user looks at
+  void finish(const Simulation& sim) override {
 #if defined(GS_HAVE_FFMPEG)
     if (movie_ && movie_->is_open()) movie_->close();
 #endif
+    if (maker_ && !dir_.empty()) {
+      const World& w = sim.world();
+      write_png((fs::path(dir_) / "final.png").string(),
+                maker_->render(w, &sim.contacts(), frame_info(w, sim.gravity())));
+    }
   }
 
   void save(ByteWriter& out) const override {
@@ -97,6 +103,7 @@ class FrameRecorder final : public Observer {
 
  private:
   void open_outputs(const std::string& dir, const std::string& movie_name) {
+    dir_ = dir;
     maker_ = std::make_unique<FrameMaker>(spec_, where_);
     if (spec_.frames) {
       frames_dir_ = (fs::path(dir) / "frames").string();
@@ -168,6 +175,7 @@ class FrameRecorder final : public Observer {
   RenderSpec spec_;
   std::string where_;  ///< the scene file, for messages
   std::unique_ptr<FrameMaker> maker_;
+  std::string dir_;         ///< the run directory
   std::string frames_dir_;  ///< DIR/frames ("" when no PNG frames)
 #if defined(GS_HAVE_FFMPEG)
   std::unique_ptr<MovieEncoder> movie_;

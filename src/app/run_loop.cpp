@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <sstream>
 
 #include "app/progress.hpp"
@@ -233,11 +234,17 @@ int run_session(RunSession& rs) {
   attempt("state.csv", [&] { write_state_file(sim.world(), rs.out + "/state.csv"); });
   attempt("run.json", [&] { write_run_json(rs, code, failure, wall, rate, taps_done()); });
 
-  char summary[160];
-  std::snprintf(summary, sizeof summary, "%.3g particle-steps/s, output in %s", rate,
-                rs.out.c_str());
+  char head[96];
+  std::snprintf(head, sizeof head, "%.3g particle-steps/s, output in ", rate);
+  std::string summary = head + rs.out;
+  // the pictures a run made, named on its last line
+  std::string shown;
+  for (const char* f : {"final.png", "movie.mp4"})
+    if (std::error_code ec; std::filesystem::exists(rs.out + "/" + f, ec))
+      shown += (shown.empty() ? "" : " and ") + rs.out + "/" + f;
+  if (!shown.empty()) summary += "; see " + shown;
   if (code == kExitOk) {
-    progress.finish(summary);
+    progress.finish(summary.c_str());
   } else if (code == kExitOutput) {
     std::fprintf(stderr,
                  "\ngransim: stopped at t = %g s: cannot write output: %s\nEvery complete row "
