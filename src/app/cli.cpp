@@ -1,7 +1,10 @@
 #include "app/cli.hpp"
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cstdio>
+#include <string>
+#include <vector>
 #include <exception>
 
 #include "app/analyze.hpp"
@@ -15,6 +18,26 @@
 #include "core/error.hpp"
 
 namespace gs {
+
+namespace {
+
+// Levenshtein distance, for "did you mean"
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diag = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diag = up;
+    }
+  }
+  return row[b.size()];
+}
+
+}  // namespace
 
 int run_cli(int argc, char** argv) {
   CLI::App app{"gransim: headless 2D granular dynamics (polygon DEM tapping, Random Force Model)",
@@ -87,6 +110,24 @@ int run_cli(int argc, char** argv) {
   // model: the thesis' auxiliary models, run from their own callbacks (app/rfm_models.cpp)
   add_model_command(app);
 
+  // an unknown command word is named, with the nearest command
+  if (argc > 1 && argv[1][0] != '-') {
+    const std::string word = argv[1];
+    std::string best;
+    std::size_t best_d = std::string::npos;
+    bool known = false;
+    for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
+      known = known || sub->get_name() == word;
+      const std::size_t d = edit_distance(word, sub->get_name());
+      if (d < best_d) best_d = d, best = sub->get_name();
+    }
+    if (!known) {
+      std::fprintf(stderr, "gransim: '%s' is not a command%s (gransim --help lists them)\n",
+                   word.c_str(),
+                   best_d <= 3 ? (std::string("; did you mean '") + best + "'?").c_str() : "");
+      return kExitBadInput;
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -308,8 +308,11 @@ std::shared_ptr<RenderCommands> add_render_commands(CLI::App& app) {
   m->add_option("input", rc->mo.input, "run directory or trajectory (.xyz)")->required();
   m->add_option("-o,--out", rc->mo.out, "MP4 file (default DIR/movie.mp4)");
   m->add_option("--from", rc->mo.from, "frames, trajectory or auto (frames when recorded)");
-  m->add_option("--fps", rc->mo.fps, "frames per second (default render.fps)");
-  m->add_option("--crf", rc->mo.crf, "x264 quality 0…51 (default render.crf)");
+  // given values are checked (0 or −5 fps is an error, not "the default")
+  m->add_option("--fps", rc->mo.fps, "frames per second, 1…240 (default render.fps)")
+      ->check(CLI::Range(1, 240));
+  m->add_option("--crf", rc->mo.crf, "x264 quality 0…51 (default render.crf)")
+      ->check(CLI::Range(0, 51));
   m->add_option("--preset", rc->mo.preset, "x264 preset (default render.preset)");
   m->add_flag("--force", rc->mo.force, "replace an existing output file");
   m->add_flag("-q,--quiet", rc->mo.quiet, "no progress display");
