@@ -7,6 +7,8 @@ usage: reproduce_report.py --study tapping|rfm --budget B [--wall S] [--cores N]
 """
 import argparse
 import datetime
+import glob
+import json
 import os
 import sys
 
@@ -37,10 +39,22 @@ def main():
         import rfm as study
     title, intro, claims, notes = study.claims(a.dir, a.budget)
     hours = a.wall / 3600.0
+    # the runs' own wall times (one thread each): the cost whatever the sittings were
+    core_s, runs = 0.0, 0
+    for sweep in sorted(glob.glob(os.path.join(a.dir, "sweeps", "*", "*", "run.json"))):
+        try:
+            with open(sweep) as f:
+                core_s += float(json.load(f).get("wall_time_s", 0.0))
+            runs += 1
+        except (OSError, ValueError):
+            pass
     meta = [("study", a.study), ("budget", a.budget),
             ("command", a.command or f"gransim reproduce {a.study} --budget {a.budget}"),
             ("machine", report.machine()),
-            ("wall time", f"{a.wall:.0f} s ({hours:.2f} h) on {a.cores} cores, all sittings"),
+            ("wall time", f"{a.wall:.0f} s ({hours:.2f} h) of `gransim reproduce` on {a.cores} "
+                          "cores, all sittings"),
+            ("run time", f"{core_s / 3600:.2f} core-hours: the wall times of its {runs} runs "
+                         "(one thread each) added up"),
             ("written", datetime.datetime.now().strftime("%Y-%m-%d %H:%M"))]
     report.write_report(a.dir, title, intro, meta, claims, notes)
     print(f"reproduce_report: {len(claims)} claims → {a.dir}/report.md, report.html, claims.csv")

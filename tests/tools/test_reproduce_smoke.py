@@ -17,7 +17,8 @@ import matplotlib.image as mpimg  # noqa: E402
 BINARY = os.environ.get("GS_BINARY", "build/gransim")
 CLAIMS = {
     "tapping": ["steady-state", "neg-minimum", "neg-sigma-maximum", "rot-crossover", "rot-levels",
-                "halves-mean", "halves-sigma", "normality", "q-linear", "two-references",
+                "halves-mean", "halves-sigma", "normality", "reference-overlap", "q-linear",
+                "two-references",
                 "one-curve", "quadron-a", "protocol-fits", "lnz", "sigma-phi", "stress",
                 "segregation"],
     "rfm": ["T-start", "T-mean-field", "transient", "Df-Sk", "Df-freepath", "alpha-reference",

@@ -62,7 +62,8 @@ def transient(st, budget):
         v, why = UNRESOLVED, f"taps 6–10 lie up to {worst:.1f}σ from the steady mean"
     return Claim("steady-state", "Transient", "The mean volume fraction reaches a steady state "
                  "value very quickly (after approximately < 10 taps)", "Fig. 4, section IV",
-                 f"largest |mean(taps 6–10) − steady φ̄| = {worst:.1f}σ over {len(rows)} runs",
+                 "(mean of taps 6–10 − steady φ̄)/σ per run: "
+                 + "; ".join(f"{lab} {z:+.1f}" for lab, z in rows),
                  v, why, "" if v != UNRESOLVED else f"the {NEXT[budget]} budget", chart,
                  {"max_z": worst})
 
@@ -255,6 +256,49 @@ def q_linear(st, budget):
                  "Q and the inverse volume fraction φ⁻¹", "Figs. 7b, 8b, section V",
                  f"{len(rows)} runs overlap the reference {ref}; curvature test {why.split(';')[0]}",
                  v, why, "" if v != UNRESOLVED else f"the {NEXT[budget]} budget", chart)
+
+
+def reference_overlap(st, budget):
+    """section V: the g_p = 6 distribution overlaps every other one (it is the reference)"""
+    ref = next((r for r in st.runs(NEG) if r["control"] == 6), None)
+    if ref is None:
+        return Claim("reference-overlap", "Overlapping histograms", "the distribution with g_p = 6 "
+                     "… has sufficient overlap with all the other distributions", "section V",
+                     "no run at g_p = 6", UNRESOLVED, "the plan has no g_p = 6 run")
+    rows, apart = [], []
+    for r in st.runs():
+        if r["label"] == ref["label"]:
+            continue
+        # separation of the two distributions in units of their spreads
+        sep = abs(r["phi_mean"] - ref["phi_mean"]) / math.hypot(r["sigma"], ref["sigma"])
+        rows.append((r["label"], sep))
+        if sep > 4.0:
+            apart.append(r["label"])
+    worst = max((x[1] for x in rows), default=float("nan"))
+    if not rows:
+        v, why = UNRESOLVED, "no other run"
+    elif apart:
+        v, why = DISAGREES, (f"{len(apart)} of {len(rows)} distributions lie more than 4 spreads "
+                             f"from g_p = 6 (√(σ²+σ_ref²)): {', '.join(apart)}; they cannot overlap it")
+    elif worst < 2.0:
+        v, why = AGREES, f"every distribution lies within 2 spreads of g_p = 6 (largest {worst:.1f})"
+    else:
+        v, why = UNRESOLVED, f"the largest separation is {worst:.1f} spreads"
+    fig, ax = _fig()
+    for r in st.runs():
+        ax.errorbar([r["phi_mean"]], [r["control"] if r["protocol"] == NEG else -r["control"]],
+                    xerr=[r["sigma"]], fmt="s" if r["protocol"] == NEG else "D", capsize=3,
+                    color="k" if r["label"] == ref["label"] else None, label=r["label"])
+    ax.set_xlabel("φ̄ ± σ_φ (the spread of each distribution)")
+    ax.set_ylabel("g_p (negative g) / −f in Hz (rotating g)")
+    ax.legend(fontsize=6, ncol=2)
+    chart = _save(st, fig, "reference_overlap")
+    return Claim("reference-overlap", "Overlapping histograms", "the distribution with g_p = 6 of "
+                 "the “negative g” protocol was chosen as the reference distribution, because it "
+                 "has sufficient overlap with all the other distributions", "section V, Figs. 7b, 8b",
+                 "separation from g_p = 6 in spreads: " + "; ".join(f"{l} {x:.1f}" for l, x in rows),
+                 v, why, "" if v != UNRESOLVED else f"the {NEXT[budget]} budget", chart,
+                 {"largest_separation": worst})
 
 
 def two_references(st, budget):
@@ -522,7 +566,8 @@ def claims(folder, budget):
     out += [c, neg_sigma_maximum(st, budget, at)]
     out += rot_crossover(st, budget)
     out += halves(st, budget)
-    out += [normality(st, budget), q_linear(st, budget), two_references(st, budget)]
+    out += [normality(st, budget), reference_overlap(st, budget), q_linear(st, budget),
+            two_references(st, budget)]
     out += quadron_claims(st, budget)
     out += [stress(st, budget), segregation(st, budget)]
     runs = st.runs()
