@@ -112,6 +112,8 @@ TapSeries parse_taps_csv(std::istream& in, const std::string& source) {
   // the header: the first line that is neither blank nor a comment
   while (std::getline(in, line)) {
     ++lineno;
+    // a UTF-8 byte-order mark (spreadsheets write one) is not part of the first column's name
+    if (lineno == 1 && line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3);
     if (trim(line).empty() || trim(line)[0] == '#') continue;
     header = split(line);
     break;
@@ -147,7 +149,13 @@ TapSeries parse_taps_csv(std::istream& in, const std::string& source) {
         throw InputError(where, header[c], "not a number: '" + cell + "'");
       return v;
     };
-    s.tap.push_back(value(c_tap));
+    const double tap = value(c_tap);
+    // taps count up: a repeated or reversed tap number is two files mixed, or a file edited
+    if (!s.tap.empty() && !(tap > s.tap.back()))
+      throw InputError(source + ":" + std::to_string(lineno), "tap",
+                       "tap numbers must increase (tap " + cells[c_tap] + " follows tap " +
+                           std::to_string(static_cast<long long>(s.tap.back())) + ")");
+    s.tap.push_back(tap);
     s.phi.push_back(value(c_phi));
     if (c_t >= 0) s.t.push_back(value(c_t));
     if (c_left >= 0) s.phi_left.push_back(value(c_left));

@@ -401,6 +401,13 @@ void read_scene(const Ctx& ctx, const TableReader& top, SceneSpec& s) {
                 {"name", "description", "duration"});
   std::string stem = std::filesystem::path(ctx.file).stem().string();
   s.name = r.string("name", stem.empty() ? "scene" : stem, true);
+  // the name becomes a folder under runs/: it must stay one folder there
+  const bool control =
+      std::any_of(s.name.begin(), s.name.end(), [](char c) { return static_cast<unsigned char>(c) < 32; });
+  if (s.name.empty() || s.name[0] == '.' || s.name.find_first_of("/\\") != std::string::npos ||
+      control)
+    r.fail("name", "must be a plain folder name (no '/', '\\', leading '.', or control "
+                   "characters; got " + quote(s.name) + ")");
   s.description = r.string("description", "", false);
   s.duration = r.number("duration", s.duration, Range::positive());
 }

@@ -259,5 +259,21 @@ TEST(TapCsv, LoadsARunFromAFile) {
   fs::remove(p);
 }
 
+// a spreadsheet's byte-order mark is not part of the first column; taps must count up
+TEST(TapCsv, ByteOrderMarkAndTapOrder) {
+  std::istringstream bom("\xEF\xBB\xBFtap,phi\n1,0.82\n2,0.83\n");
+  EXPECT_EQ(parse_taps_csv(bom, "bom.csv").phi.size(), 2u);
+  for (const char* text : {"tap,phi\n1,0.82\n1,0.83\n", "tap,phi\n2,0.82\n1,0.83\n"}) {
+    std::istringstream in(text);
+    try {
+      parse_taps_csv(in, "t.csv");
+      FAIL() << "no exception for " << text;
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.where(), "t.csv:3");
+      EXPECT_EQ(e.key(), "tap");
+    }
+  }
+}
+
 }  // namespace
 }  // namespace gs

@@ -264,5 +264,13 @@ TEST(SceneErrors, NonAsciiOutsideStringsIsRefusedWithItsPosition) {
     }
   }
 }
+// the name is a folder under runs/: "../x" or "a/b" would write elsewhere
+TEST(SceneErrors, NameMustBeOneFolder) {
+  for (const char* bad : {"../escape", "a/b", ".hidden"}) {
+    const std::string text = edit(kFullScene, "name = \"pile\"", std::string("name = \"") + bad + "\"");
+    expect_contains(error_of(text), {"scene.name", "plain folder name"});
+  }
+}
+
 }  // namespace
 }  // namespace gs
