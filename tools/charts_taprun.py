@@ -48,6 +48,8 @@ def read_columns(path):
         log("no rows in %s" % path)
         return None
     head = rows[0]
+    if head and head[0].startswith("\ufeff"):
+        head[0] = head[0][1:]
     data = np.array([[float(x) for x in r] for r in rows[1:] if len(r) == len(head)])
     return {h: data[:, k] for k, h in enumerate(head)}
 
@@ -200,7 +202,7 @@ def main():
             discard = json.load(f).get("discard", discard)
     taps = {}
     for r in runs:
-        t = read_columns(os.path.join(r["dir"], "taps.csv"))
+        t = read_columns(r.get("file") or os.path.join(r["dir"], "taps.csv"))
         if t is not None:
             taps[r["label"]] = t
     runs = [r for r in runs if r["label"] in taps]
@@ -208,10 +210,24 @@ def main():
         log("no taps.csv of any run: nothing to chart")
         return 1
     few = pick(runs, a.max_runs)
-    chart_rest(runs, taps, out)
+
+    # each chart needs its own columns: a series from elsewhere (tap, phi only) skips the rest
+    def having(rs, cols, chart):
+        ok = [r for r in rs if all(c in taps[r["label"]] for c in cols)]
+        if len(ok) < len(rs):
+            log("%s: %d of %d runs lack %s" % (chart, len(rs) - len(ok), len(rs), ", ".join(cols)))
+        return ok
+
+    rest = having(runs, ("tap", "kinetic_energy", "max_speed", "early", "relax_end"), "taprun_rest.png")
+    if rest:
+        chart_rest(rest, taps, out)
     chart_segregation(few, out)
-    chart_halves(few, taps, out)
-    chart_stress(runs, taps, discard, out)
+    halves = having(few, ("tap", "phi", "phi_left", "phi_right"), "taprun_halves.png")
+    if halves:
+        chart_halves(halves, taps, out)
+    stress = having(runs, ("tap", "phi", "S_xx", "S_yy", "S_xy", "S_yx"), "fig12_stress_phi.png")
+    if stress:
+        chart_stress(stress, taps, discard, out)
     return 0
 
 

@@ -28,7 +28,8 @@ struct TapSeries {
 };
 
 /// parse taps.csv text: a header row naming the columns, then one row per tap. Required
-/// columns: tap, phi; optional: t, phi_left, phi_right; other columns are ignored. Lines that
+/// column: phi; optional: tap (else the rows are taps 1, 2, …; given, it must increase), t,
+/// phi_left, phi_right; other columns are ignored. Lines that
 /// are blank or start with '#' are skipped. Throws InputError naming source:line and column.
 TapSeries parse_taps_csv(std::istream& in, const std::string& source);
 /// read taps.csv from a file; throws InputError when the file cannot be read

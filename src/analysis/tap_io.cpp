@@ -127,7 +127,7 @@ TapSeries parse_taps_csv(std::istream& in, const std::string& source) {
                        "missing column '" + name + "' in the header");
     return -1;
   };
-  const int c_tap = column("tap", true);
+  const int c_tap = column("tap", false);  // absent: the rows are taps 1, 2, …
   const int c_phi = column("phi", true);
   const int c_t = column("t", false);
   const int c_left = column("phi_left", false);
@@ -149,11 +149,12 @@ TapSeries parse_taps_csv(std::istream& in, const std::string& source) {
         throw InputError(where, header[c], "not a number: '" + cell + "'");
       return v;
     };
-    const double tap = value(c_tap);
+    const double tap = c_tap >= 0 ? value(c_tap) : static_cast<double>(s.tap.size() + 1);
     // taps count up: a repeated or reversed tap number is two files mixed, or a file edited
     if (!s.tap.empty() && !(tap > s.tap.back()))
       throw InputError(source + ":" + std::to_string(lineno), "tap",
-                       "tap numbers must increase (tap " + cells[c_tap] + " follows tap " +
+                       "tap numbers must increase (tap " + cells[static_cast<std::size_t>(c_tap)] +
+                           " follows tap " +
                            std::to_string(static_cast<long long>(s.tap.back())) + ")");
     s.tap.push_back(tap);
     s.phi.push_back(value(c_phi));

@@ -91,6 +91,13 @@ std::string csv_field(const std::string& s) {
   return o + "\"";
 }
 
+// where a run's series came from, for runs.csv and the per-run charts
+struct RunSource {
+  std::string dir, file, protocol;
+  double control = 0.0;
+  std::string status;
+};
+
 }  // namespace
 
 std::vector<FoundTapRun> find_tap_runs(const std::string& dir) {
@@ -115,13 +122,118 @@ std::vector<FoundTapRun> find_tap_runs(const std::string& dir) {
   return runs;
 }
 
+// the statistics, their files, the table and the charts of runs however they were found
+int finish_analysis(const std::vector<TapRunInput>& runs, const std::vector<RunSource>& src,
+                    const TapAnalysisOptions& ao, const AnalyzeOptions& opt,
+                    const std::string& out) {
+  // the statistics and their files
+  const TapAnalysisResult res = run_tap_analysis(runs, ao);
+  write_tap_analysis(res, runs, ao, out);
+  {
+    // runs.csv: where each run came from, for the per-run charts
+    std::ofstream f(out + "/runs.csv");
+    f << "label,dir,protocol,control,status,taps,file\n";
+    for (std::size_t i = 0; i < runs.size(); ++i)
+      f << csv_field(tap_run_label(runs[i])) << ',' << csv_field(src[i].dir) << ','
+        << csv_field(src[i].protocol) << ',' << src[i].control << ',' << src[i].status << ','
+        << runs[i].series.phi.size() << ',' << csv_field(src[i].file) << '\n';
+    if (!f) throw InputError(out + "/runs.csv", "", "cannot write");
+  }
+  if (!opt.quiet) {
+    std::printf("%-28s %6s %10s %9s %9s %21s %7s\n", "run", "taps", "phi_mean", "+-(tau)", "sigma",
+                "sigma 95% CI (tau)", "tau");
+    for (const auto& s : res.runs)
+      std::printf("%-28s %6d %10.5f %9.2e %9.2e [%9.2e,%9.2e] %7.2f\n", s.label.c_str(), s.n_used,
+                  s.phi_mean, s.phi_err, s.sigma, s.sigma_ci_tau.lo, s.sigma_ci_tau.hi,
+                  s.tau.tau_int);
+    for (const auto& p : res.pairs) {
+      const TwoSampleTest& t = p.test;
+      std::printf("same φ? %s vs %s: Δφ̄ = %.2e ± %.1e (p = %.3f), σ ratio %.3f (p = %.3f), "
+                  "KS D = %.3f (p = %.3f)\n",
+                  res.runs[static_cast<std::size_t>(p.a)].label.c_str(),
+                  res.runs[static_cast<std::size_t>(p.b)].label.c_str(), t.mean_diff,
+                  t.mean_diff_err, t.p_mean, t.sigma_ratio, t.p_sigma, t.ks_d, t.ks_p);
+    }
+    for (const auto& n : res.notes) std::printf("note: %s\n", n.c_str());
+    std::fflush(stdout);  // before the chart scripts write to the same terminal
+  }
+  std::fprintf(stderr, "gransim analyze: %zu runs, analysis in %s\n", runs.size(), out.c_str());
+
+  // the charts (python + matplotlib); without them the CSV and JSON files still stand
+  if (!opt.charts) return kExitOk;
+  const std::string tools = find_tools_dir("charts_tapping.py");
+  if (tools.empty()) {
+    std::fprintf(stderr,
+                 "gransim analyze: charts skipped: tools/charts_tapping.py not found next "
+                 "to the executable (set GS_TOOLS_DIR); the CSV and JSON files are in %s\n",
+                 out.c_str());
+    return kExitOk;
+  }
+  const std::string py = python_path();
+  for (const char* script : {"charts_tapping.py", "charts_taprun.py"}) {
+    const std::string path = tools + "/" + script;
+    if (!fs::exists(path)) continue;
+    const std::string err = run_script(py, path, {out});
+    if (!err.empty()) {
+      std::fprintf(stderr,
+                   "gransim analyze: charts skipped: %s. The CSV and JSON files are in %s; "
+                   "install python3-matplotlib (Debian) and rerun to draw them\n",
+                   err.c_str(), out.c_str());
+      break;
+    }
+  }
+  return kExitOk;
+}
+
+// plain φ series (--series, --manifest): no scene, so the test area is given
+int analyze_plain(const AnalyzeOptions& opt, const std::string& out) {
+  double area = opt.test_area;
+  const std::vector<PlainSeries> given = plain_series(opt, area);
+  if (!(area > 0.0))
+    throw InputError("", "--test-area",
+                     "plain series need the area of their test region in m² (--test-area, or a "
+                     "test_area column in the manifest): V_g = area·φ̄ of the reference");
+  TapAnalysisOptions ao;
+  ao.discard = opt.discard >= 0 ? opt.discard : 10;
+  ao.test_area = area;
+  ao.reference = opt.reference;
+  ao.reference2 = opt.reference2;
+  std::vector<TapRunInput> runs;
+  std::vector<RunSource> sources;
+  for (const auto& p : given) {
+    TapRunInput in = load_tap_run(p.file, p.protocol, p.control, p.label);
+    const int n = static_cast<int>(in.series.phi.size());
+    if (n < ao.discard + 20)
+      throw InputError(p.file, "phi",
+                       std::to_string(n) + " values; the statistics need at least " +
+                           std::to_string(ao.discard + 20) + " (" + std::to_string(ao.discard) +
+                           " discarded + 20; --discard sets the first)");
+    for (double v : in.series.phi)
+      if (!(v > 0.0 && v <= 1.0))
+        throw InputError(p.file, "phi", "a volume fraction outside (0, 1]: " + std::to_string(v));
+    const fs::path f = fs::absolute(p.file);
+    sources.push_back({f.parent_path().string(), f.string(), p.protocol, p.control, "plain"});
+    runs.push_back(std::move(in));
+  }
+  return finish_analysis(runs, sources, ao, opt, out);
+}
+
 int analyze_command(const AnalyzeOptions& opt) {
-  if (opt.dirs.empty()) throw InputError("", "DIR", "give at least one run or sweep directory");
+  const bool plain = !opt.series.empty() || !opt.manifest.empty();
+  if (plain && !opt.dirs.empty())
+    throw InputError("", "DIR", "give run directories or plain series (--series, --manifest), not both");
+  if (!plain && opt.dirs.empty())
+    throw InputError("", "DIR", "give at least one run or sweep directory (or --series, --manifest)");
   if (opt.dirs.size() > 1 && opt.out.empty())
     throw InputError("", "--out",
                      "several directories are analysed together into one folder: "
                      "give it with --out");
-  const std::string out = opt.out.empty() ? (fs::path(opt.dirs[0]) / "analysis").string() : opt.out;
+  if (plain && opt.manifest.empty() && opt.out.empty())
+    throw InputError("", "--out", "plain series need an analysis folder: give it with --out");
+  const std::string out =
+      !opt.out.empty() ? opt.out
+      : plain          ? (fs::path(opt.manifest).parent_path() / "analysis").string()
+                       : (fs::path(opt.dirs[0]) / "analysis").string();
   // the analysis never writes over a run or an input: its files (series.csv, …) would
   // replace the run's own
   {
@@ -137,6 +249,7 @@ int analyze_command(const AnalyzeOptions& opt) {
                              "); the analysis would overwrite its files: choose another --out");
   }
   const DirLock lock(out, "analyze");
+  if (plain) return analyze_plain(opt, out);
   // Random Force Model runs (DIR/rfm.json or DIR/*/rfm.json): app/rfm_analyze.cpp
   if (std::all_of(opt.dirs.begin(), opt.dirs.end(),
                   [](const std::string& d) { return is_rfm_run(d); }))
@@ -202,63 +315,11 @@ int analyze_command(const AnalyzeOptions& opt) {
                      "no run has enough taps for the statistics (at least " +
                          std::to_string(ao.discard + 20) + ")");
 
-  // the statistics and their files
-  const TapAnalysisResult res = run_tap_analysis(runs, ao);
-  write_tap_analysis(res, runs, ao, out);
-  {
-    // runs.csv: where each run came from, for the per-run charts
-    std::ofstream f(out + "/runs.csv");
-    f << "label,dir,protocol,control,status,taps\n";
-    for (std::size_t i = 0; i < runs.size(); ++i)
-      f << csv_field(tap_run_label(runs[i])) << ','
-        << csv_field(fs::absolute(used[i]->dir).string()) << ',' << used[i]->protocol << ','
-        << used[i]->control << ',' << used[i]->status << ',' << runs[i].series.phi.size() << '\n';
-    if (!f) throw InputError(out + "/runs.csv", "", "cannot write");
-  }
-  if (!opt.quiet) {
-    std::printf("%-28s %6s %10s %9s %9s %21s %7s\n", "run", "taps", "phi_mean", "+-(tau)", "sigma",
-                "sigma 95% CI (tau)", "tau");
-    for (const auto& s : res.runs)
-      std::printf("%-28s %6d %10.5f %9.2e %9.2e [%9.2e,%9.2e] %7.2f\n", s.label.c_str(), s.n_used,
-                  s.phi_mean, s.phi_err, s.sigma, s.sigma_ci_tau.lo, s.sigma_ci_tau.hi,
-                  s.tau.tau_int);
-    for (const auto& p : res.pairs) {
-      const TwoSampleTest& t = p.test;
-      std::printf("same φ? %s vs %s: Δφ̄ = %.2e ± %.1e (p = %.3f), σ ratio %.3f (p = %.3f), "
-                  "KS D = %.3f (p = %.3f)\n",
-                  res.runs[static_cast<std::size_t>(p.a)].label.c_str(),
-                  res.runs[static_cast<std::size_t>(p.b)].label.c_str(), t.mean_diff,
-                  t.mean_diff_err, t.p_mean, t.sigma_ratio, t.p_sigma, t.ks_d, t.ks_p);
-    }
-    for (const auto& n : res.notes) std::printf("note: %s\n", n.c_str());
-    std::fflush(stdout);  // before the chart scripts write to the same terminal
-  }
-  std::fprintf(stderr, "gransim analyze: %zu runs, analysis in %s\n", runs.size(), out.c_str());
-
-  // the charts (python + matplotlib); without them the CSV and JSON files still stand
-  if (!opt.charts) return kExitOk;
-  const std::string tools = find_tools_dir("charts_tapping.py");
-  if (tools.empty()) {
-    std::fprintf(stderr,
-                 "gransim analyze: charts skipped: tools/charts_tapping.py not found next "
-                 "to the executable (set GS_TOOLS_DIR); the CSV and JSON files are in %s\n",
-                 out.c_str());
-    return kExitOk;
-  }
-  const std::string py = python_path();
-  for (const char* script : {"charts_tapping.py", "charts_taprun.py"}) {
-    const std::string path = tools + "/" + script;
-    if (!fs::exists(path)) continue;
-    const std::string err = run_script(py, path, {out});
-    if (!err.empty()) {
-      std::fprintf(stderr,
-                   "gransim analyze: charts skipped: %s. The CSV and JSON files are in %s; "
-                   "install python3-matplotlib (Debian) and rerun to draw them\n",
-                   err.c_str(), out.c_str());
-      break;
-    }
-  }
-  return kExitOk;
+  std::vector<RunSource> sources;
+  for (const FoundTapRun* r : used)
+    sources.push_back({fs::absolute(r->dir).string(), fs::absolute(fs::path(r->dir) / "taps.csv").string(),
+                       r->protocol, r->control, r->status});
+  return finish_analysis(runs, sources, ao, opt, out);
 }
 
 }  // namespace gs

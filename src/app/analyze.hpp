@@ -16,7 +16,24 @@ struct AnalyzeOptions {
   std::string reference2;  ///< second reference label
   bool charts = true;      ///< run the chart scripts
   bool quiet = false;      ///< no summary table
+  // plain φ series from anywhere (experiments, other simulators): no run directory needed
+  std::vector<std::string> series;  ///< "PROTOCOL:CONTROL:FILE" (a CSV with a phi column)
+  std::string manifest;    ///< a CSV: file,protocol,control[,label][,test_area]
+  double test_area = -1.0; ///< area of the test region, m² (V_g = test_area·φ̄_ref)
 };
+
+/// a plain series with where it came from
+struct PlainSeries {
+  std::string file;        ///< the CSV
+  std::string protocol;    ///< protocol or label of the experiment
+  double control = 0.0;    ///< its control value
+  std::string label;       ///< "" = <protocol>_<control>
+};
+
+/// the series given by --series and --manifest, checked (files exist, controls are numbers,
+/// one test area); test_area is set from the manifest when given there. InputError names the
+/// argument or the manifest's file:line and column.
+std::vector<PlainSeries> plain_series(const AnalyzeOptions& opt, double& test_area);
 
 /// one tapping run found on disk
 struct FoundTapRun {

@@ -86,7 +86,15 @@ int run_cli(int argc, char** argv) {
   AnalyzeOptions ao;
   auto* analyze = app.add_subcommand(
       "analyze", "statistics and charts of runs and sweeps (tapping study or Random Force Model)");
-  analyze->add_option("dirs", ao.dirs, "run or sweep directories")->required();
+  analyze->add_option("dirs", ao.dirs, "run or sweep directories");
+  analyze->add_option("--series", ao.series,
+                      "a plain φ series PROTOCOL:CONTROL:FILE (a CSV with a phi column; "
+                      "repeatable), e.g. negative_g:6:g6.csv");
+  analyze->add_option("--manifest", ao.manifest,
+                      "a CSV listing plain series: file,protocol,control[,label][,test_area]");
+  analyze->add_option("--test-area", ao.test_area,
+                      "area of the test region of plain series, m² (V_g = area·φ̄_ref)")
+      ->check(CLI::PositiveNumber);
   analyze->add_option("-o,--out", ao.out, "analysis folder (default DIR/analysis; needed for several DIRs)");
   analyze->add_option("--discard", ao.discard, "transient taps to drop (default: output.discard_taps)")
       ->check(CLI::NonNegativeNumber);
