@@ -1,0 +1,47 @@
+#!/usr/bin/env python3
+"""Copy a reproduction's report into the repository's docs: report.md, report.html, claims.csv,
+plan.json, progress.json, the claim charts and the analysis' summary tables (no raw runs).
+
+usage: reproduce_publish.py RUN_DIR DOCS_DIR      (e.g. runs/reproduce-tapping-quick
+                                                   docs/reproduction/tapping-quick)"""
+import glob
+import os
+import shutil
+import sys
+
+SUMMARIES = ["summary.csv", "beta.csv", "beta_multi.csv", "pairs.csv", "quadron.json",
+             "analysis.json", "runs.csv", "rfm_summary.json", "exponents.csv", "moments_vs_N.csv"]
+
+
+def main():
+    if len(sys.argv) != 3:
+        sys.exit(__doc__)
+    src, dst = sys.argv[1], sys.argv[2]
+    if not os.path.exists(os.path.join(src, "report.md")):
+        sys.exit(f"reproduce_publish: {src} has no report.md (run gransim reproduce first)")
+    if os.path.isdir(dst):
+        shutil.rmtree(dst)
+    os.makedirs(os.path.join(dst, "charts"))
+    for f in ("report.md", "report.html", "claims.csv", "plan.json", "progress.json"):
+        if os.path.exists(os.path.join(src, f)):
+            shutil.copy2(os.path.join(src, f), dst)
+    for png in glob.glob(os.path.join(src, "charts", "*.png")):
+        shutil.copy2(png, os.path.join(dst, "charts"))
+    # the analysis' summary tables, folder by folder (RFM: one per sweep)
+    for path in glob.glob(os.path.join(src, "analysis", "**", "*"), recursive=True):
+        if os.path.basename(path) in SUMMARIES:
+            rel = os.path.relpath(path, src)
+            os.makedirs(os.path.join(dst, os.path.dirname(rel)), exist_ok=True)
+            shutil.copy2(path, os.path.join(dst, rel))
+    # run directories are local paths of the machine that ran them: keep only their names
+    runs = os.path.join(dst, "analysis", "runs.csv")
+    if os.path.exists(runs):
+        with open(runs) as f:
+            text = f.read()
+        with open(runs, "w") as f:
+            f.write(text.replace(os.path.abspath(src) + "/", ""))
+    print(f"reproduce_publish: {src} → {dst}")
+
+
+if __name__ == "__main__":
+    main()
