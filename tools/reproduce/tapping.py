@@ -24,6 +24,14 @@ def _save(study, fig, name):
     return rel
 
 
+def _finish(st, fig, ax, xlabel, ylabel, name, fontsize=8, ncol=1):
+    """label the axes, add the legend and save the chart; its path relative to the report"""
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.legend(fontsize=fontsize, ncol=ncol)
+    return _save(st, fig, name)
+
+
 def _fig(w=6.4, h=3.8):
     return plt.subplots(figsize=(w, h))
 
@@ -47,10 +55,7 @@ def transient(st, budget):
         taps = st.taps(lab)
         ax.plot(column(taps, "tap"), column(taps, "phi") - m, lw=0.8, label=lab)
     ax.axvline(10, color="k", ls="--", lw=1, label="paper: steady after < 10 taps")
-    ax.set_xlabel("tap")
-    ax.set_ylabel("φ − steady φ̄")
-    ax.legend(fontsize=6, ncol=2)
-    chart = _save(st, fig, "transient")
+    chart = _finish(st, fig, ax, "tap", "φ − steady φ̄", "transient", 6, ncol=2)
     if not rows:
         v, why = UNRESOLVED, "no run has taps 6–10 and a steady part"
     elif worst <= 3.0:
@@ -85,10 +90,7 @@ def neg_minimum(st, budget):
     fig, ax = _fig()
     ax.errorbar(x, y, yerr=1.96 * e, fmt="o-", capsize=3, label="gransim (95 % CI, τ-corrected)")
     ax.axvspan(16, 24, color="tab:orange", alpha=0.2, label="paper: minimum near g_p ≈ 20")
-    ax.set_xlabel("g_p")
-    ax.set_ylabel("φ̄")
-    ax.legend(fontsize=8)
-    chart = _save(st, fig, "neg_phi_mean")
+    chart = _finish(st, fig, ax, "g_p", "φ̄", "neg_phi_mean", 8)
     meas = "; ".join(f"g_p={xi:g}: {_pm(yi, ei)}" for xi, yi, ei in zip(x, y, e))
     return Claim("neg-minimum", "Negative g", "the volume fraction decreases with increasing pulse "
                  "strength until it reaches a local minimum around g_p = 20. Afterwards, the "
@@ -108,10 +110,7 @@ def neg_sigma_maximum(st, budget, at):
     ax.errorbar(x, y, yerr=1.96 * e, fmt="s-", capsize=3, color="tab:red", label="gransim σ_φ")
     ax.axvline(where, color="k", ls="--", lw=1,
                label=f"minimum of φ̄ ({'measured' if at is not None else 'paper'}: {where:g})")
-    ax.set_xlabel("g_p")
-    ax.set_ylabel("σ_φ")
-    ax.legend(fontsize=8)
-    chart = _save(st, fig, "neg_sigma")
+    chart = _finish(st, fig, ax, "g_p", "σ_φ", "neg_sigma", 8)
     meas = "; ".join(f"g_p={xi:g}: {_pm(yi, ei, 5)}" for xi, yi, ei in zip(x, y, e))
     return Claim("neg-sigma-maximum", "Negative g", "At the same value of g_p, where the volume "
                  "fraction is minimal, the volume fraction fluctuations have a local maximum",
@@ -130,10 +129,7 @@ def rot_crossover(st, budget):
     ax.errorbar(x, y, yerr=1.96 * e, fmt="D-", capsize=3, label="gransim")
     ax.axhline(0.814, color="tab:orange", ls=":", label="paper: ≈ 0.814 (low f)")
     ax.axhline(0.821, color="tab:green", ls=":", label="paper: ≈ 0.821 (high f)")
-    ax.set_xlabel("f (Hz)")
-    ax.set_ylabel("φ̄")
-    ax.legend(fontsize=8)
-    chart = _save(st, fig, "rot_phi_mean")
+    chart = _finish(st, fig, ax, "f (Hz)", "φ̄", "rot_phi_mean", 8)
     meas = "; ".join(f"f={xi:g} Hz: {_pm(yi, ei)}" for xi, yi, ei in zip(x, y, e))
     claims = [Claim("rot-crossover", "Rotating g", "With increasing frequency the mean volume "
                     "fraction shows a crossover from φ̄ ≃ 0.814 to φ̄ ≃ 0.821", "Fig. 6a, section IV",
@@ -248,10 +244,7 @@ def q_linear(st, budget):
         x = column(pts, "inv_phi")
         ax.errorbar(x, column(pts, "q"), yerr=column(pts, "q_err"), fmt=".", ms=3)
         ax.plot(x, column(pts, "q_line"), lw=1, label=lab)
-    ax.set_xlabel("1/φ")
-    ax.set_ylabel(f"Q = ln(P/P_ref), ref {ref}")
-    ax.legend(fontsize=6, ncol=2)
-    chart = _save(st, fig, "q_lines")
+    chart = _finish(st, fig, ax, "1/φ", f"Q = ln(P/P_ref), ref {ref}", "q_lines", 6, ncol=2)
     return Claim("q-linear", "Overlapping histograms", "we always found a linear relation between "
                  "Q and the inverse volume fraction φ⁻¹", "Figs. 7b, 8b, section V",
                  f"{len(rows)} runs overlap the reference {ref}; curvature test {why.split(';')[0]}",
@@ -289,10 +282,7 @@ def reference_overlap(st, budget):
         ax.errorbar([r["phi_mean"]], [r["control"] if r["protocol"] == NEG else -r["control"]],
                     xerr=[r["sigma"]], fmt="s" if r["protocol"] == NEG else "D", capsize=3,
                     color="k" if r["label"] == ref["label"] else None, label=r["label"])
-    ax.set_xlabel("φ̄ ± σ_φ (the spread of each distribution)")
-    ax.set_ylabel("g_p (negative g) / −f in Hz (rotating g)")
-    ax.legend(fontsize=6, ncol=2)
-    chart = _save(st, fig, "reference_overlap")
+    chart = _finish(st, fig, ax, "φ̄ ± σ_φ (the spread of each distribution)", "g_p (negative g) / −f in Hz (rotating g)", "reference_overlap", 6, ncol=2)
     return Claim("reference-overlap", "Overlapping histograms", "the distribution with g_p = 6 of "
                  "the “negative g” protocol was chosen as the reference distribution, because it "
                  "has sufficient overlap with all the other distributions", "section V, Figs. 7b, 8b",
@@ -319,10 +309,7 @@ def two_references(st, budget):
         ax.errorbar(column(rows, "phi_mean"), column(rows, "dbeta") + (shift or 0.0),
                     yerr=1.96 * column(rows, "dbeta_err"), fmt=mk, capsize=2,
                     label=f"reference {ref}" + (" (+ offset)" if shift else ""))
-    ax.set_xlabel("φ̄")
-    ax.set_ylabel("β̂ (1/m²)")
-    ax.legend(fontsize=8)
-    chart = _save(st, fig, "two_references")
+    chart = _finish(st, fig, ax, "φ̄", "β̂ (1/m²)", "two_references", 8)
     return Claim("two-references", "Overlapping histograms", "the values determined for β using "
                  "different samples as reference distribution may only differ by an additive "
                  "constant", "Fig. 7c, eq. (39)",
@@ -407,10 +394,7 @@ def quadron_claims(st, budget):
     if curve.get("phi"):
         ax.plot(curve["phi"], np.array(curve["beta_hat"]) + b0, "k-", lw=1,
                 label=f"ideal quadron fit, N z̄/V_g = {a:.0f} m⁻²")
-    ax.set_xlabel("φ̄")
-    ax.set_ylabel("β = β̂ + β₀ (1/m²)")
-    ax.legend(fontsize=8)
-    chart = _save(st, fig, "beta_phi")
+    chart = _finish(st, fig, ax, "φ̄", "β = β̂ + β₀ (1/m²)", "beta_phi", 8)
     out.append(Claim("one-curve", "Edwards statistics", "All the data, whether obtained from the "
                      "branch left of the minimum or the branch right of the minimum in the φ(g_p) "
                      "curve … or else from the “rotating g” protocol, [fall on one curve]",
@@ -463,10 +447,7 @@ def quadron_claims(st, budget):
         ax.errorbar(column(rows, "phi_mean"), column(rows, key), yerr=1.96 * err, fmt="o",
                     capsize=2, label="gransim")
         ax.plot(column(rows, "phi_mean"), column(rows, qkey), "kx", label="ideal quadron fit")
-        ax.set_xlabel("φ̄")
-        ax.set_ylabel(lab)
-        ax.legend(fontsize=8)
-        ch = _save(st, fig, cid)
+        ch = _finish(st, fig, ax, "φ̄", lab, cid, 8)
         out.append(Claim(cid, "Edwards statistics", quote, where,
                          f"{len(rows)} runs against the fit's prediction", v, why,
                          "" if v != UNRESOLVED else nxt, ch))
@@ -499,10 +480,7 @@ def stress(st, budget):
             chi = float(np.sum((res / e) ** 2))
             from verdicts import chi2_sf
             verdicts.append((k, chi2_sf(chi, len(x) - 3), float(np.sqrt(np.mean(res ** 2)))))
-    ax.set_xlabel("φ̄")
-    ax.set_ylabel("S_ab (N·m)")
-    ax.legend(fontsize=6, ncol=2)
-    chart = _save(st, fig, "stress")
+    chart = _finish(st, fig, ax, "φ̄", "S_ab (N·m)", "stress", 6, ncol=2)
     if not verdicts:
         v, why = UNRESOLVED, "fewer than 5 runs"
     else:
@@ -536,10 +514,7 @@ def segregation(st, budget):
         rows.append((r["label"], m - d[0], e))
         ax.plot(k, d - d[0], lw=0.8, label=r["label"])
     ax.axhline(0, color="k", lw=1, label="paper: no segregation")
-    ax.set_xlabel("tap")
-    ax.set_ylabel("Δ(z̄_big − z̄_small) since tap 0 (mm)")
-    ax.legend(fontsize=6, ncol=2)
-    chart = _save(st, fig, "segregation")
+    chart = _finish(st, fig, ax, "tap", "Δ(z̄_big − z̄_small) since tap 0 (mm)", "segregation", 6, ncol=2)
     # the distance wanders slowly (over tens of taps), so one run's error from its own taps
     # is too small; the runs are independent: their drifts' mean and scatter decide, against
     # one small grain's radius (6.36 mm) as the smallest segregation that counts
