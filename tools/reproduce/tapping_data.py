@@ -1,10 +1,12 @@
 """Reading a tapping reproduction: the analysis files of `gransim analyze` and the runs' own
-taps.csv and segregation.csv, plus the ideal-quadron formulas (P.17, P.26) the claims need."""
+taps.csv and segregation.csv, the ideal-quadron formulas (P.17, P.26) the claims need, and the
+helpers that draw the claims' charts."""
 import csv
 import json
 import math
 import os
 
+import matplotlib.pyplot as plt
 import numpy as np
 
 from verdicts import mean_err, tau_int
@@ -122,3 +124,31 @@ def steady_window(label, study, lo, hi):
     rows = study.taps(label)
     phi = column([r for r in rows if lo <= r.get("tap", -1) <= hi], "phi")
     return mean_err(phi), mean_err(study.used(label, "phi"))
+
+
+NEG, ROT = "negative_g", "rotating_g"
+NEXT = {"smoke": "quick", "quick": "standard", "standard": "full", "full": "more taps than the paper's"}
+
+
+def _save(study, fig, name):
+    rel = os.path.join("charts", name + ".png")
+    fig.tight_layout()
+    fig.savefig(os.path.join(study.folder, rel), dpi=90)
+    plt.close(fig)
+    return rel
+
+
+def _finish(st, fig, ax, xlabel, ylabel, name, fontsize=8, ncol=1):
+    """label the axes, add the legend and save the chart; its path relative to the report"""
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.legend(fontsize=fontsize, ncol=ncol)
+    return _save(st, fig, name)
+
+
+def _fig(w=6.4, h=3.8):
+    return plt.subplots(figsize=(w, h))
+
+
+def _pm(v, e, d=4):
+    return f"{v:.{d}f} ± {1.96 * e:.{d}f}" if math.isfinite(e) else f"{v:.{d}f}"
