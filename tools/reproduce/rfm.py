@@ -1,7 +1,6 @@
 """The Random Force Model thesis' claims (D. J. Bray, PhD thesis, Nottingham 2009) against
 DIR/analysis/{reference,structure,ring} of `gransim reproduce rfm`; one chart per claim in
 DIR/charts/. claims(dir, budget) -> (title, intro, claims, notes)."""
-import csv
 import json
 import math
 import os
@@ -9,99 +8,13 @@ import os
 import matplotlib
 
 matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from report import Claim  # noqa: E402
-from verdicts import (UNRESOLVED, Verdict, chi2_consistent, chi2_sf, compare_value,  # noqa: E402
-                      mean_err, step_change)
+from verdicts import UNRESOLVED, Verdict, chi2_consistent, compare_value, mean_err  # noqa: E402
 
-CUT = 1e-7        # 1D gaps below this (units of L′) are mostly touching disks: their overlap
-N_THESIS = 398    # §3.1.3: "We have ignored data for systems containing 100, 158 or 251 particles"
-ORDER = ["smoke", "quick", "standard", "full"]
-
-
-class Missing(Exception):
-    """a file or a fit that the claim needs is not there"""
-
-
-def _csv(path):
-    """columns (numpy arrays) and '# key=value' metadata of an analysis CSV"""
-    if not os.path.exists(path):
-        raise Missing(f"{path} is missing")
-    with open(path) as f:
-        lines = [x for x in f if x.strip()]
-    meta = {k.strip(): float(v) for k, v in
-            (x.lstrip("# ").split("=", 1) for x in lines if x.startswith("#") and "=" in x)}
-    rows = list(csv.reader(x for x in lines if not x.startswith("#")))
-    if len(rows) < 2:
-        raise Missing(f"{path} has no rows")
-    a = np.array([[float(c) if c.strip() else math.nan for c in r] for r in rows[1:]], float)
-    return {h.strip(): a[:, i] for i, h in enumerate(rows[0])}, meta
-
-
-def _runs(d, sweep):
-    """the runs of analysis/<sweep>/rfm_summary.json, each with its rfm.json as 'info'"""
-    p = os.path.join(d, "analysis", sweep, "rfm_summary.json")
-    if not os.path.exists(p):
-        raise Missing(f"analysis/{sweep}/rfm_summary.json is missing (sweep not run or analysed)")
-    with open(p) as f:
-        runs = json.load(f)["runs"]
-    if not runs:
-        raise Missing(f"analysis/{sweep}: no run with steady samples")
-    for r in runs:
-        r["adir"] = os.path.join(d, "analysis", sweep, r["label"])
-        r["name"] = r["label"].split("=")[-1] if len(runs) > 1 else sweep
-        q = os.path.join(r["adir"], "rfm.json")
-        r["info"] = json.load(open(q)) if os.path.exists(q) else {}
-    return runs
-
-
-def _ci(v, e):
-    """value ± its 95 % interval, rounded to the interval's second digit"""
-    if v is None or not math.isfinite(v):
-        return "n/a"
-    if e is None or not (math.isfinite(e) and e > 0):
-        return f"{v:.3g}"
-    n = max(0, 1 - math.floor(math.log10(1.96 * e)))
-    return f"{v:.{n}f} ± {1.96 * e:.{n}f}"
-
-
-def _gate(v, runs, need=1.0):
-    """steady-state claims need the thesis' first second discarded (§2.2.3, §2.3.2)"""
-    t = min(r["info"].get("t_steady", r["info"].get("discard_time", 0.0)) for r in runs)
-    if v.verdict != UNRESOLVED and t < need - 1e-6:
-        return Verdict(UNRESOLVED, f"the runs discard only {t:.2g} s of transient, the thesis measures "
-                       f"after the first second; at face value: {v.verdict}, {v.reason}")
-    return v
-
-
-def _chart(d, cid, draw, wide=False):
-    rel = os.path.join("charts", f"rfm_{cid}.png")
-    fig = plt.figure(figsize=(11, 4.4) if wide else (6.8, 4.4))
-    try:
-        draw(fig) if wide else draw(fig.gca())
-        fig.tight_layout()
-        fig.savefig(os.path.join(d, rel), dpi=100)
-        return rel
-    except Exception as e:  # a chart never costs the claim
-        print(f"rfm.py: chart {cid} skipped: {type(e).__name__}: {e}")
-        return ""
-    finally:
-        plt.close(fig)
-
-
-def _ax(ax, title, xl, yl, xlog=False, ylog=False, fs=8):
-    ax.set(xlabel=xl, ylabel=yl, xscale="log" if xlog else "linear", yscale="log" if ylog else "linear")
-    ax.set_title(title, fontsize=10)
-    ax.legend(fontsize=fs)
-
-
-def _wfit(x, y, s):
-    """weighted line y = a + b x: b, σ_b (inflated by √χ²_r when > 1), a"""
-    (b, a), cov = np.polyfit(x, y, 1, w=1 / s, cov="unscaled")
-    chi2, dof = float((((y - a - b * x) / s) ** 2).sum()), len(x) - 2
-    return b, math.sqrt(cov[0, 0] * (chi2 / dof if dof > 0 and chi2 > dof else 1.0)), a
+from rfm_data import ORDER, Missing, _csv, _runs, _ci, _gate, _chart, _ax  # noqa: E402
+from rfm_ring import c_g1, c_xi2, c_xim  # noqa: E402
 
 
 def _temps(d):
@@ -319,137 +232,8 @@ def _alpha(d, sweep, cid, src, half, label, extra=()):
                 verdict=_gate(v, runs), chart=_chart(d, cid, draw), values=dict(alpha=mid, alpha_err=err))
 
 
-# ---- 1D ring ----------------------------------------------------------------------------------
-
-def _xi(d):
-    """ξ_m of ⟨|v|^m⟩ ∝ N^(−ξ_m), refitted over the thesis' sizes N ≥ 398 (all if fewer than 2)"""
-    runs = _runs(d, "ring")
-    c = _csv(os.path.join(d, "analysis", "ring", "moments_vs_N.csv"))[0]
-    sel = (c["dimension"] == 1) & (c["eps_n"] == c["eps_n"][c["dimension"] == 1][0])
-    ns = sorted(set(c["N"][sel]))
-    use = [n for n in ns if n >= N_THESIS]
-    inside = len(use) >= 2
-    use = use if inside else ns
-    if len(use) < 2:
-        raise Missing(f"ring sizes {ns}: two are needed to fit ξ_m")
-    xi = {}
-    for m in range(1, 13):
-        k = sel & (c["m"] == m) & np.isin(c["N"], use) & (c["v_err"] > 0)
-        b, e, a = _wfit(np.log(c["N"][k]), np.log(c["v_moment"][k]), c["v_err"][k] / c["v_moment"][k])
-        xi[m] = (-b, e, a)
-    sizes = ", ".join(f"{n:g}" for n in use)
-
-    def outside(v):
-        if inside:
-            return v
-        face = "" if v.verdict == UNRESOLVED else f"at face value: {v.verdict}, "
-        return Verdict(UNRESOLVED, f"sizes N = {sizes} lie below the thesis' fit range N = 398…10⁴; "
-                       f"{face}{v.reason}")
-    return runs, c, sel, use, sizes, xi, outside
-
-
-def c_xi2(d):
-    runs, c, sel, use, sizes, xi, outside = _xi(d)
-    x2, e2, a2 = xi[2]
-    v = outside(_gate(compare_value(x2, e2, 0.53, tolerance=0.02, resolve=0.05, fmt="{:.3g}"), runs))
-
-    def draw(ax):
-        k = sel & (c["m"] == 2)
-        ax.errorbar(c["N"][k], c["v_moment"][k], 1.96 * c["v_err"][k], fmt="o", capsize=3,
-                    label="gransim ⟨v²⟩, 95 %")
-        nn = np.geomspace(min(c["N"][k]) * 0.8, max(max(c["N"][k]), 1e4) * 1.2, 50)
-        nc = math.exp(np.mean(np.log(use)))
-        yc = math.exp(a2) * nc ** -x2
-        ax.plot(nn, yc * (nn / nc) ** -x2, "C0", label=f"fit ξ₂ = {_ci(x2, e2)}")
-        ax.plot(nn, yc * (nn / nc) ** -0.528, "C3--", label="thesis N^−0.528")
-        ax.plot(nn, yc * (nn / nc) ** (-2 / 3), "k:", label="mean field N^−2/3")
-        ax.axvspan(nn[0], N_THESIS, color="grey", alpha=0.15, label="sizes the thesis ignored")
-        _ax(ax, "1D ring, L′ = 1 m, ε = 0.1 (thesis Figs. 3.1–3.2)", "N", "⟨v²⟩ (m²/s²)", True, True)
-    return dict(measured=f"ξ₂ = {_ci(x2, e2)} (95 %) over N = {sizes}", verdict=v,
-                chart=_chart(d, "xi2", draw), values=dict(xi2=x2, xi2_err=e2, N_min=min(use),
-                                                          N_max=max(use)))
-
-
-def c_xim(d):
-    runs, c, sel, use, sizes, xi, outside = _xi(d)
-    y, e = [xi[1][0], xi[9][0] / 9], [xi[1][1], xi[9][1] / 9]
-    v = step_change([1, 9], y, e, 0.228 - 0.264, factor=2.0, fmt="{:.3g}")
-    v = outside(_gate(Verdict(v.verdict, "ξ_m/m from m = 1 to 9: " + v.reason), runs))
-
-    def draw(ax):
-        m = np.arange(1, 13)
-        ax.errorbar(m, [xi[k][0] / k for k in m], [1.96 * xi[k][1] / k for k in m], fmt="o",
-                    capsize=3, label="gransim ξ_m/m, 95 %")
-        ax.plot([1, 9], [0.264, 0.228], "C3s--", label="thesis Fig. 3.4b (ε = 0.001): 0.264 → 0.228")
-        ax.axhline(1 / 3, color="k", ls=":", label="mean field 1/3")
-        _ax(ax, f"1D ring, ε = 0.1, N = {sizes}", "m", "ξ_m / m")
-    return dict(measured=f"ξ₁ = {_ci(*xi[1][:2])}, ξ₉/9 = {_ci(y[1], e[1])} (95 %) over N = {sizes}",
-                verdict=v, chart=_chart(d, "xi-m", draw), values=dict(xi1=y[0], xi9_9=y[1]))
-
-
-def _bis_cdf(x, n):
-    """P(X ≤ x) for X a product of n uniforms (−ln X ~ Gamma(n)); n = log₂N need not be whole"""
-    return np.array([1.0 if q >= 1 else 0.0 if q <= 0 else chi2_sf(-2 * math.log(q), 2 * n) for q in x])
-
-
-def _ks_p(lam):
-    """Kolmogorov's P(√n D > λ)"""
-    return 1.0 if lam < 0.3 else min(1.0, 2 * sum((-1) ** (k - 1) * math.exp(-2 * k * k * lam * lam)
-                                                  for k in range(1, 101)))
-
-
-def c_g1(d):
-    runs = _runs(d, "ring")
-    r = max(runs, key=lambda q: q["particles"])
-    N = r["particles"]
-    c, _ = _csv(os.path.join(r["adir"], "gh_bisection.csv"))
-    R, G, Ge = c["R"], c["G1"], c["G1_err"]  # G1: density per unit R/L′ on log bins (geometric centres)
-    q = R[1] / R[0]
-    lo, hi = R / math.sqrt(q), np.minimum(R * math.sqrt(q), 1.0)
-    w, n, keep = hi - lo, math.log2(N), R >= CUT
-    pb = (_bis_cdf(hi, n) - _bis_cdf(lo, n)) / w  # bin averages, not the centre values
-    pu = ((1 - lo) ** (N - 1) - (1 - hi) ** (N - 1)) / w
-    mass = (G * w)[keep].sum()  # both on R ≥ CUT, normalised like G₁ there
-    pb, pu = pb * mass / (pb * w)[keep].sum(), pu * mass / (pu * w)[keep].sum()
-    g = _csv(os.path.join(r["adir"], "gap_moments.csv"))[0]
-    M, B = g["moment"], g["error"]
-    gaps = N * r["info"].get("samples", r["samples"])
-    s = max(1.0, B[1] / math.sqrt((M[3] - M[1] ** 2) / gaps))  # correlation: block / iid error of ⟨R²⟩
-    F = np.cumsum((G * w)[keep]) / mass
-    kb, ku = [float(np.abs(F - np.cumsum((p * w)[keep]) / mass).max()) for p in (pb, pu)]
-    neff = gaps * mass / s ** 2
-    v = compare_value(kb, 0.68 / math.sqrt(neff), 0.0, tolerance=0.05, fmt="{:.2g}")
-    v = _gate(Verdict(v.verdict, f"KS distance to the bisection: {v.reason}. σ = 0.68/√n_eff puts "
-                      "2σ at the 95 % KS critical value; n_eff = {:.3g} is the gaps counted over "
-                      "{:.1f}², the ratio of ⟨R²⟩'s block error to its independent-sample error; the "
-                      "0.05 allowed is a 5 % shift of the cumulative fraction, which a log–log plot "
-                      "like Fig. 3.16 does not show (exact bisection: p = {:.2g})"
-                      .format(neff, s, _ks_p(math.sqrt(neff) * kb))), runs)
-
-    def draw(fig):
-        a1, a2 = fig.add_subplot(121), fig.add_subplot(122)
-        z = G > 0
-        a1.errorbar(R[z], G[z], Ge[z], fmt="x", ms=3, lw=0.6, color="k", label=f"gransim G₁, N = {N:g}")
-        a1.plot(R, pb, "C3", label=f"bisection, n = log₂N = {n:.2f} levels (T.3.36)")
-        a1.plot(R, pu, "C0--", label=f"{N:g} uniform points")
-        a1.axvspan(R[0], CUT, color="grey", alpha=0.15, label="touching disks (overlaps), left out")
-        a1.set_ylim(max(G[z].min() / 10, 1e-4), G.max() * 10)
-        _ax(a1, "nearest-neighbour gaps against the bisection (thesis Fig. 3.16)", "R (units of L′)",
-            "G₁(R) (1/L′)", True, True, 7)
-        a2.plot(R[keep], F, "k", label="gransim")
-        a2.plot(R[keep], np.cumsum((pb * w)[keep]) / mass, "C3--", label="bisection")
-        a2.plot(R[keep], np.cumsum((pu * w)[keep]) / mass, "C0:", label="uniform points")
-        _ax(a2, f"cumulative, R ≥ {CUT:g} L′: KS {kb:.3f} (bisection), {ku:.3f} (uniform)",
-            "R (units of L′)", "fraction of gaps", True)
-    return dict(measured=f"N = {N:g}: KS distance of G₁ (R ≥ {CUT:g} L′) {kb:.3f} to the bisection, "
-                f"{ku:.3f} to {N:g} uniform points", verdict=v,
-                chart=_chart(d, "G1-bisection", draw, wide=True),
-                values=dict(N=N, ks_bisection=kb, ks_uniform=ku, n_eff=neff))
-
-
-# ---- the report -------------------------------------------------------------------------------
-
 T1, T2, T3, T4 = "2D reference fluid", "2D structure", "Velocity tails", "1D ring"
+
 CLAIMS = [  # id, topic, quote, place, function, (budget that should resolve it, why)
     ("T-start", T1, "demonstrates that the initial conditions of the system do not affect the "
      "two-dimensional Random Force Model", "§2.3.3, Fig. 2.10(b)", c_start,

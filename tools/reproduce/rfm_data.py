@@ -1,0 +1,101 @@
+"""Reading a Random Force Model reproduction (DIR/analysis/{reference,structure,ring}) and
+the helpers its claims share: files, intervals, the steady-state gate, charts, a weighted fit."""
+import csv
+import json
+import math
+import os
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+from verdicts import UNRESOLVED, Verdict  # noqa: E402
+
+CUT = 1e-7        # 1D gaps below this (units of L′) are mostly touching disks: their overlap
+N_THESIS = 398    # §3.1.3: "We have ignored data for systems containing 100, 158 or 251 particles"
+ORDER = ["smoke", "quick", "standard", "full"]
+
+
+class Missing(Exception):
+    """a file or a fit that the claim needs is not there"""
+
+
+def _csv(path):
+    """columns (numpy arrays) and '# key=value' metadata of an analysis CSV"""
+    if not os.path.exists(path):
+        raise Missing(f"{path} is missing")
+    with open(path) as f:
+        lines = [x for x in f if x.strip()]
+    meta = {k.strip(): float(v) for k, v in
+            (x.lstrip("# ").split("=", 1) for x in lines if x.startswith("#") and "=" in x)}
+    rows = list(csv.reader(x for x in lines if not x.startswith("#")))
+    if len(rows) < 2:
+        raise Missing(f"{path} has no rows")
+    a = np.array([[float(c) if c.strip() else math.nan for c in r] for r in rows[1:]], float)
+    return {h.strip(): a[:, i] for i, h in enumerate(rows[0])}, meta
+
+
+def _runs(d, sweep):
+    """the runs of analysis/<sweep>/rfm_summary.json, each with its rfm.json as 'info'"""
+    p = os.path.join(d, "analysis", sweep, "rfm_summary.json")
+    if not os.path.exists(p):
+        raise Missing(f"analysis/{sweep}/rfm_summary.json is missing (sweep not run or analysed)")
+    with open(p) as f:
+        runs = json.load(f)["runs"]
+    if not runs:
+        raise Missing(f"analysis/{sweep}: no run with steady samples")
+    for r in runs:
+        r["adir"] = os.path.join(d, "analysis", sweep, r["label"])
+        r["name"] = r["label"].split("=")[-1] if len(runs) > 1 else sweep
+        q = os.path.join(r["adir"], "rfm.json")
+        r["info"] = json.load(open(q)) if os.path.exists(q) else {}
+    return runs
+
+
+def _ci(v, e):
+    """value ± its 95 % interval, rounded to the interval's second digit"""
+    if v is None or not math.isfinite(v):
+        return "n/a"
+    if e is None or not (math.isfinite(e) and e > 0):
+        return f"{v:.3g}"
+    n = max(0, 1 - math.floor(math.log10(1.96 * e)))
+    return f"{v:.{n}f} ± {1.96 * e:.{n}f}"
+
+
+def _gate(v, runs, need=1.0):
+    """steady-state claims need the thesis' first second discarded (§2.2.3, §2.3.2)"""
+    t = min(r["info"].get("t_steady", r["info"].get("discard_time", 0.0)) for r in runs)
+    if v.verdict != UNRESOLVED and t < need - 1e-6:
+        return Verdict(UNRESOLVED, f"the runs discard only {t:.2g} s of transient, the thesis measures "
+                       f"after the first second; at face value: {v.verdict}, {v.reason}")
+    return v
+
+
+def _chart(d, cid, draw, wide=False):
+    rel = os.path.join("charts", f"rfm_{cid}.png")
+    fig = plt.figure(figsize=(11, 4.4) if wide else (6.8, 4.4))
+    try:
+        draw(fig) if wide else draw(fig.gca())
+        fig.tight_layout()
+        fig.savefig(os.path.join(d, rel), dpi=100)
+        return rel
+    except Exception as e:  # a chart never costs the claim
+        print(f"rfm.py: chart {cid} skipped: {type(e).__name__}: {e}")
+        return ""
+    finally:
+        plt.close(fig)
+
+
+def _ax(ax, title, xl, yl, xlog=False, ylog=False, fs=8):
+    ax.set(xlabel=xl, ylabel=yl, xscale="log" if xlog else "linear", yscale="log" if ylog else "linear")
+    ax.set_title(title, fontsize=10)
+    ax.legend(fontsize=fs)
+
+
+def _wfit(x, y, s):
+    """weighted line y = a + b x: b, σ_b (inflated by √χ²_r when > 1), a"""
+    (b, a), cov = np.polyfit(x, y, 1, w=1 / s, cov="unscaled")
+    chi2, dof = float((((y - a - b * x) / s) ** 2).sum()), len(x) - 2
+    return b, math.sqrt(cov[0, 0] * (chi2 / dof if dof > 0 and chi2 > dof else 1.0)), a
