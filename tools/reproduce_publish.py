@@ -33,13 +33,14 @@ def main():
             rel = os.path.relpath(path, src)
             os.makedirs(os.path.join(dst, os.path.dirname(rel)), exist_ok=True)
             shutil.copy2(path, os.path.join(dst, rel))
-    # run directories are local paths of the machine that ran them: keep only their names
-    runs = os.path.join(dst, "analysis", "runs.csv")
-    if os.path.exists(runs):
-        with open(runs) as f:
-            text = f.read()
-        with open(runs, "w") as f:
-            f.write(text.replace(os.path.abspath(src) + "/", ""))
+    # run directories are local paths of the machine that ran them: keep them relative to the
+    # reproduction folder (the command line in the report stays as it was typed)
+    for path in glob.glob(os.path.join(dst, "analysis", "**", "*"), recursive=True):
+        if path.endswith((".csv", ".json")):
+            with open(path) as f:
+                text = f.read()
+            with open(path, "w") as f:
+                f.write(text.replace(os.path.abspath(src) + "/", ""))
     print(f"reproduce_publish: {src} → {dst}")
 
 
