@@ -21,17 +21,23 @@ bool is_checkpoint_name(const std::string& n) {
          n.compare(n.size() - 5, 5, kSuffix) == 0;
 }
 
-// files the run appends to and their sizes: everything in DIR and DIR/frames.csv except the
-// files that are rewritten whole (run.json, state.csv, scene.toml), checkpoints and temporaries
+// files that are not appended to: rewritten whole (run.json, state.csv, scene.toml, the final
+// picture), the writer's lock (it holds the PID), checkpoints and temporaries. Their sizes say
+// nothing about lost rows, and a resume must neither check nor truncate them.
+bool not_appended(const std::string& n) {
+  return is_checkpoint_name(n) || n == "run.json" || n == "state.csv" || n == "scene.toml" ||
+         n == "final.png" || n == ".lock" ||
+         (n.size() >= 4 && n.compare(n.size() - 4, 4, ".tmp") == 0);
+}
+
+// files the run appends to and their sizes: everything in DIR but the files above
 std::vector<std::pair<std::string, std::uintmax_t>> output_sizes(const std::string& dir) {
   std::vector<std::pair<std::string, std::uintmax_t>> out;
   std::error_code ec;
   for (const auto& e : fs::directory_iterator(dir, ec)) {
     if (!e.is_regular_file(ec)) continue;
     const std::string n = e.path().filename().string();
-    if (is_checkpoint_name(n) || n == "run.json" || n == "state.csv" || n == "scene.toml" ||
-        (n.size() >= 4 && n.compare(n.size() - 4, 4, ".tmp") == 0))
-      continue;
+    if (not_appended(n)) continue;
     out.emplace_back(n, e.file_size(ec));
   }
   return out;
@@ -99,7 +105,8 @@ Checkpoint newest_valid_checkpoint(const std::string& dir) {
     try {
       Checkpoint c = read_checkpoint(p);
       for (const auto& [key, value] : c.extras.entries) {
-        if (key.rfind("file/", 0) != 0) continue;
+        // (checkpoints written before a file was known not to be appended may list it)
+        if (key.rfind("file/", 0) != 0 || not_appended(key.substr(5))) continue;
         const fs::path f = fs::path(dir) / key.substr(5);
         const std::uintmax_t want = std::stoull(value);
         if (!fs::exists(f, ec) || fs::file_size(f, ec) < want)
@@ -121,7 +128,7 @@ Checkpoint newest_valid_checkpoint(const std::string& dir) {
 
 void truncate_outputs(const std::string& dir, const Checkpoint& c) {
   for (const auto& [key, value] : c.extras.entries) {
-    if (key.rfind("file/", 0) != 0) continue;
+    if (key.rfind("file/", 0) != 0 || not_appended(key.substr(5))) continue;
     const fs::path f = fs::path(dir) / key.substr(5);
     std::error_code ec;
     fs::resize_file(f, std::stoull(value), ec);
