@@ -23,8 +23,9 @@ def q_linear(st, budget):
     for lab in sorted({r["label"] for r in st.q_lines if r["reference"] == ref and r["label"] != ref}):
         pts = [r for r in st.q_lines if r["reference"] == ref and r["label"] == lab]
         x = column(pts, "inv_phi")
-        ax.errorbar(x, column(pts, "q"), yerr=column(pts, "q_err"), fmt=".", ms=3)
-        ax.plot(x, column(pts, "q_line"), lw=1, label=lab)
+        line = ax.plot(x, column(pts, "q_line"), lw=1, label=lab)[0]
+        ax.errorbar(x, column(pts, "q"), yerr=column(pts, "q_err"), fmt="o", ms=4, capsize=2,
+                    color=line.get_color())
     chart = _finish(st, fig, ax, "1/φ", f"Q = ln(P/P_ref), ref {ref}", "q_lines", 6, ncol=2)
     return Claim("q-linear", "Overlapping histograms", "we always found a linear relation between "
                  "Q and the inverse volume fraction φ⁻¹", "Figs. 7b, 8b, section V",
