@@ -1,7 +1,5 @@
 #include "app/analyze.hpp"
 
-#include <spawn.h>
-#include <sys/wait.h>
 
 #include <algorithm>
 #include <cerrno>
@@ -17,13 +15,12 @@
 #include "analysis/tap_analysis.hpp"
 #include "app/rfm_analyze.hpp"
 #include "app/run_info.hpp"
+#include "app/subprocess.hpp"
 #include "core/error.hpp"
 #include "drive/schedule.hpp"
 #include "output/run_dir.hpp"
 #include "scene/names.hpp"
 #include "scene/parse.hpp"
-
-extern char** environ;
 
 namespace gs {
 
@@ -46,33 +43,6 @@ FoundTapRun describe_run(const fs::path& dir) {
   r.control = s.drive.kind == DriveKind::NegativeG ? s.drive.g_p : s.drive.f;
   r.status = run_status(r.dir);
   return r;
-}
-
-// the python interpreter for the charts: $GS_PYTHON, else /usr/bin/python3, else python3
-std::string python_path() {
-  if (const char* p = std::getenv("GS_PYTHON"); p && *p) return p;
-  std::error_code ec;
-  return fs::exists("/usr/bin/python3", ec) ? "/usr/bin/python3" : "python3";
-}
-
-// run a chart script on a folder; returns "" on success, else what went wrong
-std::string run_script(const std::string& python, const std::string& script,
-                       const std::vector<std::string>& script_args) {
-  std::vector<std::string> args{python, script};
-  args.insert(args.end(), script_args.begin(), script_args.end());
-  std::vector<char*> argv;
-  for (auto& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  pid_t pid = -1;
-  const int rc = posix_spawnp(&pid, python.c_str(), nullptr, nullptr, argv.data(), environ);
-  if (rc != 0) return python + " cannot be started (" + std::strerror(rc) + ")";
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-  }
-  if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return "";
-  if (WIFEXITED(status) && WEXITSTATUS(status) == 127) return python + " was not found";
-  return script + " failed (exit " + std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) +
-         "; are numpy and matplotlib installed for " + python + "?)";
 }
 
 // drop the tap-0 row (the prepared pile before the first excitation): it is not a tapped state
@@ -169,15 +139,12 @@ int finish_analysis(const std::vector<TapRunInput>& runs, const std::vector<RunS
                  out.c_str());
     return kExitOk;
   }
-  const std::string py = python_path();
   for (const char* script : {"charts_tapping.py", "charts_taprun.py"}) {
     const std::string path = tools + "/" + script;
     if (!fs::exists(path)) continue;
-    const std::string err = run_script(py, path, {out});
+    const std::string err = run_python_script(path, {out});
     if (!err.empty()) {
-      std::fprintf(stderr,
-                   "gransim analyze: charts skipped: %s. The CSV and JSON files are in %s; "
-                   "install python3-matplotlib (Debian) and rerun to draw them\n",
+      std::fprintf(stderr, "gransim analyze: charts skipped: %s. The CSV and JSON files are in %s\n",
                    err.c_str(), out.c_str());
       break;
     }

@@ -1,9 +1,6 @@
 // `gransim analyze` for RFM runs: per-run fits, exponents across sizes, summary, charts
 #include "app/rfm_analyze.hpp"
 
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/wait.h>
 
 #include <algorithm>
 #include <cerrno>
@@ -24,12 +21,11 @@
 #include "analysis/rfm_sk.hpp"
 #include "analysis/rfm_tails.hpp"
 #include "app/run_info.hpp"
+#include "app/subprocess.hpp"
 #include "core/error.hpp"
 #include "measure/rfm_io.hpp"
 #include "models/bisection.hpp"
 #include "output/run_dir.hpp"
-
-extern char** environ;
 
 namespace gs {
 
@@ -408,14 +404,6 @@ void write_summary(const std::vector<RunResult>& results, const std::vector<Expo
   write_file_atomic((out / "rfm_summary.json").string(), js.str());
 }
 
-// the python interpreter: $GS_PYTHON, else /usr/bin/python3 (Debian's, with matplotlib), else
-// python3
-std::string python() {
-  if (const char* p = std::getenv("GS_PYTHON"); p && *p) return p;
-  std::error_code ec;
-  return fs::exists("/usr/bin/python3", ec) ? "/usr/bin/python3" : "python3";
-}
-
 void print_table(const std::vector<RunResult>& results) {
   std::printf("%-28s %3s %6s %6s %7s %10s %16s %8s %8s\n", "run", "dim", "N", "eps_n", "samples",
               "T (m2/s2)", "tail alpha", "D_f S(k)", "D_f P_l");
@@ -441,26 +429,8 @@ bool is_rfm_run(const std::string& dir) { return !run_dirs(dir).empty(); }
 std::string draw_rfm_charts(const std::string& dir) {
   const std::string tools = find_tools_dir("charts_rfm.py");
   if (tools.empty()) return "tools/charts_rfm.py not found (set GS_TOOLS_DIR)";
-  const std::string py = python();
-  std::vector<std::string> args{py, (fs::path(tools) / "charts_rfm.py").string(), dir};
-  std::vector<char*> argv;
-  for (auto& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  // the script's "wrote …" lines are not wanted on our stdout: send them to /dev/null
-  posix_spawn_file_actions_t fa;
-  posix_spawn_file_actions_init(&fa);
-  posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
-  pid_t pid = -1;
-  const int rc = posix_spawnp(&pid, py.c_str(), &fa, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&fa);
-  if (rc != 0) return py + " cannot be started (" + std::strerror(rc) + ")";
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-  }
-  if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return "";
-  return "charts_rfm.py failed (exit " +
-         std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) +
-         "; are numpy and matplotlib installed for " + py + "?)";
+  // the script's "wrote …" lines are not wanted on our stdout
+  return run_python_script((fs::path(tools) / "charts_rfm.py").string(), {dir}, true);
 }
 
 void analyze_rfm_runs(const std::vector<std::string>& dirs, const std::string& out_dir, bool charts,

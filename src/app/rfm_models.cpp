@@ -222,12 +222,26 @@ void run_cascade(const Common& c, CascadeOpt o) {
         rfm::fit_df(r.shells, two_pi_l * o.fit_lo * (1 - 1e-9), two_pi_l * o.fit_hi * (1 + 1e-9));
     models::write_cascade_csv(out / ("cascade_" + k + ".csv"), r, exact, p.kind, &fit);
     const double d2 = models::correlation_dimension(p.kind);
-    f.insert(f.end(), {{k + "_D_f", fit.d_f}, {k + "_D_f_err", fit.d_f_err}, {k + "_D2", d2}});
-    if (!c.quiet)
+    // a mass fractal in the plane has 0 < D_f ≤ 2; a fit outside, or with an error above half
+    // its value, found no power law to report
+    std::string why = models::cascade_no_power_law_reason(p.kind);
+    if (why.empty() && !(fit.d_f > 0.0 && fit.d_f <= 2.0 && fit.d_f_err < 0.5 * fit.d_f))
+      why = "no power law A k^−D_f fits S(k) in this range";
+    f.insert(f.end(), {{k + "_D_f", fit.d_f},
+                       {k + "_D_f_err", fit.d_f_err},
+                       {k + "_power_law", why.empty() ? 1.0 : 0.0},
+                       {k + "_D2", d2}});
+    if (!c.quiet && why.empty())
       std::printf(
           "cascade %-12s %d levels, %ld realisations: D_f = %.3f ± %.3f (fit |n| in [%g, %g]), "
           "correlation dimension D2 = %.4f\n",
           k.c_str(), p.levels, p.realisations, fit.d_f, fit.d_f_err, o.fit_lo, o.fit_hi, d2);
+    else if (!c.quiet)
+      std::printf(
+          "cascade %-12s %d levels, %ld realisations: no D_f: %s (a fit over |n| in [%g, %g] "
+          "gives %.3f ± %.3f, chi2_r = %.3g); correlation dimension D2 = %.4f\n",
+          k.c_str(), p.levels, p.realisations, why.c_str(), o.fit_lo, o.fit_hi, fit.d_f,
+          fit.d_f_err, fit.chi2_r, d2);
   }
   write_model_json(out, "cascade", f);
   finish(c, out);

@@ -1,7 +1,5 @@
 #include "app/study.hpp"
 
-#include <spawn.h>
-#include <sys/wait.h>
 
 #include <algorithm>
 #include <cerrno>
@@ -16,6 +14,7 @@
 
 #include "app/run_info.hpp"
 #include "app/study_problems.hpp"
+#include "app/subprocess.hpp"
 #include "app/version.hpp"
 #include "core/error.hpp"
 #include "output/run_dir.hpp"
@@ -23,8 +22,6 @@
 #ifdef _OPENMP
 #include <omp.h>
 #endif
-
-extern char** environ;
 
 namespace gs {
 
@@ -268,28 +265,11 @@ std::string study_json(const StudySpec& s, const std::vector<StudyRow>& rows,
   return j.str();
 }
 
-// the python interpreter for the charts: $GS_PYTHON, else /usr/bin/python3, else python3
-std::string python_path() {
-  if (const char* p = std::getenv("GS_PYTHON"); p && *p) return p;
-  std::error_code ec;
-  return fs::exists("/usr/bin/python3", ec) ? "/usr/bin/python3" : "python3";
-}
-
 // run tools/charts_study.py on the study directory; "" on success, else what went wrong
 std::string draw_charts(const std::string& out) {
   const std::string tools = find_tools_dir("charts_study.py");
   if (tools.empty()) return "tools/charts_study.py not found (set GS_TOOLS_DIR)";
-  std::string py = python_path(), script = tools + "/charts_study.py", dir = out;
-  std::vector<char*> argv{py.data(), script.data(), dir.data(), nullptr};
-  pid_t pid = -1;
-  const int rc = posix_spawnp(&pid, py.c_str(), nullptr, nullptr, argv.data(), environ);
-  if (rc != 0) return py + " cannot be started (" + std::strerror(rc) + ")";
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-  }
-  if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return "";
-  if (WIFEXITED(status) && WEXITSTATUS(status) == 127) return py + " was not found";
-  return "charts_study.py failed (are numpy and matplotlib installed for " + py + "?)";
+  return run_python_script(tools + "/charts_study.py", {out});
 }
 
 // the largest stable Δt of one integrator and switch set: sweep up until blow-up

@@ -1,31 +1,88 @@
 #include "app/subprocess.hpp"
 
+#include <fcntl.h>
 #include <spawn.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <sstream>
 
 extern char** environ;
 
 namespace gs {
+namespace {
 
-std::string python_interpreter() {
-  if (const char* p = std::getenv("GS_PYTHON"); p && *p) return p;
-  std::error_code ec;
-  return std::filesystem::exists("/usr/bin/python3", ec) ? "/usr/bin/python3" : "python3";
+// the first executable `name` on PATH, or ""
+std::string on_path(const std::string& name) {
+  const char* path = std::getenv("PATH");
+  if (!path) return "";
+  std::stringstream dirs(path);
+  std::string dir;
+  while (std::getline(dirs, dir, ':')) {
+    if (dir.empty()) dir = ".";
+    const std::string p = dir + "/" + name;
+    struct stat st {};
+    if (::stat(p.c_str(), &st) == 0 && S_ISREG(st.st_mode) && ::access(p.c_str(), X_OK) == 0)
+      return p;
+  }
+  return "";
 }
 
-std::string run_process(const std::vector<std::string>& args) {
+// the child is silent on both streams: only its exit code is wanted
+std::string run_silent(const std::vector<std::string>& args) {
+  std::vector<std::string> copy = args;
+  std::vector<char*> argv;
+  for (auto& a : copy) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&fa, 2, "/dev/null", O_WRONLY, 0);
+  pid_t pid = -1;
+  const int rc = posix_spawnp(&pid, argv[0], &fa, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&fa);
+  if (rc != 0) return "cannot be started";
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  return WIFEXITED(status) && WEXITSTATUS(status) == 0 ? "" : "failed";
+}
+
+}  // namespace
+
+bool python_has_charts(const std::string& python) {
+  return run_silent({python, "-c", "import numpy, matplotlib"}).empty();
+}
+
+std::string python_interpreter() {
+  static const std::string chosen = [] {
+    if (const char* p = std::getenv("GS_PYTHON"); p && *p) return std::string(p);
+    const std::string user = on_path("python3");
+    if (!user.empty() && python_has_charts(user)) return user;
+    std::error_code ec;
+    if (std::filesystem::exists("/usr/bin/python3", ec)) return std::string("/usr/bin/python3");
+    return user.empty() ? std::string("python3") : user;
+  }();
+  return chosen;
+}
+
+std::string run_process(const std::vector<std::string>& args, bool quiet_stdout) {
   if (args.empty()) return "nothing to run";
   std::vector<std::string> copy = args;
   std::vector<char*> argv;
   for (auto& a : copy) argv.push_back(a.data());
   argv.push_back(nullptr);
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  if (quiet_stdout) posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
   pid_t pid = -1;
-  const int rc = posix_spawnp(&pid, argv[0], nullptr, nullptr, argv.data(), environ);
+  const int rc = posix_spawnp(&pid, argv[0], &fa, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&fa);
   if (rc != 0) return args[0] + " cannot be started (" + std::strerror(rc) + ")";
   int status = 0;
   while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
@@ -35,6 +92,24 @@ std::string run_process(const std::vector<std::string>& args) {
   if (WIFSIGNALED(status))
     return args[0] + " was stopped by signal " + std::to_string(WTERMSIG(status));
   return args[0] + " exited with " + std::to_string(WEXITSTATUS(status));
+}
+
+std::string run_python_script(const std::string& script, const std::vector<std::string>& args,
+                              bool quiet_stdout) {
+  const std::string py = python_interpreter();
+  std::vector<std::string> argv{py, script};
+  argv.insert(argv.end(), args.begin(), args.end());
+  const std::string err = run_process(argv, quiet_stdout);
+  if (err.empty()) return "";
+  const std::string name = std::filesystem::path(script).filename().string();
+  if (err.find("cannot be started") != std::string::npos || err.find("not found") != std::string::npos)
+    return err + " (set GS_PYTHON to a python3 with numpy and matplotlib)";
+  if (!python_has_charts(py))
+    return name + " failed: " + py +
+           " cannot import numpy and matplotlib (install python3-matplotlib, or set GS_PYTHON "
+           "to a python3 that has them)";
+  return name + " failed under " + py + " (" + err.substr(py.size() + 1) +
+         "; its error is printed above)";
 }
 
 }  // namespace gs

@@ -5,12 +5,22 @@
 
 namespace gs {
 
-/// the interpreter for the scripts: $GS_PYTHON, else /usr/bin/python3 (where Debian's numpy
-/// and matplotlib live), else python3 on PATH
+/// the interpreter for the scripts: $GS_PYTHON; else `python3` on PATH when it imports numpy and
+/// matplotlib (the user's own environment); else /usr/bin/python3 (Debian's, where
+/// python3-matplotlib installs them); else `python3`. Decided once per process.
 std::string python_interpreter();
 
+/// whether `python` imports numpy and matplotlib (runs it once, silently)
+bool python_has_charts(const std::string& python);
+
 /// run argv[0] (looked up on PATH) with argv and wait; returns "" when it exited 0, else a
-/// sentence saying what went wrong (cannot be started, not found, its exit code)
-std::string run_process(const std::vector<std::string>& argv);
+/// sentence saying what went wrong (cannot be started, not found, its exit code). With
+/// `quiet_stdout` the child's standard output goes to /dev/null (its errors still show).
+std::string run_process(const std::vector<std::string>& argv, bool quiet_stdout = false);
+
+/// run a chart or report script under python_interpreter(); "" on success, else a sentence
+/// naming the script and the interpreter, and the missing libraries only when they are missing
+std::string run_python_script(const std::string& script, const std::vector<std::string>& args,
+                              bool quiet_stdout = false);
 
 }  // namespace gs

@@ -149,6 +149,12 @@ double correlation_dimension(CascadeKind kind) {
   return -std::log2(s);
 }
 
+std::string cascade_no_power_law_reason(CascadeKind kind) {
+  if (kind != CascadeKind::symmetrised) return "";
+  return "S(k) vanishes on the k_x and k_y axes (every row and every column of a split gets the "
+         "same mass, a + (1 − a)), so the shell-averaged S(k) is not A k^−D_f";
+}
+
 std::vector<double> cascade_field(CascadeKind kind, int levels, RngStream& rng) {
   if (levels < 0 || levels > 13) throw InputError("cascade", "levels", "need 0 ≤ levels ≤ 13");
   std::vector<double> m{1.0}, next;

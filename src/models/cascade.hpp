@@ -44,6 +44,11 @@ WeightMoments cascade_weight_moments(CascadeKind kind);
 /// D₂ = −log₂ E[Σ_q W_q²]; for UCP by quadrature (E[a₁²/(Σa)²] over the Irwin–Hall density)
 double correlation_dimension(CascadeKind kind);
 
+/// why S(k) of this kind is not a power law, or "" when it can be: the symmetrised rule gives
+/// both rows and both columns of every split the same mass, so the field's projections on x and
+/// y are uniform and S(k) vanishes on the k_x and k_y axes
+std::string cascade_no_power_law_reason(CascadeKind kind);
+
 /// the masses after `levels` splits of a unit mass, row-major m[j·2ⁿ + i] (i along x)
 std::vector<double> cascade_field(CascadeKind kind, int levels, RngStream& rng);
 

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <cstdlib>
 #include <fstream>
 #include <string>
 
@@ -85,6 +86,60 @@ TEST_F(AnalyzeSeries, SeriesOnTheCommandLineAndTheirMistakes) {
                  dir_ / "log.txt");
   EXPECT_EQ(o.code, 2);
   EXPECT_NE(o.output.find("bad.csv:3"), std::string::npos) << o.output;
+}
+
+// a stand-in `python3` in a folder of its own, for the interpreter choice
+fs::path fake_python(const fs::path& dir, const std::string& body) {
+  fs::create_directories(dir);
+  const fs::path p = dir / "python3";
+  std::ofstream(p) << "#!/bin/sh\n" << body << "\n";
+  fs::permissions(p, fs::perms::owner_all);
+  return dir;
+}
+
+// the charts run under `python3` on PATH when it has matplotlib, else under Debian's; a failure
+// is blamed on matplotlib only when matplotlib is what is missing
+TEST_F(AnalyzeSeries, ChartsUseAPythonThatHasMatplotlib) {
+  if (std::system("/usr/bin/python3 -c 'import numpy, matplotlib' 2>/dev/null") != 0)
+    GTEST_SKIP() << "Debian's python3 has no matplotlib here";
+  const std::string path = std::getenv("PATH") ? std::getenv("PATH") : "/usr/bin:/bin";
+  const std::string manifest = (dir_ / "manifest.csv").string();
+  testing::Launch how;
+  how.alarm_s = 120;
+  // the user's python3 lacks matplotlib: Debian's draws, the user's runs no script
+  const fs::path bare = fake_python(dir_ / "bare", "case \"$1\" in -c) exit 1;; esac\ntouch " +
+                                                       (dir_ / "bare-used").string() + "\nexit 1");
+  how.env = {"PATH=" + bare.string() + ":" + path};
+  auto o = run_binary({"analyze", "--manifest", manifest, "--out", (dir_ / "a1").string(), "-q"},
+                      dir_ / "log.txt", how);
+  ASSERT_EQ(o.code, 0) << o.output;
+  EXPECT_TRUE(fs::exists(dir_ / "a1" / "fig5_mean_sigma_experiment.png")) << o.output;
+  EXPECT_FALSE(fs::exists(dir_ / "bare-used"));
+  // the user's python3 has it: it draws
+  const fs::path full = fake_python(
+      dir_ / "full", "touch " + (dir_ / "full-used").string() + "\nexec /usr/bin/python3 \"$@\"");
+  how.env = {"PATH=" + full.string() + ":" + path};
+  o = run_binary({"analyze", "--manifest", manifest, "--out", (dir_ / "a2").string(), "-q"},
+                 dir_ / "log.txt", how);
+  ASSERT_EQ(o.code, 0) << o.output;
+  EXPECT_TRUE(fs::exists(dir_ / "a2" / "fig5_mean_sigma_experiment.png")) << o.output;
+  EXPECT_TRUE(fs::exists(dir_ / "full-used"));
+  // GS_PYTHON wins, and a python without matplotlib is named as such
+  how.env = {"GS_PYTHON=" + (bare / "python3").string()};
+  o = run_binary({"analyze", "--manifest", manifest, "--out", (dir_ / "a3").string(), "-q"},
+                 dir_ / "log.txt", how);
+  EXPECT_EQ(o.code, 0) << o.output;
+  EXPECT_NE(o.output.find("cannot import numpy and matplotlib"), std::string::npos) << o.output;
+  EXPECT_TRUE(fs::exists(dir_ / "a3" / "summary.csv"));
+  // a script that fails for another reason is not blamed on matplotlib
+  fs::create_directories(dir_ / "tools");
+  std::ofstream(dir_ / "tools" / "charts_tapping.py") << "raise KeyError('kinetic_energy')\n";
+  how.env = {"GS_TOOLS_DIR=" + (dir_ / "tools").string()};
+  o = run_binary({"analyze", "--manifest", manifest, "--out", (dir_ / "a4").string(), "-q"},
+                 dir_ / "log.txt", how);
+  EXPECT_EQ(o.code, 0) << o.output;
+  EXPECT_NE(o.output.find("charts_tapping.py failed under"), std::string::npos) << o.output;
+  EXPECT_EQ(o.output.find("matplotlib"), std::string::npos) << o.output;
 }
 
 }  // namespace

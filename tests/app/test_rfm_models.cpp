@@ -76,6 +76,14 @@ TEST(RfmModels, CascadeAndBadInput) {
   EXPECT_TRUE(fs::exists(c.p / "cascade_unoncp.csv"));
   EXPECT_NEAR(c.json("unoncp_D2"), std::log2(3.0), 1e-9);
   EXPECT_TRUE(std::isfinite(c.json("unoncp_D_f")));
+  EXPECT_EQ(c.json("unoncp_power_law"), 1.0);
+  // the symmetrised rule has no power law to fit: said so, not a meaningless D_f
+  Dir s("cascade-sym");
+  ASSERT_EQ(gransim("model cascade --kind symmetrised --levels 6 --realisations 20 --fit-lo 2 "
+                    "--fit-hi 16 --no-charts -q --out " +
+                    s.p.string()),
+            0);
+  EXPECT_EQ(s.json("symmetrised_power_law"), 0.0);
   Dir bad("bad");
   EXPECT_EQ(gransim("model cascade --kind nonsense --out " + bad.p.string()), 2);
   EXPECT_EQ(gransim("model walk --radius -1 --no-charts --out " + bad.p.string()), 2);

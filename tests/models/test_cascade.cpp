@@ -1,6 +1,7 @@
 // multiplicative cascades (T.6.1–T.6.5): weights, D₂, FFT S(k) against the exact E[S(k)], D_f
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <cstdio>
@@ -89,6 +90,32 @@ TEST(Cascade, ConservingRulesKeepTheMass) {
   }
   EXPECT_EQ(cascade_from_name("meakin3"), CascadeKind::meakin3);
   EXPECT_THROW(cascade_from_name("bogus"), InputError);
+}
+
+TEST(Cascade, SymmetrisedFieldHasUniformProjections) {
+  // the reason given for its missing power law: every row and column of the field carries the
+  // same mass, so S(k) vanishes on the axes; the other rules do not do this
+  for (CascadeKind k : kAll) {
+    RngStream rng(9, 0);
+    const int n = 1 << 6;
+    const auto m = cascade_field(k, 6, rng);
+    double spread = 0.0;
+    for (int j = 0; j < n; ++j) {
+      double row = 0.0, col = 0.0;
+      for (int i = 0; i < n; ++i) {
+        row += m[static_cast<std::size_t>(j * n + i)];
+        col += m[static_cast<std::size_t>(i * n + j)];
+      }
+      spread = std::max({spread, std::abs(row * n - 1.0), std::abs(col * n - 1.0)});
+    }
+    if (k == CascadeKind::symmetrised) {
+      EXPECT_LT(spread, 1e-12);
+      EXPECT_FALSE(cascade_no_power_law_reason(k).empty());
+    } else if (k != CascadeKind::unoncp) {
+      EXPECT_GT(spread, 0.05) << cascade_name(k);
+      EXPECT_TRUE(cascade_no_power_law_reason(k).empty()) << cascade_name(k);
+    }
+  }
 }
 
 TEST(Cascade, TransformAgreesWithDirectSum) {
