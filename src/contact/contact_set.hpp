@@ -4,13 +4,13 @@
 #include <vector>
 
 #include "broadphase/broadphase.hpp"
-#include "force/laws/polygon_law.hpp"
+#include "contact/tangential_spring.hpp"
 
 namespace gs {
 
 /// state carried by one contact from step to step
 struct ContactState {
-  law::TangentialSpring spring;  ///< Cundall–Strack spring and previous v∥ (P.35)
+  TangentialSpring spring;      ///< Cundall–Strack spring and previous v∥ (P.35)
   double h_prev = 0.0;           ///< h_eff at the previous step (finite-difference ḣ_eff), m
 };
 

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "contact/tangential_spring.hpp"
+
 namespace gs::law {
 
 /// material constants of Model P
@@ -25,11 +27,7 @@ inline double poly_normal_force(const PolyLawParams& p, double h_eff, double hdo
   return poly_normal_force_damped(p, h_eff, hdot_eff, p.gamma * std::sqrt(p.E * m_perp));
 }
 
-/// the tangential (Cundall–Strack) state carried by a contact between steps
-struct TangentialSpring {
-  double spring = 0.0;  ///< F*∥ of the previous step, N
-  double v_prev = 0.0;  ///< v∥ of the previous step, m/s
-};
+using gs::TangentialSpring;  // the contact's stored state, updated by the laws below
 
 /// tangential force (P.35–P.36); updates the spring in place, returns F∥ (N), with
 /// v_par the relative tangential velocity (P.32) at this step and F_n = F⊥ at this step.
