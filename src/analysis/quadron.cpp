@@ -24,6 +24,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include "analysis/least_squares.hpp"
+
 namespace gs {
 
 double langevin(double x) {
@@ -143,10 +145,14 @@ QuadronFit fit_quadron(const std::vector<double>& beta_hat, const std::vector<do
   }
 
   // residuals r_i = (φ̄_i − φ̄(β̂_i + β₀; a))/σ_i and their Jacobian J = ∂r/∂(a, β₀)
-  auto evaluate = [&](double a, double b0, Eigen::VectorXd& r, Eigen::MatrixXd& jac) {
-    r.resize(n);
-    jac.resize(n, 2);
+  const Residuals residuals = [&](const Eigen::VectorXd& q, Eigen::VectorXd& r,
+                                  Eigen::MatrixXd* jac) {
+    const double a = q(0), b0 = q(1);
+    if (!(a > 0.0) || !std::isfinite(a) || !std::isfinite(b0)) return std::numeric_limits<double>::quiet_NaN();
+    r.resize(static_cast<Eigen::Index>(n));
+    if (jac) jac->resize(static_cast<Eigen::Index>(n), 2);
     for (std::size_t i = 0; i < n; ++i) {
+      const auto row = static_cast<Eigen::Index>(i);
       const double beta = beta_hat[i] + b0;
       const double x = beta * d / a;
       const double ph = quadron_phi(beta, a, p);
@@ -159,59 +165,30 @@ QuadronFit fit_quadron(const std::vector<double>& beta_hat, const std::vector<do
         s = std::sqrt(sphi(i) * sphi(i) + dphi_db * dphi_db * sbeta(i) * sbeta(i));
         if (!(s > 0.0)) s = 1e-300;
       }
-      r(i) = (phi[i] - ph) / s;
-      jac(i, 0) = -dphi_da / s;
-      jac(i, 1) = -dphi_db / s;
+      r(row) = (phi[i] - ph) / s;
+      if (jac) {
+        (*jac)(row, 0) = -dphi_da / s;
+        (*jac)(row, 1) = -dphi_db / s;
+      }
     }
     return r.squaredNorm();
   };
-
-  // Levenberg–Marquardt with Marquardt's diagonal scaling (a ~ 10², β₀ ~ 10⁴ differ widely)
-  Eigen::VectorXd r;
-  Eigen::MatrixXd jac;
-  double chi2 = evaluate(f.a, f.beta0, r, jac);
-  double lambda = 1e-3;
-  for (f.iterations = 1; f.iterations <= 500; ++f.iterations) {
-    const Eigen::Matrix2d jtj = jac.transpose() * jac;
-    const Eigen::Vector2d g = jac.transpose() * r;
-    bool accepted = false;
-    Eigen::Vector2d step = Eigen::Vector2d::Zero();
-    while (lambda < 1e20) {
-      Eigen::Matrix2d m = jtj;
-      m(0, 0) += lambda * std::max(jtj(0, 0), 1e-300);
-      m(1, 1) += lambda * std::max(jtj(1, 1), 1e-300);
-      step = -m.ldlt().solve(g);
-      const double a_new = f.a + step(0);
-      if (a_new > 0.0 && std::isfinite(a_new) && std::isfinite(step(1))) {
-        Eigen::VectorXd r_new;
-        Eigen::MatrixXd j_new;
-        const double chi2_new = evaluate(a_new, f.beta0 + step(1), r_new, j_new);
-        if (std::isfinite(chi2_new) && chi2_new <= chi2) {
-          const double drop = chi2 - chi2_new;
-          f.a = a_new;
-          f.beta0 += step(1);
-          r = r_new;
-          jac = j_new;
-          chi2 = chi2_new;
-          accepted = true;
-          // converged when the step is negligible against the parameters, or when χ² stalls
-          // under nearly Gauss–Newton steps (small damping)
-          const bool small_step = std::abs(step(0)) <= 1e-10 * std::abs(f.a) &&
-                                  std::abs(step(1)) <= 1e-10 * (std::abs(f.beta0) + f.a / d);
-          const bool stalled = lambda < 1.0 && drop <= 1e-13 * std::max(chi2, 1e-300);
-          if (small_step || stalled) f.converged = true;
-          lambda = std::max(lambda / 5.0, 1e-12);
-          break;
-        }
-      }
-      lambda *= 4.0;
-    }
-    if (!accepted) {
-      // no downhill step at any damping: we sit at the minimum to round-off
-      f.converged = true;
-    }
-    if (f.converged) break;
-  }
+  LmSettings s;
+  s.grow = 4.0;
+  s.lambda_max = 1e20;
+  s.rel_tol = 1e-13;
+  s.stall_below_lambda = 1.0;  // a stall counts only under nearly Gauss–Newton steps
+  s.small_step = [d](const Eigen::VectorXd& q, const Eigen::VectorXd& step) {
+    return std::abs(step(0)) <= 1e-10 * std::abs(q(0)) &&
+           std::abs(step(1)) <= 1e-10 * (std::abs(q(1)) + q(0) / d);
+  };
+  const LmOutcome o = levenberg_marquardt(residuals, Eigen::Vector2d(f.a, f.beta0), s);
+  f.a = o.p(0);
+  f.beta0 = o.p(1);
+  f.iterations = o.iterations + 1;
+  f.converged = o.converged;
+  const double chi2 = o.chi2;
+  const Eigen::MatrixXd& jac = o.jac;
   if (!f.converged) f.note = "Levenberg-Marquardt did not converge in 500 iterations";
 
   // covariance (JᵀJ)⁻¹ of the weighted problem; unweighted: scaled by χ²/dof

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string>
 
+#include "analysis/least_squares.hpp"
 #include "core/error.hpp"
 
 namespace gs::rfm {
@@ -88,37 +89,6 @@ PowerLawFit fit_power_law(std::span<const double> x, std::span<const double> y,
   return p;
 }
 
-namespace {
-
-// χ² of the model at parameters p
-double chi2_of(const Model& f, std::span<const double> x, std::span<const double> y,
-               std::span<const double> sigma, const Eigen::VectorXd& p) {
-  double c = 0.0;
-  for (std::size_t i = 0; i < x.size(); ++i) {
-    const double r = (y[i] - f(x[i], p)) / sigma[i];
-    c += r * r;
-  }
-  return c;
-}
-
-// weighted Jacobian J_ij = ∂f(x_i)/∂p_j / σ_i by central differences
-Eigen::MatrixXd jacobian(const Model& f, std::span<const double> x,
-                         std::span<const double> sigma, const Eigen::VectorXd& p) {
-  const Eigen::Index np = p.size();
-  Eigen::MatrixXd j(static_cast<Eigen::Index>(x.size()), np);
-  for (Eigen::Index k = 0; k < np; ++k) {
-    const double h = 1e-6 * std::max(std::abs(p[k]), 1e-8);
-    Eigen::VectorXd pp = p, pm = p;
-    pp[k] += h;
-    pm[k] -= h;
-    for (std::size_t i = 0; i < x.size(); ++i)
-      j(static_cast<Eigen::Index>(i), k) = (f(x[i], pp) - f(x[i], pm)) / (2.0 * h) / sigma[i];
-  }
-  return j;
-}
-
-}  // namespace
-
 LmResult fit_lm(const Model& f, std::span<const double> x, std::span<const double> y,
                 std::span<const double> sigma, Eigen::VectorXd p0, const LmOptions& opt) {
   const std::size_t n = x.size();
@@ -127,50 +97,39 @@ LmResult fit_lm(const Model& f, std::span<const double> x, std::span<const doubl
   if (n <= static_cast<std::size_t>(p0.size()))
     throw InputError("fit_lm", "", "need more points (" + std::to_string(n) +
                                        ") than parameters (" + std::to_string(p0.size()) + ")");
-  LmResult r;
-  r.p = std::move(p0);
-  r.chi2 = chi2_of(f, x, y, sigma, r.p);
-  double lambda = opt.lambda0;
-
-  // damped Gauss–Newton steps: (JᵀJ + λ diag(JᵀJ)) δ = Jᵀ r
-  for (r.iterations = 0; r.iterations < opt.max_iterations; ++r.iterations) {
-    const Eigen::MatrixXd j = jacobian(f, x, sigma, r.p);
-    Eigen::VectorXd res(static_cast<Eigen::Index>(n));
+  const auto rows = static_cast<Eigen::Index>(n);
+  // r_i = (y_i − f(x_i))/σ_i; ∂r_i/∂p_k by central differences
+  const Residuals residuals = [&](const Eigen::VectorXd& p, Eigen::VectorXd& r,
+                                  Eigen::MatrixXd* jac) {
+    r.resize(rows);
     for (std::size_t i = 0; i < n; ++i)
-      res[static_cast<Eigen::Index>(i)] = (y[i] - f(x[i], r.p)) / sigma[i];
-    const Eigen::MatrixXd jtj = j.transpose() * j;
-    const Eigen::VectorXd g = j.transpose() * res;
-    bool improved = false;
-    // raise λ until a step lowers χ² (or give up when λ is huge)
-    while (lambda < 1e16) {
-      Eigen::MatrixXd a = jtj;
-      for (Eigen::Index k = 0; k < a.rows(); ++k) a(k, k) += lambda * std::max(jtj(k, k), 1e-300);
-      const Eigen::VectorXd step = a.ldlt().solve(g);
-      const Eigen::VectorXd trial = r.p + step;
-      const double c = chi2_of(f, x, y, sigma, trial);
-      if (std::isfinite(c) && c <= r.chi2) {
-        const double gain = r.chi2 - c;
-        r.p = trial;
-        const double old = r.chi2;
-        r.chi2 = c;
-        lambda = std::max(lambda * 0.2, 1e-12);
-        improved = true;
-        if (gain <= opt.rel_tol * std::max(old, 1e-300)) r.converged = true;
-        break;
+      r[static_cast<Eigen::Index>(i)] = (y[i] - f(x[i], p)) / sigma[i];
+    if (jac) {
+      jac->resize(rows, p.size());
+      for (Eigen::Index k = 0; k < p.size(); ++k) {
+        const double h = 1e-6 * std::max(std::abs(p[k]), 1e-8);
+        Eigen::VectorXd pp = p, pm = p;
+        pp[k] += h;
+        pm[k] -= h;
+        for (std::size_t i = 0; i < n; ++i)
+          (*jac)(static_cast<Eigen::Index>(i), k) = -(f(x[i], pp) - f(x[i], pm)) / (2.0 * h) / sigma[i];
       }
-      lambda *= 10.0;
     }
-    if (!improved) {
-      r.converged = true;  // no step lowers χ²: at a minimum within round-off
-      break;
-    }
-    if (r.converged) break;
-  }
+    return r.squaredNorm();
+  };
+  LmSettings s;
+  s.max_iterations = opt.max_iterations;
+  s.rel_tol = opt.rel_tol;
+  s.lambda0 = opt.lambda0;
+  const LmOutcome o = levenberg_marquardt(residuals, std::move(p0), s);
 
+  LmResult r;
+  r.p = o.p;
+  r.chi2 = o.chi2;
+  r.iterations = o.iterations;
+  r.converged = o.converged;
   // covariance from the curvature at the minimum
-  const Eigen::MatrixXd j = jacobian(f, x, sigma, r.p);
-  const Eigen::MatrixXd jtj = j.transpose() * j;
-  r.cov = jtj.completeOrthogonalDecomposition().pseudoInverse();
+  r.cov = (o.jac.transpose() * o.jac).completeOrthogonalDecomposition().pseudoInverse();
   r.err = r.cov.diagonal().cwiseMax(0.0).cwiseSqrt();
   r.dof = static_cast<int>(n) - static_cast<int>(r.p.size());
   return r;
