@@ -51,6 +51,9 @@ endif()
 gs_module(app DIRS app app/reproduce
   DEPS gs_measure gs_render gs_output gs_analysis gs_models CLI11::CLI11 Threads::Threads
   nlohmann_json::nlohmann_json)
+# the scripts and scenes of the source tree, for a build tree that is not beside them
+set_property(SOURCE ${CMAKE_SOURCE_DIR}/src/app/run_info.cpp APPEND PROPERTY
+  COMPILE_DEFINITIONS GS_SOURCE_DIR_OF_BUILD="${CMAKE_SOURCE_DIR}")
 if(TARGET gs_render_gl)
   target_link_libraries(gs_app PUBLIC gs_render_gl)
 endif()

@@ -70,15 +70,25 @@ std::string self_executable() {
   return p;
 }
 
+std::string find_data_dir(const std::string& folder, const std::string& file) {
+  std::error_code ec;
+  const fs::path exe_dir = fs::path(self_executable()).parent_path();
+  for (const fs::path& d : {exe_dir / ".." / folder, exe_dir / folder,
+                            exe_dir / ".." / "share" / "gransim" / folder})
+    if (fs::exists(d / file, ec)) return fs::weakly_canonical(d, ec).string();
+#ifdef GS_SOURCE_DIR_OF_BUILD
+  // a build tree outside the sources (cmake -S . -B ../build) has nothing beside it
+  const fs::path source = fs::path(GS_SOURCE_DIR_OF_BUILD) / folder;
+  if (fs::exists(source / file, ec)) return source.string();
+#endif
+  return "";
+}
+
 std::string find_tools_dir(const std::string& script) {
   std::error_code ec;
   if (const char* env = std::getenv("GS_TOOLS_DIR"); env && *env)
     return fs::exists(fs::path(env) / script, ec) ? std::string(env) : std::string();
-  const fs::path exe_dir = fs::path(self_executable()).parent_path();
-  for (const fs::path& d :
-       {exe_dir / ".." / "tools", exe_dir / "tools", exe_dir / ".." / "share" / "gransim" / "tools"})
-    if (fs::exists(d / script, ec)) return fs::weakly_canonical(d, ec).string();
-  return "";
+  return find_data_dir("tools", script);
 }
 
 }  // namespace gs

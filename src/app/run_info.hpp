@@ -20,8 +20,12 @@ std::string run_status(const std::string& dir);
 /// the gransim executable of this process (/proc/self/exe)
 std::string self_executable();
 
-/// the folder of helper scripts: $GS_TOOLS_DIR, else <dir of the executable>/../tools, else
-/// <dir of the executable>/tools; "" when none holds `script`
+/// the shipped folder `folder` (tools, scenes) that holds `file`: <dir of the executable>/../F,
+/// <dir>/F, <dir>/../share/gransim/F (an install), else the source tree the binary was built
+/// from; "" when none holds it
+std::string find_data_dir(const std::string& folder, const std::string& file);
+
+/// the folder of helper scripts: $GS_TOOLS_DIR, else find_data_dir("tools", script)
 std::string find_tools_dir(const std::string& script);
 
 }  // namespace gs

@@ -53,6 +53,29 @@ class Install(unittest.TestCase):
             if 'OSMesa' in version:
                 self.assertIn('OSMesa', r.stdout + r.stderr)
 
+    def test_a_build_tree_elsewhere_finds_the_source_tools(self):
+        # a binary with nothing beside it (as in `cmake -S . -B ../build`) uses the source tree
+        # it was built from: the charts of `analyze` are drawn
+        if subprocess.run(['/usr/bin/python3', '-c', 'import matplotlib'],
+                          capture_output=True).returncode != 0:
+            self.skipTest('no matplotlib for the charts')
+        with tempfile.TemporaryDirectory() as d:
+            d = pathlib.Path(d)
+            (d / 'bin').mkdir()
+            shutil.copy2(BUILD / 'gransim', d / 'bin' / 'gransim')
+            rows = ['file,protocol,control,test_area']
+            for k, mean in enumerate((0.835, 0.830, 0.826)):
+                lines = ['tap,phi'] + [f'{i + 1},{mean + 0.002 * ((i * 7919 + k) % 11 - 5) / 5:.6f}'
+                                       for i in range(120)]
+                (d / f's{k}.csv').write_text('\n'.join(lines) + '\n')
+                rows.append(f's{k}.csv,experiment,{2 * k + 2},0.13')
+            (d / 'manifest.csv').write_text('\n'.join(rows) + '\n')
+            r = run([str(d / 'bin' / 'gransim'), 'analyze', '--manifest', 'manifest.csv',
+                     '--out', 'analysis', '-q'], cwd=d)
+            self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
+            self.assertNotIn('charts skipped', r.stdout + r.stderr)
+            self.assertTrue((d / 'analysis' / 'fig5_mean_sigma_experiment.png').exists())
+
 
 if __name__ == '__main__':
     unittest.main()

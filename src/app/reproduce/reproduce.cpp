@@ -27,15 +27,14 @@ using json = nlohmann::json;
 namespace {
 
 // the shipped scenes: $GS_SCENES_DIR, else beside the executable (build tree or install)
+// or in the source tree it was built from
 std::string find_scenes_dir(const std::string& scene) {
   std::error_code ec;
   if (const char* env = std::getenv("GS_SCENES_DIR"); env && *env) {
     if (fs::exists(fs::path(env) / scene, ec)) return env;
     throw InputError(env, "GS_SCENES_DIR", "has no " + scene);
   }
-  const fs::path exe = fs::path(self_executable()).parent_path();
-  for (const fs::path& d : {exe / ".." / "scenes", exe / ".." / "share" / "gransim" / "scenes"})
-    if (fs::exists(d / scene, ec)) return fs::weakly_canonical(d, ec).string();
+  if (std::string d = find_data_dir("scenes", scene); !d.empty()) return d;
   throw InputError(scene, "", "the shipped scenes are not beside the executable (set GS_SCENES_DIR)");
 }
 
