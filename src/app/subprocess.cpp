@@ -11,6 +11,7 @@
 #include <cstring>
 #include <filesystem>
 #include <sstream>
+#include <utility>
 
 extern char** environ;
 
@@ -33,30 +34,33 @@ std::string on_path(const std::string& name) {
   return "";
 }
 
-// the child is silent on both streams: only its exit code is wanted
-std::string run_silent(const std::vector<std::string>& args) {
+// spawn argv (looked up on PATH), its stdout and/or stderr to /dev/null, and wait; the errno
+// of a failed start as {false, errno}, else {true, waitpid status}
+std::pair<bool, int> spawn_and_wait(const std::vector<std::string>& args, bool quiet_out,
+                                    bool quiet_err) {
   std::vector<std::string> copy = args;
   std::vector<char*> argv;
   for (auto& a : copy) argv.push_back(a.data());
   argv.push_back(nullptr);
   posix_spawn_file_actions_t fa;
   posix_spawn_file_actions_init(&fa);
-  posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&fa, 2, "/dev/null", O_WRONLY, 0);
+  if (quiet_out) posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
+  if (quiet_err) posix_spawn_file_actions_addopen(&fa, 2, "/dev/null", O_WRONLY, 0);
   pid_t pid = -1;
   const int rc = posix_spawnp(&pid, argv[0], &fa, nullptr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&fa);
-  if (rc != 0) return "cannot be started";
+  if (rc != 0) return {false, rc};
   int status = 0;
   while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
   }
-  return WIFEXITED(status) && WEXITSTATUS(status) == 0 ? "" : "failed";
+  return {true, status};
 }
 
 }  // namespace
 
 bool python_has_charts(const std::string& python) {
-  return run_silent({python, "-c", "import numpy, matplotlib"}).empty();
+  const auto [started, status] = spawn_and_wait({python, "-c", "import numpy, matplotlib"}, true, true);
+  return started && WIFEXITED(status) && WEXITSTATUS(status) == 0;
 }
 
 std::string python_interpreter() {
@@ -73,20 +77,8 @@ std::string python_interpreter() {
 
 std::string run_process(const std::vector<std::string>& args, bool quiet_stdout) {
   if (args.empty()) return "nothing to run";
-  std::vector<std::string> copy = args;
-  std::vector<char*> argv;
-  for (auto& a : copy) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t fa;
-  posix_spawn_file_actions_init(&fa);
-  if (quiet_stdout) posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
-  pid_t pid = -1;
-  const int rc = posix_spawnp(&pid, argv[0], &fa, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&fa);
-  if (rc != 0) return args[0] + " cannot be started (" + std::strerror(rc) + ")";
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-  }
+  const auto [started, status] = spawn_and_wait(args, quiet_stdout, false);
+  if (!started) return args[0] + " cannot be started (" + std::strerror(status) + ")";
   if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return "";
   if (WIFEXITED(status) && WEXITSTATUS(status) == 127) return args[0] + " was not found";
   if (WIFSIGNALED(status))
