@@ -66,7 +66,7 @@ void write_trajectory_frame(std::ostream& out, const World& w, const ContactSet*
     const double vx = w.s.vx[i], vy = w.s.vy[i], th = w.s.th[i];
     // orientation: the unit quaternion (x, y, z, w) of the turn by θ about z
     std::snprintf(buf, sizeof buf,
-                  " %.10g %.10g 0 %s %zu %zu %.8g %.8g 0 %.8g %.10g 0 0 %.10g %.10g 0 0 %.8g %.8g "
+                  " %.10g %.10g 0 %s %zu %zu %.10g %.10g 0 %.10g %.10g 0 0 %.10g %.10g 0 0 %.10g %.10g "
                   "%d %d\n",
                   w.s.x[i], w.s.y[i], names[sp].c_str(), sp, label, vx, vy, w.radius[i], th,
                   std::sin(0.5 * th), std::cos(0.5 * th), w.s.w[i], std::hypot(vx, vy),
