@@ -1,6 +1,7 @@
 #include "app/observers.hpp"
 
 #include "app/render_recorder.hpp"
+#include "app/snapshot_observer.hpp"
 #include "measure/rfm_observer.hpp"
 #include "measure/tap_observer.hpp"
 
@@ -15,6 +16,8 @@ Observers make_observers(const SceneSpec& scene) {
   if (auto rfm = make_rfm_observer(scene)) obs.push_back(std::move(rfm));
   // [render]: frames and movie, trajectory.xyz (app/render_recorder.cpp)
   add_render_observers(scene, obs);
+  // [output.snapshots]: configurations and contact forces (app/snapshot_observer.cpp)
+  if (auto snap = make_snapshot_observer(scene)) obs.push_back(std::move(snap));
   return obs;
 }
 

@@ -217,7 +217,7 @@ class TrajectoryWriter final : public Observer {
  private:
   void write(const Simulation& sim) {
     const World& w = sim.world();
-    write_trajectory_frame(out_, w, sim.gravity(), frame_info(w, sim.gravity()).tap);
+    write_trajectory_frame(out_, w, &sim.contacts(), sim.gravity(), frame_info(w, sim.gravity()).tap);
     out_.flush();  // a frame on disk is a frame kept, whatever happens next
     if (!out_) throw OutputError(path_ + ": write failed (disk full or removed?)");
   }

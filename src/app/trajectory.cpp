@@ -9,14 +9,40 @@
 #include <map>
 #include <sstream>
 
+#include "app/render_world.hpp"
 #include "core/error.hpp"
 
 namespace gs {
 
-void write_trajectory_frame(std::ostream& out, const World& w, Vec2 gravity,
-                            std::optional<long> tap) {
+namespace {
+
+constexpr std::string_view kElements[] = {
+    "H",  "He", "Li", "Be", "B",  "C",  "N",  "O",  "F",  "Ne", "Na", "Mg", "Al", "Si", "P",
+    "S",  "Cl", "Ar", "K",  "Ca", "Sc", "Ti", "V",  "Cr", "Mn", "Fe", "Co", "Ni", "Cu", "Zn",
+    "Ga", "Ge", "As", "Se", "Br", "Kr", "Rb", "Sr", "Y",  "Zr", "Nb", "Mo", "Tc", "Ru", "Rh",
+    "Pd", "Ag", "Cd", "In", "Sn", "Sb", "Te", "I",  "Xe", "Cs", "Ba", "La", "Ce", "Pr", "Nd",
+    "Pm", "Sm", "Eu", "Gd", "Tb", "Dy", "Ho", "Er", "Tm", "Yb", "Lu", "Hf", "Ta", "W",  "Re",
+    "Os", "Ir", "Pt", "Au", "Hg", "Tl", "Pb", "Bi", "Po", "At", "Rn", "Fr", "Ra", "Ac", "Th",
+    "Pa", "U",  "Np", "Pu", "Am", "Cm", "Bk", "Cf", "Es", "Fm", "Md", "No", "Lr", "Rf", "Db",
+    "Sg", "Bh", "Hs", "Mt", "Ds", "Rg", "Cn", "Nh", "Fl", "Mc", "Lv", "Ts", "Og"};
+
+}  // namespace
+
+std::string_view species_symbol(std::size_t k) {
+  return kElements[k % (sizeof kElements / sizeof kElements[0])];
+}
+
+std::string name_token(const std::string& name) {
+  std::string t = name;
+  for (char& c : t)
+    if (std::isspace(static_cast<unsigned char>(c))) c = '_';
+  return t;
+}
+
+void write_trajectory_frame(std::ostream& out, const World& w, const ContactSet* contacts,
+                            Vec2 gravity, std::optional<long> tap) {
   const std::size_t n = w.size();
-  char buf[512];
+  char buf[640];
   // the comment line: box as a lattice (z of unit thickness), periodicity, clock, gravity
   const bool px = w.box == BoxKind::Periodic || w.box == BoxKind::Ring1D;
   const bool py = w.box == BoxKind::Periodic;
@@ -28,16 +54,24 @@ void write_trajectory_frame(std::ostream& out, const World& w, Vec2 gravity,
   out << n << '\n' << buf;
   if (tap) out << " Tap=" << *tap;
   out << " pbc=\"" << (px ? 'T' : 'F') << ' ' << (py ? 'T' : 'F') << " F\"\n";
+  const std::vector<double> z = contacts ? contact_counts(w, *contacts) : std::vector<double>(n);
+  std::vector<std::string> names;
+  for (const Species& k : w.species) names.push_back(name_token(k.name));
   // one line per particle, in label order (a spatial sort moves particles between slots)
   const std::vector<std::uint32_t> slot = w.slots_by_id();
   for (std::size_t label = 0; label < n; ++label) {
     const std::size_t i = slot.size() == n ? slot[label] : label;
-    const Species& k = w.species[w.sp[i]];
-    const double vx = w.s.vx[i], vy = w.s.vy[i];
-    std::snprintf(buf, sizeof buf, " %.10g %.10g 0 %.8g %.8g 0 %.8g %.10g %.8g %.8g %d\n",
-                  w.s.x[i], w.s.y[i], vx, vy, w.radius[i], w.s.th[i], w.s.w[i],
-                  std::hypot(vx, vy), k.shape == ShapeKind::Polygon ? k.sides : 0);
-    out << k.name << buf;
+    const std::size_t sp = static_cast<std::size_t>(w.sp[i]);
+    const Species& k = w.species[sp];
+    const double vx = w.s.vx[i], vy = w.s.vy[i], th = w.s.th[i];
+    // orientation: the unit quaternion (x, y, z, w) of the turn by θ about z
+    std::snprintf(buf, sizeof buf,
+                  " %.10g %.10g 0 %s %zu %zu %.10g %.10g 0 %.10g %.10g 0 0 %.10g %.10g 0 0 %.10g %.10g "
+                  "%d %d\n",
+                  w.s.x[i], w.s.y[i], names[sp].c_str(), sp, label, vx, vy, w.radius[i], th,
+                  std::sin(0.5 * th), std::cos(0.5 * th), w.s.w[i], std::hypot(vx, vy),
+                  k.shape == ShapeKind::Polygon ? k.sides : 0, static_cast<int>(z[i]));
+    out << species_symbol(sp) << buf;
   }
 }
 
@@ -155,6 +189,9 @@ bool TrajectoryReader::next(TrajectoryFrame& f) {
   };
   int ncol = 0;
   for (const auto& [name, c] : col) ncol = std::max(ncol, c.first + c.second);
+  // ω: the z component of an `omega` vector, or the single `omega` column of older files
+  const int omega_k = col.count("omega") && col.at("omega").second >= 3 ? 2 : 0;
+  const int species_col = col.count("name") ? col.at("name").first : col.at("species").first;
   for (long long i = 0; i < n; ++i) {
     if (!std::getline(in_, line))
       fail("the frame ends after " + std::to_string(i) + " of " + std::to_string(n) + " particles");
@@ -164,14 +201,15 @@ bool TrajectoryReader::next(TrajectoryFrame& f) {
     for (std::string t; ls >> t;) tok.push_back(t);
     if (static_cast<int>(tok.size()) < ncol)
       fail("expected " + std::to_string(ncol) + " columns, got " + std::to_string(tok.size()));
-    f.species.push_back(tok[col["species"].first]);
+    // species by name: the `name` column when there is one, else `species` (older files)
+    f.species.push_back(tok[species_col]);
     f.x.push_back(value(tok, "pos", 0, 0.0));
     f.y.push_back(value(tok, "pos", 1, 0.0));
     f.vx.push_back(value(tok, "velo", 0, 0.0));
     f.vy.push_back(value(tok, "velo", 1, 0.0));
     f.radius.push_back(value(tok, "radius", 0, 0.0));
     f.theta.push_back(value(tok, "theta", 0, 0.0));
-    f.omega.push_back(value(tok, "omega", 0, 0.0));
+    f.omega.push_back(value(tok, "omega", omega_k, 0.0));
     f.speed.push_back(value(tok, "speed", 0, std::hypot(f.vx.back(), f.vy.back())));
     f.sides.push_back(static_cast<int>(value(tok, "sides", 0, 0.0)));
   }
@@ -186,7 +224,8 @@ void load_trajectory_frame(World& w, const TrajectoryFrame& f, const std::string
   for (std::size_t i = 0; i < f.size(); ++i) {
     int k = -1;
     for (std::size_t s = 0; s < w.species.size(); ++s)
-      if (w.species[s].name == f.species[i]) k = static_cast<int>(s);
+      if (w.species[s].name == f.species[i] || name_token(w.species[s].name) == f.species[i])
+        k = static_cast<int>(s);
     if (k < 0)
       throw InputError(where, "species",
                        "particle " + std::to_string(i) + " has species '" + f.species[i] +

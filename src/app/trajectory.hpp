@@ -1,27 +1,39 @@
-// trajectory export as extended XYZ (one frame after another in one text file; OVITO, ASE and
-// VMD read it): per particle species, position, velocity, radius, orientation, angular
-// velocity, speed and number of sides, with the box, time, step, gravity and tap in each
-// frame's comment line
+// trajectory export as extended XYZ (one frame after another in one text file), in the
+// columns ASE and OVITO map to their own (docs/rendering.md): per particle an element-like
+// symbol, position, species name and index, label, velocity, radius, orientation, angular
+// velocity, speed, number of sides and contacts, with the box, time, step, gravity and tap in
+// each frame's comment line. The reader takes these columns and the older set alike.
 #pragma once
 #include <cstdint>
 #include <fstream>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
+#include "contact/contact_set.hpp"
 #include "core/vec.hpp"
 #include "world/world.hpp"
 
 namespace gs {
 
-/// the columns written, as the Properties= key of the comment line
+/// the columns written, as the Properties= key of the comment line. `species` holds a chemical
+/// symbol (ASE takes it for one, OVITO for the Particle Type), `name` the species' name;
+/// `omega` is the vector (0, 0, ω), OVITO's Angular Velocity
 inline constexpr const char* kTrajectoryProperties =
-    "species:S:1:pos:R:3:velo:R:3:radius:R:1:theta:R:1:omega:R:1:speed:R:1:sides:I:1";
+    "species:S:1:pos:R:3:name:S:1:species_index:I:1:id:I:1:velo:R:3:radius:R:1:theta:R:1:"
+    "orientation:R:4:omega:R:3:speed:R:1:sides:I:1:contacts:I:1";
+
+/// the symbol in the `species` column for species index k: the element with Z = k + 1
+/// (H, He, Li …, repeating after 118)
+std::string_view species_symbol(std::size_t k);
+/// a species name as one whitespace-free token of the `name` column (blanks become '_')
+std::string name_token(const std::string& name);
 
 /// append one frame of the world to `out` (positions as stored: periodic boxes unwrapped up to
-/// the engine's ±32 box lengths)
-void write_trajectory_frame(std::ostream& out, const World& w, Vec2 gravity,
-                            std::optional<long> tap);
+/// the engine's ±32 box lengths); `contacts` gives the contacts column (null: zeros)
+void write_trajectory_frame(std::ostream& out, const World& w, const ContactSet* contacts,
+                            Vec2 gravity, std::optional<long> tap);
 
 /// one frame read back
 struct TrajectoryFrame {

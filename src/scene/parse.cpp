@@ -14,6 +14,7 @@
 #include "scene/reader.hpp"
 #include "scene/render_section.hpp"
 #include "scene/rfm_section.hpp"
+#include "scene/snapshot_section.hpp"
 
 namespace gs {
 
@@ -355,7 +356,7 @@ void read_health(const Ctx& ctx, const TableReader& top, SceneSpec& s) {
 void read_output(const Ctx& ctx, const TableReader& top, SceneSpec& s) {
   TableReader r(ctx, table_or_empty(sub_table(top, "output")), "output",
                 {"series_every", "final_state", "test_rect", "discard_taps",
-                 "checkpoint_minutes", "checkpoint_taps", "checkpoint_steps"});
+                 "checkpoint_minutes", "checkpoint_taps", "checkpoint_steps", "snapshots"});
   OutputSpec& o = s.output;
   o.series_every = static_cast<int>(r.integer("series_every", o.series_every, 1, kIntMax));
   o.final_state = r.boolean("final_state", o.final_state);
@@ -393,6 +394,7 @@ void read_output(const Ctx& ctx, const TableReader& top, SceneSpec& s) {
       r.fail("test_rect", "needs y1 > y0 (got y0 = " + scene_detail::node_text((*a)[1]) +
                               ", y1 = " + scene_detail::node_text((*a)[3]) + ")");
   }
+  scene_detail::read_snapshots(r, s);  // [output.snapshots]: scene/snapshot_section.cpp
 }
 
 // [scene]: the name defaults to the file's stem

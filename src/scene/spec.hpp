@@ -148,6 +148,19 @@ struct HealthSpec {
   bool allow_unstable = false; ///< skip the up-front Δt check
 };
 
+/// [output.snapshots]: the configuration (and its contact forces) at chosen times and at every
+/// tap's measurement, written to DIR/snapshots/ (app/snapshot_observer.cpp, docs/scene-format.md)
+struct SnapshotSpec {
+  bool given = false;          ///< the scene has the table (it is then written back)
+  double every_time = 0.0;     ///< s between snapshots from t = 0 (0 = off)
+  std::vector<double> times;   ///< further snapshot times, s, ascending
+  bool at_taps = false;        ///< at each tap's measurement (tapping drives)
+  bool vtp = true;             ///< formats: VTK XML PolyData (+ the .pvd collection)
+  bool xyz = true;             ///< formats: extended XYZ
+  bool contacts = true;        ///< one CSV row per contact
+  bool enabled() const { return every_time > 0.0 || !times.empty() || at_taps; }
+};
+
 struct OutputSpec {
   int series_every = 100;      ///< steps between series.csv rows
   bool final_state = true;
@@ -158,6 +171,7 @@ struct OutputSpec {
   double checkpoint_minutes = 10.0;  ///< wall-clock minutes between checkpoints
   int checkpoint_taps = 0;           ///< taps between checkpoints (tapping scenes)
   std::int64_t checkpoint_steps = 0; ///< steps between checkpoints
+  SnapshotSpec snapshots;
 };
 
 /// when the frame recorder takes a picture ([render] schedule)

@@ -6,6 +6,7 @@
 #include "scene/reader.hpp"
 #include "scene/render_section.hpp"
 #include "scene/rfm_section.hpp"
+#include "scene/snapshot_section.hpp"
 
 namespace gs {
 
@@ -156,6 +157,11 @@ std::vector<Block> emit(const SceneSpec& s) {
   o.num("checkpoint_minutes", s.output.checkpoint_minutes);
   o.integer("checkpoint_taps", s.output.checkpoint_taps);
   o.integer("checkpoint_steps", s.output.checkpoint_steps);
+  // [output.snapshots]: scene/snapshot_section.cpp (only when the scene has it, so other
+  // scenes keep their key list)
+  if (s.output.snapshots.given)
+    out.push_back(Block{"[output.snapshots]", "output.snapshots",
+                        scene_detail::snapshot_entries(s.output.snapshots)});
   // [render]: scene/render_section.cpp
   out.push_back(Block{"[render]", "render", scene_detail::render_entries(s.render)});
   // [rfm]: scene/rfm_section.cpp (random-force scenes, or when the file had one)

@@ -145,9 +145,14 @@ TEST(RenderCommand, TrajectoryParsesBackToTheFinalState) {
       std::istringstream ls(line);
       std::vector<std::string> cols;
       for (std::string c; ls >> c;) cols.push_back(c);
-      ASSERT_EQ(cols.size(), 12u) << line;
-      EXPECT_EQ(cols[0], "g");
-      EXPECT_EQ(cols[11], "10");  // sides
+      ASSERT_EQ(cols.size(), 22u) << line;
+      EXPECT_EQ(cols[0], "H");    // species 0 as an element symbol (ASE, OVITO)
+      EXPECT_EQ(cols[4], "g");    // its name
+      EXPECT_EQ(cols[5], "0");    // its index
+      EXPECT_EQ(cols[6], std::to_string(i));  // label
+      EXPECT_EQ(cols[16], "0");   // ω as the vector (0, 0, ω)
+      EXPECT_EQ(cols[17], "0");
+      EXPECT_EQ(cols[20], "10");  // sides
     }
     ++frames;
   }
@@ -170,8 +175,33 @@ TEST(RenderCommand, TrajectoryParsesBackToTheFinalState) {
     EXPECT_NEAR(last.theta[i], w.s.th[i], 1e-9);
     EXPECT_NEAR(last.vy[i], w.s.vy[i], 1e-7);
     EXPECT_NEAR(last.speed[i], std::hypot(w.s.vx[i], w.s.vy[i]), 1e-7);
+    EXPECT_NEAR(last.omega[i], w.s.w[i], 1e-7 * (1.0 + std::abs(w.s.w[i])));
     EXPECT_EQ(last.radius[i], 0.008);
+    EXPECT_EQ(last.species[i], "g");  // the name column, not the symbol
   }
+}
+
+// trajectories written before the ASE/OVITO columns (species names in `species`, a single ω
+// column) still read: `movie` and `render` take both
+TEST(RenderCommand, TrajectoryReaderTakesTheOlderColumnsToo) {
+  const fs::path p = scratch() / "old.xyz";
+  std::ofstream(p) << "2\nLattice=\"0.2 0 0 0 0.6 0 0 0 1\" Origin=\"0 0 -0.5\" "
+                      "Properties=species:S:1:pos:R:3:velo:R:3:radius:R:1:theta:R:1:omega:R:1:"
+                      "speed:R:1:sides:I:1 Time=0.025 Step=500 Gravity=\"0 -9.81 0\" pbc=\"F F F\"\n"
+                      "small 0.01 0.02 0 0.5 -0.25 0 0.00636 6.27 1.5 0.56 10\n"
+                      "big 0.03 0.04 0 0 0 0 0.009 0.1 -2.5 0 10\n";
+  TrajectoryReader reader(p.string());
+  TrajectoryFrame f;
+  ASSERT_TRUE(reader.next(f));
+  ASSERT_EQ(f.size(), 2u);
+  EXPECT_EQ(f.species[0], "small");
+  EXPECT_EQ(f.species[1], "big");
+  EXPECT_EQ(f.omega[0], 1.5);
+  EXPECT_EQ(f.omega[1], -2.5);
+  EXPECT_EQ(f.theta[0], 6.27);
+  EXPECT_EQ(f.vx[0], 0.5);
+  EXPECT_EQ(f.step, 500);
+  EXPECT_FALSE(reader.next(f));
 }
 
 TEST(RenderCommand, RenderOfARunDirectoryDrawsItsParticles) {
