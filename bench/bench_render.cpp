@@ -138,7 +138,7 @@ BENCHMARK(BM_RenderEncode720p)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->U
 
 // ---------------------------------------------------------------------------------------------
 // the real thing: the settled paper pile (bench/data/paper_pile_settled.csv, 1184 decagons of
-// scenes/paper_pile.toml) through the World adapter (app/render_world.hpp), as `gransim render`
+// scenes/paper_pile.toml) through the World adapter (view/render_world.hpp), as `gransim render`
 // and the run's frame recorder draw it
 
 const Snapshot& real_pile() {

@@ -37,6 +37,12 @@ if(OSMESA_FOUND)
   endif()
 endif()
 
+# view: World (+ contacts) → frame data and images, the adapter between the engine and render/
+gs_module(view DEPS gs_contact gs_drive gs_render)
+if(TARGET gs_render_gl)
+  target_link_libraries(gs_view PUBLIC gs_render_gl)
+endif()
+
 # output: CSV/JSON, PNG, checkpoints; the movie encoder only where FFmpeg is found
 gs_module(output DEPS gs_core PkgConfig::PNG)
 if(FFMPEG_FOUND)
@@ -49,7 +55,7 @@ if(FFMPEG_FOUND)
 endif()
 
 gs_module(app DIRS app app/reproduce
-  DEPS gs_measure gs_render gs_output gs_analysis gs_models CLI11::CLI11 Threads::Threads
+  DEPS gs_measure gs_view gs_render gs_output gs_analysis gs_models CLI11::CLI11 Threads::Threads
   nlohmann_json::nlohmann_json)
 # the scripts and scenes of the source tree, for a build tree that is not beside them
 set_property(SOURCE ${CMAKE_SOURCE_DIR}/src/app/run_info.cpp APPEND PROPERTY

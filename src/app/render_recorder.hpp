@@ -4,29 +4,13 @@
 #include <memory>
 #include <string>
 
-#include "app/render_world.hpp"
 #include "core/image.hpp"
 #include "render/renderer.hpp"
 #include "scene/spec.hpp"
 #include "sim/observer.hpp"
+#include "view/frame_maker.hpp"
 
 namespace gs {
-
-/// a renderer with the [render] settings: World (+ contacts) → Image
-class FrameMaker {
- public:
-  /// starts the backend named by r.renderer; InputError naming `where` and render.renderer
-  /// when it cannot (e.g. "gl" without a working OSMesa)
-  FrameMaker(const RenderSpec& r, const std::string& where);
-  /// draw one frame (contacts may be null unless needs_contacts(spec()))
-  Image render(const World& w, const ContactSet* contacts, const FrameInfo& info);
-  const RenderSpec& spec() const { return spec_; }
-  std::string describe() const { return renderer_->describe(); }
-
- private:
-  RenderSpec spec_;
-  std::unique_ptr<Renderer> renderer_;
-};
 
 /// is a movie encoder compiled in (FFmpeg)?
 bool movie_encoder_available();

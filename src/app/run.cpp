@@ -29,12 +29,6 @@ extern "C" void on_stop_signal(int) { g_stop = true; }
 
 // x rounded down to three significant digits: a suggested limit that, printed and passed back,
 // is itself within the limit
-double round_down(double x) {
-  if (!(x > 0.0) || !std::isfinite(x)) return x;
-  const double scale = std::pow(10.0, std::floor(std::log10(x)) - 2.0);
-  return std::floor(x / scale) * scale;
-}
-
 std::string default_out(const std::string& name) {
   char buf[32];
   const std::time_t now = std::time(nullptr);
@@ -112,20 +106,7 @@ int run_command(const RunOptions& opt) {
   ProtocolClock clock(scene);
   clock.start(world);
   Simulation sim(std::move(world));
-  const double dt = scene.integrator.dt, tc = sim.model().min_contact_time();
-  // the integrator's stability limit on the stiffest contact (sim/stability.hpp), then the
-  // resolution of the contact itself (fewer than 5 steps per contact time)
-  if (const StepAdvice adv = time_step_advice(sim); !scene.health.allow_unstable && !adv.stable)
-    throw InputError(scene.path, "integrator.dt",
-                     adv.message + ", or pass --allow-unstable to run it anyway");
-  if (!scene.health.allow_unstable && dt > tc / 5.0) {
-    std::ostringstream m;
-    m << "dt = " << dt << " s is " << dt / tc << " of the stiffest contact time (" << tc
-      << " s); at more than 1/5 the contacts are not resolved and the integration is unstable. "
-      << "Use dt <= " << round_down(tc / 5.0) << " s (dt <= " << round_down(tc / 20.0)
-      << " s resolves each contact with 20 steps), or pass --allow-unstable to run it anyway";
-    throw InputError(scene.path, "integrator.dt", m.str());
-  }
+  check_time_step(sim);
   check_step_count(scene, clock.nominal_duration());
   const std::string out = opt.out.empty() ? default_out(scene.name) : opt.out;
   const DirLock lock(out, "run");

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "core/error.hpp"
 #include "sim/simulation.hpp"
 
 namespace gs {
@@ -50,6 +51,35 @@ StepAdvice time_step_advice(const Simulation& sim) {
     a.message = m.str();
   }
   return a;
+}
+
+namespace {
+
+// x rounded down to three significant digits, for advice that stays on the safe side
+double round_down(double x) {
+  if (!(x > 0.0) || !std::isfinite(x)) return x;
+  const double scale = std::pow(10.0, std::floor(std::log10(x)) - 2.0);
+  return std::floor(x / scale) * scale;
+}
+
+}  // namespace
+
+void check_time_step(const Simulation& sim) {
+  const SceneSpec& sc = sim.world().scene;
+  const double dt = sc.integrator.dt, tc = sim.model().min_contact_time();
+  // the integrator's stability limit on the stiffest contact (above), then the
+  // resolution of the contact itself (fewer than 5 steps per contact time)
+  if (const StepAdvice adv = time_step_advice(sim); !sc.health.allow_unstable && !adv.stable)
+    throw InputError(sc.path, "integrator.dt",
+                     adv.message + ", or pass --allow-unstable to run it anyway");
+  if (!sc.health.allow_unstable && dt > tc / 5.0) {
+    std::ostringstream m;
+    m << "dt = " << dt << " s is " << dt / tc << " of the stiffest contact time (" << tc
+      << " s); at more than 1/5 the contacts are not resolved and the integration is unstable. "
+      << "Use dt <= " << round_down(tc / 5.0) << " s (dt <= " << round_down(tc / 20.0)
+      << " s resolves each contact with 20 steps), or pass --allow-unstable to run it anyway";
+    throw InputError(sc.path, "integrator.dt", m.str());
+  }
 }
 
 }  // namespace gs

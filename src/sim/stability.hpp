@@ -25,4 +25,9 @@ struct StepAdvice {
 /// judge the scene's Δt against its stiffest contact and its integrator
 StepAdvice time_step_advice(const Simulation& sim);
 
+/// refuse a scene whose Δt is unstable for its integrator or resolves the stiffest contact
+/// with fewer than 5 steps: InputError naming the scene file and integrator.dt (with the Δt
+/// to use), unless health.allow_unstable
+void check_time_step(const Simulation& sim);
+
 }  // namespace gs

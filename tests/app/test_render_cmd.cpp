@@ -11,7 +11,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "app/render_world.hpp"
+#include "view/render_world.hpp"
 #include "app/trajectory.hpp"
 #include "geometry/polygon.hpp"
 #include "output/png.hpp"

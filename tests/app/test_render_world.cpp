@@ -1,6 +1,6 @@
 // the World → frame adapter: shapes, walls, box, colours, overlays, contact quantities, and the
 // agreement of the [render] names with what the renderer knows
-#include "app/render_world.hpp"
+#include "view/render_world.hpp"
 
 #include <gtest/gtest.h>
 

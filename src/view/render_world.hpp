@@ -1,5 +1,5 @@
 // World → frame data: the adapter between the engine and the GL-free frame builder
-// (render/frame.hpp). It lives in app/ because render/ must not depend on world/.
+// (render/frame.hpp). It is a module of its own because render/ must not depend on world/.
 #pragma once
 #include <optional>
 #include <vector>

@@ -1,6 +1,6 @@
 // World → RenderParticles / RenderWalls / RenderOverlays / BoxExtent, and the per-particle
 // contact quantities (coordination, pressure, force chains) the colouring can show
-#include "app/render_world.hpp"
+#include "view/render_world.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,0 +1,280 @@
+// the tapping study's analysis on in-memory φ series (analysis/tap_analysis.hpp): per-run
+// statistics, overlapping histograms → β − β_ref and ln Z − ln Z_ref, the quadron fit, and the
+// synthetic ideal quadron gas with known answers
+#include <pybind11/stl.h>
+
+#include <string>
+
+#include "analysis/tap_analysis.hpp"
+#include "analysis/tap_synthetic.hpp"
+#include "bindings.hpp"
+#include "core/error.hpp"
+
+namespace gs::py_bind {
+
+namespace {
+
+using Series = std::vector<double>;
+
+py::dict interval(const Interval& i) {
+  py::dict d;
+  d["lo"] = i.lo;
+  d["hi"] = i.hi;
+  return d;
+}
+
+py::dict qfit_dict(const QFit& f) {
+  py::dict d;
+  d["valid"] = f.valid;
+  d["note"] = f.note;
+  Series x, q, e;
+  for (const QPoint& p : f.points) {
+    x.push_back(p.x);
+    q.push_back(p.q);
+    e.push_back(p.q_err);
+  }
+  d["x"] = py::array(py::cast(x));
+  d["q"] = py::array(py::cast(q));
+  d["q_err"] = py::array(py::cast(e));
+  d["slope"] = f.slope;
+  d["slope_err"] = f.slope_err;
+  d["intercept"] = f.intercept;
+  d["intercept_err"] = f.intercept_err;
+  d["chi2"] = f.chi2;
+  d["dof"] = f.dof;
+  d["r2"] = f.r2;
+  d["quad"] = f.quad;
+  d["quad_err"] = f.quad_err;
+  d["bin_width"] = f.bin_width;
+  return d;
+}
+
+py::dict beta_dict(const BetaEstimate& b) {
+  py::dict d;
+  d["valid"] = b.valid;
+  d["dbeta"] = b.dbeta;
+  d["dbeta_err"] = b.dbeta_err;
+  d["dlnz"] = b.dlnz;
+  d["dlnz_err"] = b.dlnz_err;
+  d["cov"] = b.cov;
+  d["fit"] = qfit_dict(b.fit);
+  return d;
+}
+
+py::dict quadron_dict(const QuadronFit& f) {
+  py::dict d;
+  d["converged"] = f.converged;
+  d["note"] = f.note;
+  d["iterations"] = f.iterations;
+  d["points"] = f.points;
+  d["a"] = f.a;
+  d["a_err"] = f.a_err;
+  d["beta0"] = f.beta0;
+  d["beta0_err"] = f.beta0_err;
+  d["cov_a_beta0"] = f.cov_a_beta0;
+  d["chi2"] = f.chi2;
+  d["dof"] = f.dof;
+  d["errors_scaled"] = f.errors_scaled;
+  return d;
+}
+
+py::dict summary_dict(const TapRunSummary& s) {
+  py::dict d;
+  d["label"] = s.label;
+  d["protocol"] = s.protocol;
+  d["control"] = s.control;
+  d["n_total"] = s.n_total;
+  d["n_used"] = s.n_used;
+  d["phi_mean"] = s.phi_mean;
+  d["phi_err"] = s.phi_err;
+  d["phi_mean_ci"] = interval(s.phi_mean_ci);
+  d["phi_mean_ci_tau"] = interval(s.phi_mean_ci_tau);
+  d["sigma"] = s.sigma;
+  d["sigma_ci"] = interval(s.sigma_ci);
+  d["sigma_ci_tau"] = interval(s.sigma_ci_tau);
+  d["tau_int"] = s.tau.tau_int;
+  d["tau_err"] = s.tau.tau_err;
+  d["tau_converged"] = s.tau.converged;
+  d["normality_p"] = s.normality.p_value;
+  d["normal"] = s.normality.normal;
+  return d;
+}
+
+OverlapOptions overlap_options(const std::string& method, int bins, double min_fraction) {
+  OverlapOptions o;
+  if (method == "histogram") o.method = DensityMethod::Histogram;
+  else if (method == "kde") o.method = DensityMethod::Kde;
+  else
+    throw InputError("analysis", "method",
+                     "must be \"histogram\" or \"kde\" (got \"" + method + "\")");
+  o.bins = bins;
+  o.min_fraction = min_fraction;
+  return o;
+}
+
+Series optional_series(const py::dict& run, const char* key) {
+  return run.contains(key) && !run[key].is_none() ? run[key].cast<Series>() : Series{};
+}
+
+}  // namespace
+
+void bind_tapping(py::module_& m) {
+  m.def(
+      "tap_analysis",
+      [](const py::list& runs, int discard, double level, double alpha, double test_area,
+         const std::string& reference, const std::string& reference2, const std::string& method,
+         int bins, double phi_rlp, double phi_rcp, int bootstrap, const std::string& out_dir) {
+        std::vector<TapRunInput> in;
+        for (const auto& item : runs) {
+          const auto run = item.cast<py::dict>();
+          TapRunInput r;
+          r.label = run.contains("label") ? run["label"].cast<std::string>() : "";
+          r.protocol = run.contains("protocol") ? run["protocol"].cast<std::string>() : "negative_g";
+          r.control = run.contains("control") ? run["control"].cast<double>() : 0.0;
+          r.series.source = r.label.empty() ? "run " + std::to_string(in.size()) : r.label;
+          r.series.phi = run["phi"].cast<Series>();
+          r.series.phi_left = optional_series(run, "phi_left");
+          r.series.phi_right = optional_series(run, "phi_right");
+          r.series.tap = optional_series(run, "tap");
+          if (r.series.tap.empty())
+            for (std::size_t k = 0; k < r.series.phi.size(); ++k)
+              r.series.tap.push_back(static_cast<double>(k + 1));
+          in.push_back(std::move(r));
+        }
+        TapAnalysisOptions o;
+        o.discard = discard;
+        o.level = level;
+        o.alpha = alpha;
+        o.test_area = test_area;
+        o.reference = reference;
+        o.reference2 = reference2;
+        o.overlap = overlap_options(method, bins, o.overlap.min_fraction);
+        o.quadron.phi_rlp = phi_rlp;
+        o.quadron.phi_rcp = phi_rcp;
+        o.bootstrap = bootstrap;
+        const TapAnalysisResult r = run_tap_analysis(in, o);
+        if (!out_dir.empty()) write_tap_analysis(r, in, o, out_dir);
+        py::dict d;
+        py::list summaries, beta, beta2, kde, pairs;
+        for (const auto& s : r.runs) summaries.append(summary_dict(s));
+        for (const auto& b : r.beta) beta.append(beta_dict(b));
+        for (const auto& b : r.beta2) beta2.append(beta_dict(b));
+        for (const auto& k : r.kde_normal) {
+          py::dict c;
+          c["x"] = py::array(py::cast(k.x));
+          c["density"] = py::array(py::cast(k.density));
+          c["bandwidth"] = k.bandwidth;
+          kde.append(c);
+        }
+        for (const auto& p : r.pairs) {
+          py::dict c;
+          c["a"] = p.a;
+          c["b"] = p.b;
+          c["mean_diff"] = p.test.mean_diff;
+          c["mean_diff_err"] = p.test.mean_diff_err;
+          c["p_mean"] = p.test.p_mean;
+          c["p_sigma"] = p.test.p_sigma;
+          c["ks_p"] = p.test.ks_p;
+          pairs.append(c);
+        }
+        py::dict quad;
+        for (const auto& [k, f] : r.quadron) quad[py::str(k)] = quadron_dict(f);
+        d["runs"] = summaries;
+        d["ref"] = r.ref;
+        d["ref2"] = r.ref2;
+        d["v_g"] = r.v_g;
+        d["beta"] = beta;
+        d["beta2"] = beta2;
+        d["kde"] = kde;
+        d["pairs"] = pairs;
+        d["quadron"] = quad;
+        d["notes"] = r.notes;
+        return d;
+      },
+      py::arg("runs"), py::arg("discard") = 10, py::arg("level") = 0.95,
+      py::arg("alpha") = 0.05, py::arg("test_area") = 0.16, py::arg("reference") = "",
+      py::arg("reference2") = "", py::arg("method") = "histogram", py::arg("bins") = 0,
+      py::arg("phi_rlp") = 0.81, py::arg("phi_rcp") = 0.855, py::arg("bootstrap") = 100,
+      py::arg("out_dir") = "",
+      "the tapping analysis (as `gransim analyze`) of runs given as dicts with 'phi' (per tap) "
+      "and optionally 'label', 'protocol', 'control', 'tap', 'phi_left', 'phi_right'");
+
+  m.def("beta_from_phi",
+        [](const Series& ref, const Series& phi, double v_g, const std::string& method, int bins,
+           double min_fraction) {
+          return beta_dict(beta_from_phi(ref, phi, v_g, overlap_options(method, bins, min_fraction)));
+        },
+        py::arg("phi_ref"), py::arg("phi"), py::arg("v_g"), py::arg("method") = "histogram",
+        py::arg("bins") = 0, py::arg("min_fraction") = 0.05,
+        "β − β_ref (1/m²) and ln Z − ln Z_ref by overlapping histograms of φ (Q against 1/φ)");
+  m.def("beta_from_volume",
+        [](const Series& ref, const Series& v, const std::string& method, int bins,
+           double min_fraction) {
+          return beta_dict(beta_from_volume(ref, v, overlap_options(method, bins, min_fraction)));
+        },
+        py::arg("v_ref"), py::arg("v"), py::arg("method") = "histogram", py::arg("bins") = 0,
+        py::arg("min_fraction") = 0.05, "the same from volumes (Q against V)");
+  m.def("fit_quadron",
+        [](const Series& beta_hat, const Series& phi, const Series& phi_err,
+           const Series& beta_err, double phi_rlp, double phi_rcp) {
+          QuadronParams p;
+          p.phi_rlp = phi_rlp;
+          p.phi_rcp = phi_rcp;
+          return quadron_dict(fit_quadron(beta_hat, phi, phi_err, beta_err, p));
+        },
+        py::arg("beta_hat"), py::arg("phi"), py::arg("phi_err") = Series{},
+        py::arg("beta_err") = Series{}, py::arg("phi_rlp") = 0.81, py::arg("phi_rcp") = 0.855,
+        "fit a = N z̄/V_g and β₀ of the ideal quadron solution to (β̂, φ̄)");
+  m.def("quadron_phi",
+        py::vectorize([](double beta, double a, double phi_rlp, double phi_rcp) {
+          QuadronParams p;
+          p.phi_rlp = phi_rlp;
+          p.phi_rcp = phi_rcp;
+          return quadron_phi(beta, a, p);
+        }),
+        py::arg("beta"), py::arg("a"), py::arg("phi_rlp") = 0.81, py::arg("phi_rcp") = 0.855,
+        "φ̄ of the ideal quadron solution at inverse compactivity β (1/m²)");
+  m.def("quadron_lnz",
+        py::vectorize([](double beta, double a, double v_g, double phi_rlp, double phi_rcp) {
+          QuadronParams p;
+          p.phi_rlp = phi_rlp;
+          p.phi_rcp = phi_rcp;
+          return quadron_lnz(beta, a, v_g, p);
+        }),
+        py::arg("beta"), py::arg("a"), py::arg("v_g"), py::arg("phi_rlp") = 0.81,
+        py::arg("phi_rcp") = 0.855, "ln Z of the ideal quadron gas");
+  m.def("quadron_gas_phi",
+        [](double beta, int taps, double a, double v_g, double refresh, std::uint64_t seed,
+           std::uint64_t stream) {
+          QuadronGasSpec g;
+          g.a = a;
+          g.v_g = v_g;
+          g.refresh = refresh;
+          return py::array(py::cast(quadron_gas_phi(beta, taps, g, seed, stream)));
+        },
+        py::arg("beta"), py::arg("taps"), py::arg("a") = 556.5, py::arg("v_g") = 0.13,
+        py::arg("refresh") = 1.0, py::arg("seed") = 1, py::arg("stream") = 0,
+        "a synthetic φ series of an ideal quadron gas at β (1/m²): known φ̄, ln Z and τ_int");
+  m.def("autocorr_time", [](const Series& x, double c) {
+    const AutocorrTime t = autocorr_time(x, c);
+    py::dict d;
+    d["tau_int"] = t.tau_int;
+    d["tau_err"] = t.tau_err;
+    d["window"] = t.window;
+    d["converged"] = t.converged;
+    d["rho"] = py::array(py::cast(t.rho));
+    return d;
+  }, py::arg("x"), py::arg("c") = 5.0, "integrated autocorrelation time (Sokal's window)");
+  m.def("normality_chi2", [](const Series& x, double alpha, int bins) {
+    const NormalityTest t = normality_chi2(x, alpha, bins);
+    py::dict d;
+    d["statistic"] = t.statistic;
+    d["bins"] = t.bins;
+    d["dof"] = t.dof;
+    d["p_value"] = t.p_value;
+    d["normal"] = t.normal;
+    return d;
+  }, py::arg("x"), py::arg("alpha") = 0.05, py::arg("bins") = 0);
+}
+
+}  // namespace gs::py_bind
