@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <ostream>
 
-#include "app/render_world.hpp"
+#include "view/render_world.hpp"
 #include "broadphase/broadphase.hpp"
 #include "core/error.hpp"
 #include "geometry/polygon.hpp"

@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "app/render_world.hpp"
+#include "view/render_world.hpp"
 #include "app/snapshot_files.hpp"
 #include "app/trajectory.hpp"
 #include "core/error.hpp"

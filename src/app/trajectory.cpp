@@ -9,7 +9,7 @@
 #include <map>
 #include <sstream>
 
-#include "app/render_world.hpp"
+#include "view/render_world.hpp"
 #include "core/error.hpp"
 
 namespace gs {

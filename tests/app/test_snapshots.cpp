@@ -10,7 +10,7 @@
 #include <map>
 #include <sstream>
 
-#include "app/render_world.hpp"
+#include "view/render_world.hpp"
 #include "app/snapshot_files.hpp"
 #include "binary.hpp"
 #include "scene/parse.hpp"
