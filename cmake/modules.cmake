@@ -12,7 +12,7 @@ gs_module(drive DEPS gs_world)
 gs_module(sim DEPS gs_force gs_integrate gs_drive gs_output)
 # measure: read-only observers
 gs_module(measure DEPS gs_sim gs_analysis)
-gs_module(analysis DEPS gs_core)
+gs_module(analysis DEPS gs_core nlohmann_json::nlohmann_json)
 if(FFTW3_FOUND)
   target_link_libraries(gs_analysis PUBLIC PkgConfig::FFTW3)
   target_compile_definitions(gs_analysis PUBLIC GS_HAVE_FFTW=1)
@@ -44,7 +44,7 @@ if(TARGET gs_render_gl)
 endif()
 
 # output: CSV/JSON, PNG, checkpoints; the movie encoder only where FFmpeg is found
-gs_module(output DEPS gs_core PkgConfig::PNG)
+gs_module(output DEPS gs_core PkgConfig::PNG nlohmann_json::nlohmann_json)
 if(FFMPEG_FOUND)
   file(GLOB movie_srcs CONFIGURE_DEPENDS ${CMAKE_SOURCE_DIR}/src/output/movie/*.cpp)
   if(movie_srcs)

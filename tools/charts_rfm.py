@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """Charts of the Random Force Model analyses (thesis chapters 2-6).
 
-Reads the CSV files written by the gs::rfm and gs::models write_*_csv helpers ("# key=value"
-metadata lines, one header line, numeric rows) from a directory and draws one PNG per file:
+Reads the CSV files written by the gs::rfm and gs::models write_*_csv helpers (one header line,
+numeric rows; metadata in NAME.json beside, or "# key=value" lines above the header in older files) from a directory and draws one PNG per file:
 
   temperature.csv  T(t) with block means                          -> temperature.png
   velocity.csv     P(v) log-linear, tail and crossover fits       -> velocity.png
@@ -49,7 +49,8 @@ except ImportError as e:  # pragma: no cover
 
 
 def read_csv(path):
-    """metadata dict and a dict of numpy columns"""
+    """metadata dict and a dict of numpy columns (metadata from the sidecar NAME.json, or from
+    the "# key=value" lines that older files have above the header)"""
     meta, names, rows = {}, None, []
     with open(path) as f:
         for line in f:
@@ -66,7 +67,17 @@ def read_csv(path):
                 continue
             rows.append([float(c) for c in line.split(",")])
     data = np.array(rows) if rows else np.zeros((0, len(names)))
+    meta.update(read_meta(path))
     return meta, {n: data[:, i] for i, n in enumerate(names)}
+
+
+def read_meta(path):
+    """the metadata sidecar NAME.json of NAME.csv ({} when absent; null reads as nan)"""
+    side = os.path.splitext(path)[0] + ".json"
+    if not os.path.exists(side):
+        return {}
+    with open(side) as f:
+        return {k: math.nan if v is None else float(v) for k, v in json.load(f).items()}
 
 
 def save(fig, out, name):

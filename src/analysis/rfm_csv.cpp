@@ -3,7 +3,10 @@
 
 #include <charconv>
 #include <cstdio>
+#include <cmath>
 #include <cstdlib>
+#include <limits>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "core/error.hpp"
@@ -43,12 +46,30 @@ double parse_number(const std::string& s, const std::string& where, const std::s
 
 }  // namespace
 
+std::filesystem::path meta_path(const std::filesystem::path& csv) {
+  std::filesystem::path p = csv;
+  p.replace_extension(".json");
+  return p;
+}
+
 CsvWriter::CsvWriter(const std::filesystem::path& path, const std::vector<std::string>& columns,
                      const CsvMeta& meta)
     : path_(path), out_(path), columns_(columns.size()) {
   if (!out_) throw InputError(path.string(), "", "cannot open the file for writing");
-  // metadata first, then the header
-  for (const auto& [k, v] : meta) out_ << "# " << k << '=' << number(v) << '\n';
+  // metadata in the sidecar, in the order given
+  if (!meta.empty()) {
+    nlohmann::ordered_json j = nlohmann::ordered_json::object();
+    for (const auto& [k, v] : meta) {
+      if (std::isfinite(v))
+        j[k] = v;
+      else
+        j[k] = nullptr;
+    }
+    const std::filesystem::path side = meta_path(path);
+    std::ofstream js(side);
+    js << j.dump(2) << '\n';
+    if (!js) throw InputError(side.string(), "", "cannot write the metadata file");
+  }
   for (std::size_t i = 0; i < columns.size(); ++i) out_ << (i ? "," : "") << columns[i];
   out_ << '\n';
 }
@@ -93,6 +114,19 @@ CsvTable read_csv(const std::filesystem::path& path) {
       t.column[t.names[i]].push_back(parse_number(cells[i], where, t.names[i]));
   }
   if (t.names.empty()) throw InputError(path.string(), "", "no header line");
+  // the sidecar of the newer form
+  const std::filesystem::path side = meta_path(path);
+  if (std::ifstream js(side); js) {
+    const nlohmann::json j = nlohmann::json::parse(js, nullptr, false);
+    if (j.is_discarded() || !j.is_object())
+      throw InputError(side.string(), "", "not a JSON object of metadata");
+    for (const auto& [k, v] : j.items()) {
+      if (v.is_number())
+        t.meta[k] = v.get<double>();
+      else if (v.is_null())
+        t.meta[k] = std::numeric_limits<double>::quiet_NaN();
+    }
+  }
   return t;
 }
 

@@ -1,6 +1,7 @@
-// the simple CSV files the RFM analyses write for tools/charts_rfm.py: optional
-// "# key=value" metadata lines (fit parameters, k_D, …), one header line of column
-// names, then numeric rows. A reader for the same format serves tests and tools.
+// the simple CSV files the RFM analyses write for tools/charts_rfm.py: one header line of
+// column names, then numeric rows (pandas.read_csv reads them as they are); metadata (fit
+// parameters, k_D, …) goes to NAME.json beside NAME.csv, a flat object of numbers (null for a
+// non-finite one). The reader also takes the older form's "# key=value" lines above the header.
 #pragma once
 #include <filesystem>
 #include <fstream>
@@ -11,7 +12,7 @@
 
 namespace gs::rfm {
 
-/// metadata written as "# key=value" above the header
+/// metadata written to the sidecar NAME.json
 using CsvMeta = std::vector<std::pair<std::string, double>>;
 
 /// writes one CSV file; throws gs::InputError naming the path when it cannot be written
@@ -30,12 +31,16 @@ class CsvWriter {
 
 /// a CSV file read back: metadata and named columns
 struct CsvTable {
-  std::map<std::string, double> meta;                 ///< "# key=value" lines
+  std::map<std::string, double> meta;                 ///< the sidecar's (or "# key=value" lines)
   std::vector<std::string> names;                     ///< header, in order
   std::map<std::string, std::vector<double>> column;  ///< values by column name
 };
 
-/// reads a file written by CsvWriter; throws gs::InputError naming file and line on error
+/// the metadata sidecar of a CSV file: NAME.csv → NAME.json
+std::filesystem::path meta_path(const std::filesystem::path& csv);
+
+/// reads a file written by CsvWriter (and its sidecar); throws gs::InputError naming file and
+/// line on error
 CsvTable read_csv(const std::filesystem::path& path);
 
 }  // namespace gs::rfm

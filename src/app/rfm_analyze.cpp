@@ -107,9 +107,22 @@ struct RunResult {
   std::vector<std::string> notes;
 };
 
+// a CSV is written anew in the current form (metadata in its sidecar), whichever form it had
 void copy_if_there(const fs::path& from, const fs::path& to) {
   std::error_code ec;
-  if (fs::exists(from, ec)) fs::copy_file(from, to, fs::copy_options::overwrite_existing);
+  if (!fs::exists(from, ec)) return;
+  if (from.extension() != ".csv") {
+    fs::copy_file(from, to, fs::copy_options::overwrite_existing);
+    return;
+  }
+  const rfm::CsvTable t = rfm::read_csv(from);
+  rfm::CsvWriter w(to, t.names, rfm::CsvMeta(t.meta.begin(), t.meta.end()));
+  const std::size_t rows = t.names.empty() ? 0 : t.column.at(t.names.front()).size();
+  std::vector<double> row(t.names.size());
+  for (std::size_t i = 0; i < rows; ++i) {
+    for (std::size_t c = 0; c < t.names.size(); ++c) row[c] = t.column.at(t.names[c])[i];
+    w.row(row);
+  }
 }
 
 // a moments.csv (m, moment, error) as two vectors

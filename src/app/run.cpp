@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
+#include <optional>
 #include <sstream>
 
 #include "app/observers.hpp"
@@ -18,6 +19,7 @@
 #include "output/run_dir.hpp"
 #include "scene/names.hpp"
 #include "scene/parse.hpp"
+#include "sim/saved_state.hpp"
 #include "sim/stability.hpp"
 #include "world/prepare.hpp"
 
@@ -99,13 +101,23 @@ int run_command(const RunOptions& opt) {
   // scene and run directory are checked before any work is done
   SceneSpec scene = parse_scene_file(opt.scene, opt.sets);
   if (opt.allow_unstable) scene.health.allow_unstable = true;
+  // the grains: placed, or taken from a saved state (which also sets the counts left out)
+  std::optional<SavedState> saved;
+  if (!scene.prep.from_state.empty()) {
+    saved = read_saved_state(scene);
+    fit_scene_to_state(scene, *saved);
+  }
   World world = make_world(scene);
-  place_particles(world);
+  if (saved)
+    place_saved_state(world, *saved);
+  else
+    place_particles(world);
   // the protocol clock starts after preparation.settle_time (constant gravity until then); it
   // is set before the first force evaluation so the initial accelerations see settling gravity
   ProtocolClock clock(scene);
   clock.start(world);
   Simulation sim(std::move(world));
+  const bool history = saved && take_saved_history(sim, *saved);
   check_time_step(sim);
   check_step_count(scene, clock.nominal_duration());
   const std::string out = opt.out.empty() ? default_out(scene.name) : opt.out;
@@ -122,6 +134,11 @@ int run_command(const RunOptions& opt) {
   rs.clock = &clock;
   rs.series = CsvWriter(out + "/series.csv", series_columns());
   print_banner(scene, sim, clock);
+  if (saved && !opt.quiet)
+    std::fprintf(stderr, "gransim: %zu grains from %s%s\n", saved->size(), saved->path.c_str(),
+                 history ? " (with its integrator history and contact springs)"
+                 : saved->checkpoint ? " (another integrator, time step or model: positions and velocities only)"
+                                     : "");
   rs.observers = make_observers(scene);
   for (auto& o : rs.observers) o->start(sim, out);
   write_series_row(rs);  // the prepared state is the first row

@@ -21,12 +21,13 @@ bool is_checkpoint_name(const std::string& n) {
          n.compare(n.size() - 5, 5, kSuffix) == 0;
 }
 
-// files that are not appended to: rewritten whole (run.json, state.csv, scene.toml, the final
-// picture), the writer's lock (it holds the PID), checkpoints and temporaries. Their sizes say
+// files that are not appended to: rewritten whole (run.json and every JSON sidecar, state.csv,
+// scene.toml, the final picture), the writer's lock (it holds the PID), checkpoints and temporaries. Their sizes say
 // nothing about lost rows, and a resume must neither check nor truncate them.
 bool not_appended(const std::string& n) {
   return is_checkpoint_name(n) || n == "run.json" || n == "state.csv" || n == "scene.toml" ||
          n == "final.png" || n == ".lock" ||
+         (n.size() >= 5 && n.compare(n.size() - 5, 5, ".json") == 0) ||
          (n.size() >= 4 && n.compare(n.size() - 4, 4, ".tmp") == 0);
 }
 

@@ -5,7 +5,9 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
+#include <toml++/toml.h>
 
 namespace gs {
 
@@ -19,6 +21,47 @@ std::optional<std::string> read_text_file(const std::string& path) {
   return s.str();
 }
 
+namespace {
+
+// a top-level value of a parsed JSON text; nullopt when the key is absent
+std::optional<nlohmann::json> top_level(const nlohmann::json& j, const std::string& key) {
+  if (!j.is_object() || !j.contains(key)) return std::nullopt;
+  return j.at(key);
+}
+
+nlohmann::ordered_json from_toml(const toml::node& n) {
+  if (auto v = n.as_integer()) return v->get();
+  if (auto v = n.as_floating_point()) return v->get();
+  if (auto v = n.as_boolean()) return v->get();
+  if (auto v = n.as_string()) return v->get();
+  if (auto a = n.as_array()) {
+    nlohmann::ordered_json out = nlohmann::ordered_json::array();
+    for (const auto& e : *a) out.push_back(from_toml(e));
+    return out;
+  }
+  if (auto t = n.as_table()) {
+    nlohmann::ordered_json out = nlohmann::ordered_json::object();
+    for (const auto& [k, v] : *t) out[std::string(k.str())] = from_toml(v);
+    return out;
+  }
+  return nullptr;  // dates and times: no scene key has one
+}
+
+}  // namespace
+
+nlohmann::ordered_json scene_json(const std::map<std::string, std::string>& resolved) {
+  nlohmann::ordered_json out = nlohmann::ordered_json::object();
+  for (const auto& [k, v] : resolved) {
+    try {
+      const toml::table t = toml::parse("v = " + v);
+      out[k] = from_toml(*t.get("v"));
+    } catch (const toml::parse_error&) {
+      out[k] = v;  // not TOML value text: kept as written
+    }
+  }
+  return out;
+}
+
 // the text after `"key": ` at the top level (run.json puts top-level keys at two spaces)
 static std::optional<std::size_t> field_start(const std::string& json, const std::string& key) {
   const std::string pat = "\n  \"" + key + "\": ";
@@ -28,6 +71,12 @@ static std::optional<std::size_t> field_start(const std::string& json, const std
 }
 
 std::optional<std::string> json_string_field(const std::string& json, const std::string& key) {
+  // files that are not JSON (run.json written with nan or inf) are scanned line by line
+  if (const nlohmann::json j = nlohmann::json::parse(json, nullptr, false); !j.is_discarded()) {
+    const auto v = top_level(j, key);
+    if (v && v->is_string()) return v->get<std::string>();
+    return std::nullopt;
+  }
   const auto p = field_start(json, key);
   if (!p || *p >= json.size() || json[*p] != '"') return std::nullopt;
   std::string v;
@@ -43,6 +92,14 @@ std::optional<std::string> json_string_field(const std::string& json, const std:
 }
 
 std::optional<double> json_number_field(const std::string& json, const std::string& key) {
+  // files that are not JSON (run.json written with nan or inf) are scanned line by line
+  if (const nlohmann::json j = nlohmann::json::parse(json, nullptr, false); !j.is_discarded()) {
+    const auto v = top_level(j, key);
+    if (v && v->is_number()) return v->get<double>();
+    // nlohmann-json writes a non-finite number as null
+    if (v && v->is_null()) return std::numeric_limits<double>::quiet_NaN();
+    return std::nullopt;
+  }
   const auto p = field_start(json, key);
   if (!p) return std::nullopt;
   const char* b = json.c_str() + *p;

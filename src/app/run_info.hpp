@@ -1,6 +1,8 @@
 // what a finished (or unfinished) run directory says about itself: its run.json status and
-// fields, read without a JSON library (run.json is written by run_command, one field per line)
+// fields (read with nlohmann-json; older files with non-finite numbers by a line scan)
 #pragma once
+#include <map>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 
@@ -13,6 +15,10 @@ std::optional<std::string> read_text_file(const std::string& path);
 std::optional<std::string> json_string_field(const std::string& json, const std::string& key);
 /// the value of a top-level number field "key": 1.5 of run.json text; nullopt if absent
 std::optional<double> json_number_field(const std::string& json, const std::string& key);
+
+/// the resolved scene (dotted key → TOML value text) as typed JSON values: numbers, booleans,
+/// strings, arrays, inline tables as objects
+nlohmann::ordered_json scene_json(const std::map<std::string, std::string>& resolved);
 
 /// DIR/run.json's status ("completed", "interrupted", "unstable"); "" when there is no run.json
 std::string run_status(const std::string& dir);

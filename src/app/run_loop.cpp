@@ -6,8 +6,11 @@
 #include <filesystem>
 #include <sstream>
 
+#include <nlohmann/json.hpp>
+
 #include "app/progress.hpp"
 #include "app/run.hpp"
+#include "app/run_info.hpp"
 #include "app/run_session.hpp"
 #include "app/version.hpp"
 #include "core/error.hpp"
@@ -20,19 +23,6 @@ namespace {
 
 // steps between progress updates and checks for a stop request (and at most one batch)
 constexpr std::int64_t kProgressEvery = 64;
-
-std::string json_escape(const std::string& s) {
-  std::string o;
-  for (char c : s) {
-    if (c == '"' || c == '\\') o += '\\';
-    if (static_cast<unsigned char>(c) < 0x20) {
-      o += ' ';
-      continue;
-    }
-    o += c;
-  }
-  return o;
-}
 
 }  // namespace
 
@@ -56,53 +46,47 @@ void write_run_json(const RunSession& rs, int code, const std::string& failure, 
   const SceneSpec& scene = rs.scene;
   const Simulation& sim = *rs.sim;
   const ProtocolClock& clock = *rs.clock;
-  std::ostringstream js;
-  js << "{\n  \"program\": \"gransim\",\n  \"version\": \"" << program_version() << "\",\n"
-     << "  \"scene_file\": \"" << json_escape(rs.scene_file) << "\",\n"
-     << "  \"status\": \""
-     << (code == kExitOk         ? "completed"
-         : code == kExitUnstable ? "unstable"
-                                 : "interrupted")
-     << "\",\n"
-     << "  \"particles\": " << sim.world().size() << ",\n  \"steps\": " << sim.world().s.step
-     << ",\n"
-     << "  \"simulated_time_s\": " << sim.world().s.t << ",\n  \"wall_time_s\": " << wall << ",\n"
-     << "  \"sessions\": " << rs.sessions << ",\n"
-     << "  \"particle_steps_per_s\": " << rate << ",\n"
-     << "  \"broad_phase\": \"" << sim.broadphase().name() << "\",\n"
-     << "  \"sort_every\": " << sim.sort_every() << ",\n"
-     << "  \"omp_threads\": " << rs.team.threads << ",\n"
-     << "  \"omp_cpus\": " << rs.team.cpus << ",\n"
-     << "  \"contact_time_s\": " << sim.model().min_contact_time() << ",\n"
-     << "  \"degenerate_contacts\": " << sim.contacts().degenerate << ",\n"
-     << "  \"settle_time_s\": " << scene.prep.settle_time << ",\n";
+  nlohmann::ordered_json j;
+  j["program"] = "gransim";
+  j["version"] = std::string(program_version());
+  j["scene_file"] = rs.scene_file;
+  j["status"] = code == kExitOk         ? "completed"
+                : code == kExitUnstable ? "unstable"
+                                        : "interrupted";
+  j["particles"] = sim.world().size();
+  j["steps"] = sim.world().s.step;
+  j["simulated_time_s"] = sim.world().s.t;
+  j["wall_time_s"] = wall;
+  j["sessions"] = rs.sessions;
+  j["particle_steps_per_s"] = rate;
+  j["broad_phase"] = sim.broadphase().name();
+  j["sort_every"] = sim.sort_every();
+  j["omp_threads"] = rs.team.threads;
+  j["omp_cpus"] = rs.team.cpus;
+  j["contact_time_s"] = sim.model().min_contact_time();
+  j["degenerate_contacts"] = sim.contacts().degenerate;
+  j["settle_time_s"] = scene.prep.settle_time;
   // tapping: the protocol, its control value and how the taps went
   if (is_tapping(scene.drive)) {
     const bool neg = scene.drive.kind == DriveKind::NegativeG;
     const double settled = std::max(rs.wall_settled, 0.0);
-    js << "  \"protocol\": \"" << scene_name(scene.drive.kind) << "\",\n"
-       << "  \"control\": " << (neg ? scene.drive.g_p : scene.drive.f) << ",\n"
-       << "  \"control_name\": \"" << (neg ? "g_p" : "f") << "\",\n"
-       << "  \"period_s\": " << drive_period(scene.drive) << ",\n"
-       << "  \"taps_requested\": " << scene.drive.taps << ",\n"
-       << "  \"taps_done\": " << taps_done << ",\n"
-       << "  \"early_ends\": " << clock.early_ends() << ",\n"
-       << "  \"time_saved_s\": " << clock.time_saved() << ",\n"
-       << "  \"quench_events\": " << clock.quench_events() << ",\n"
-       << "  \"wall_time_settling_s\": " << settled << ",\n"
-       << "  \"wall_time_per_tap_s\": "
-       << (taps_done > 0 ? (wall - settled) / static_cast<double>(taps_done) : 0.0) << ",\n";
+    j["protocol"] = std::string(scene_name(scene.drive.kind));
+    j["control"] = neg ? scene.drive.g_p : scene.drive.f;
+    j["control_name"] = neg ? "g_p" : "f";
+    j["period_s"] = drive_period(scene.drive);
+    j["taps_requested"] = scene.drive.taps;
+    j["taps_done"] = taps_done;
+    j["early_ends"] = clock.early_ends();
+    j["time_saved_s"] = clock.time_saved();
+    j["quench_events"] = clock.quench_events();
+    j["wall_time_settling_s"] = settled;
+    j["wall_time_per_tap_s"] =
+        taps_done > 0 ? (wall - settled) / static_cast<double>(taps_done) : 0.0;
   }
-  if (!failure.empty()) js << "  \"failure\": \"" << json_escape(failure) << "\",\n";
-  js << "  \"scene\": {";
-  bool first = true;
-  for (const auto& [k, v] : scene.resolved) {
-    js << (first ? "\n" : ",\n") << "    \"" << json_escape(k) << "\": \"" << json_escape(v)
-       << "\"";
-    first = false;
-  }
-  js << "\n  }\n}\n";
-  write_file_atomic(rs.out + "/run.json", js.str());
+  if (!failure.empty()) j["failure"] = failure;
+  // the resolved scene, one typed value per dotted key (docs/python.md)
+  j["scene"] = scene_json(scene.resolved);
+  write_file_atomic(rs.out + "/run.json", j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
 }
 
 }  // namespace

@@ -208,7 +208,8 @@ void read_preparation(const Ctx& ctx, const TableReader& top, SceneSpec& s,
                       const std::vector<SpeciesRead>& species) {
   TableReader r(
       ctx, table_or_empty(sub_table(top, "preparation")), "preparation",
-      {"placement", "seed", "column_height", "velocity_amplitude", "settle_time", "particle"});
+      {"placement", "seed", "column_height", "velocity_amplitude", "settle_time", "particle",
+       "from_state"});
   PreparationSpec& p = s.prep;
   // a loose column needs a floor; periodic boxes and rings default to random placement
   p.placement = r.choice("placement", s.box.kind == BoxKind::Walls ? PlacementKind::LooseColumn
@@ -218,8 +219,23 @@ void read_preparation(const Ctx& ctx, const TableReader& top, SceneSpec& s,
   p.velocity_amplitude = r.number("velocity_amplitude", 0.0, Range::non_negative());
   p.settle_time = r.number("settle_time", 0.0, Range::non_negative());
 
+  // a saved state: relative to the scene file's folder (to the working directory when given
+  // with --set), written back absolute so that the resolved scene runs from anywhere
+  if (auto from = r.string_optional("from_state", true)) {
+    const toml::node* n = r.get("from_state");
+    const auto& src = n->source();
+    const bool cli = src.path && src.path->rfind(scene_detail::kOverrideTag, 0) == 0;
+    std::filesystem::path fp(*from);
+    if (fp.is_relative() && !cli) fp = std::filesystem::path(ctx.file).parent_path() / fp;
+    p.from_state = std::filesystem::absolute(fp).lexically_normal().string();
+    p.from_state_where = ctx.where(n);
+  }
+
   // explicit particles: the species may be omitted when there is only one
   auto tables = scene_detail::table_array(r, "particle");
+  if (!tables.empty() && !p.from_state.empty())
+    r.fail("from_state", "cannot be combined with [[preparation.particle]] entries: the saved "
+                         "state gives every grain");
   std::vector<std::int64_t> listed(s.species.size(), 0);
   for (std::size_t i = 0; i < tables.size(); ++i) {
     TableReader q(ctx, *tables[i], "preparation.particle[" + std::to_string(i) + "]",
@@ -251,7 +267,14 @@ void read_preparation(const Ctx& ctx, const TableReader& top, SceneSpec& s,
   std::int64_t total = 0;
   for (std::size_t k = 0; k < s.species.size(); ++k) {
     TableReader sr(ctx, *species[k].table, "species[" + std::to_string(k) + "]", kSpeciesKeys);
-    if (tables.empty()) {
+    if (!p.from_state.empty()) {
+      // the saved state sets a count left out (sim/saved_state.cpp checks one given)
+      s.species[k].count_given = species[k].count.has_value();
+      s.species[k].count = static_cast<int>(species[k].count.value_or(0));
+      if (!species[k].count && s.box.reduced_length)
+        sr.fail("count", "missing: box.reduced_length needs every count, also with "
+                         "preparation.from_state");
+    } else if (tables.empty()) {
       if (!species[k].count)
         sr.fail("count", "missing: required (number of grains, an integer >= 0)");
       s.species[k].count = static_cast<int>(*species[k].count);
@@ -264,7 +287,7 @@ void read_preparation(const Ctx& ctx, const TableReader& top, SceneSpec& s,
     }
     total += s.species[k].count;
   }
-  if (total == 0) {
+  if (total == 0 && p.from_state.empty()) {
     TableReader sr(ctx, *species[0].table, "species[0]", kSpeciesKeys);
     sr.fail("count", "the scene has no grains: every species count is 0");
   }

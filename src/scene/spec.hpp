@@ -61,6 +61,9 @@ struct SpeciesSpec {
   std::optional<double> mass; ///< mass per grain, kg (overrides density)
   std::string material;       ///< name of a MaterialSpec (default: the first material)
   int line = 0;
+  /// count written in the file (with preparation.from_state it may be left out: the saved
+  /// state's grains of this species then set it)
+  bool count_given = true;
 };
 
 struct BoxSpec {
@@ -85,6 +88,11 @@ struct PreparationSpec {
     double x = 0, y = 0, theta = 0, vx = 0, vy = 0, omega = 0;
   };
   std::vector<Particle> particles;
+  /// start from a saved state (a state file, a checkpoint, or a run directory: its newest
+  /// checkpoint, else its state.csv) instead of placing grains; an absolute path once parsed
+  /// (docs/scene-format.md). Read by sim/saved_state.hpp, not by the parser.
+  std::string from_state;
+  std::string from_state_where;  ///< "file:line" of the key, for messages
 };
 
 struct ModelSpec {

@@ -100,6 +100,7 @@ std::vector<Block> emit(const SceneSpec& s) {
   p.num("column_height", s.prep.column_height);
   p.num("velocity_amplitude", s.prep.velocity_amplitude);
   p.num("settle_time", s.prep.settle_time);
+  if (!s.prep.from_state.empty()) p.str("from_state", s.prep.from_state);
   for (std::size_t i = 0; i < s.prep.particles.size(); ++i) {
     const auto& q = s.prep.particles[i];
     Block& b = out.emplace_back(

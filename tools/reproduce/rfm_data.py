@@ -23,13 +23,18 @@ class Missing(Exception):
 
 
 def _csv(path):
-    """columns (numpy arrays) and '# key=value' metadata of an analysis CSV"""
+    """columns (numpy arrays) and metadata of an analysis CSV: the sidecar NAME.json, or the
+    '# key=value' lines that older files have above the header"""
     if not os.path.exists(path):
         raise Missing(f"{path} is missing")
     with open(path) as f:
         lines = [x for x in f if x.strip()]
     meta = {k.strip(): float(v) for k, v in
             (x.lstrip("# ").split("=", 1) for x in lines if x.startswith("#") and "=" in x)}
+    side = os.path.splitext(path)[0] + ".json"
+    if os.path.exists(side):
+        with open(side) as f:
+            meta.update({k: math.nan if v is None else float(v) for k, v in json.load(f).items()})
     rows = list(csv.reader(x for x in lines if not x.startswith("#")))
     if len(rows) < 2:
         raise Missing(f"{path} has no rows")
