@@ -148,7 +148,7 @@ class Snapshots(unittest.TestCase):
         for run_dir in self.runs:
             scene = load_json(os.path.join(run_dir, "run.json"))["scene"]
             lx, ly = float(scene["box.width"]), float(scene["box.height"])
-            periodic = scene["box.kind"] == '"periodic"'
+            periodic = scene["box.kind"] == "periodic"  # run.json holds typed values
             idx = self.index(run_dir)
             files = sorted(glob.glob(self.snap(run_dir, "snap_*.xyz")))
             self.assertEqual(len(files), len(idx))
