@@ -2,6 +2,7 @@
 // "# key=value" metadata lines (fit parameters, k_D, …), one header line of column
 // names, then numeric rows. A reader for the same format serves tests and tools.
 #pragma once
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -14,7 +15,8 @@ namespace gs::rfm {
 /// metadata written as "# key=value" above the header
 using CsvMeta = std::vector<std::pair<std::string, double>>;
 
-/// writes one CSV file; throws gs::InputError naming the path when it cannot be written
+/// writes one CSV file, each row flushed as it is written; throws gs::OutputError naming the
+/// path when it cannot be written (disk full, read-only), with every complete row kept
 class CsvWriter {
  public:
   CsvWriter(const std::filesystem::path& path, const std::vector<std::string>& columns,
@@ -26,6 +28,9 @@ class CsvWriter {
   std::filesystem::path path_;
   std::ofstream out_;
   std::size_t columns_ = 0;
+  std::uintmax_t complete_ = 0;  ///< bytes up to the end of the last complete line
+
+  void put(const std::string& line);  ///< write, flush, or cut back and throw OutputError
 };
 
 /// a CSV file read back: metadata and named columns
@@ -33,9 +38,15 @@ struct CsvTable {
   std::map<std::string, double> meta;                 ///< "# key=value" lines
   std::vector<std::string> names;                     ///< header, in order
   std::map<std::string, std::vector<double>> column;  ///< values by column name
+  std::string source;                                 ///< the file read
+
+  /// a column by name, or an InputError naming the file and the missing column
+  const std::vector<double>& col(const std::string& name) const;
 };
 
 /// reads a file written by CsvWriter; throws gs::InputError naming file and line on error
 CsvTable read_csv(const std::filesystem::path& path);
+/// the same from a stream (`name` for messages)
+CsvTable parse_csv(std::istream& in, const std::string& name);
 
 }  // namespace gs::rfm

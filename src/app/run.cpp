@@ -12,6 +12,8 @@
 #include <sstream>
 
 #include "app/observers.hpp"
+#include "app/run_bounds.hpp"
+#include "app/run_info.hpp"
 #include "app/run_session.hpp"
 #include "app/version.hpp"
 #include "core/error.hpp"
@@ -35,35 +37,40 @@ double round_down(double x) {
   return std::floor(x / scale) * scale;
 }
 
+std::string short_number(double v) {
+  std::ostringstream m;
+  m << v;
+  return m.str();
+}
+
+// the keys that set the contact time √(m/k): the stiffest material and the lightest grain, so
+// that advice about dt names what to change when no practical dt can resolve the contact
+std::string contact_time_keys(const SceneSpec& scene) {
+  std::ostringstream m;
+  const bool p = scene.model.kind == ModelKind::P;
+  const MaterialSpec* stiff = nullptr;
+  for (const auto& mat : scene.materials)
+    if (!stiff || (p ? mat.E > stiff->E : mat.ks > stiff->ks)) stiff = &mat;
+  const SpeciesSpec* light = nullptr;
+  auto mass = [](const SpeciesSpec& sp) {
+    return sp.mass ? *sp.mass : sp.density * sp.radius * sp.radius;  // the scale is what matters
+  };
+  for (const auto& sp : scene.species)
+    if (sp.count > 0 && (!light || mass(sp) < mass(*light))) light = &sp;
+  if (stiff)
+    m << "material '" << stiff->name << "' " << (p ? "E = " : "ks = ") << (p ? stiff->E : stiff->ks);
+  if (light)
+    m << (stiff ? ", " : "") << "species '" << light->name << "' "
+      << (light->mass ? "mass = " + short_number(*light->mass) + " kg"
+                      : "density = " + short_number(light->density) + " kg/m²");
+  return m.str();
+}
+
 std::string default_out(const std::string& name) {
   char buf[32];
   const std::time_t now = std::time(nullptr);
   std::strftime(buf, sizeof buf, "%Y%m%d-%H%M%S", std::localtime(&now));
   return "runs/" + (name.empty() ? std::string("run") : name) + "-" + buf;
-}
-
-// the number of steps must be one the run can count and finish: a tiny Δt or a huge duration
-// (or settle time, or tap count) is refused up front, naming the keys that make it
-void check_step_count(const SceneSpec& scene, double nominal) {
-  const double dt = scene.integrator.dt;
-  const double steps = nominal / dt;
-  double particles = 0.0;
-  for (const auto& sp : scene.species) particles += std::max(sp.count, 0);
-  const double particle_steps = steps * std::max(particles, 1.0);
-  constexpr double kMaxSteps = 1e15;          // far beyond any run; well inside int64 and exact doubles
-  constexpr double kMaxParticleSteps = 1e15;  // ≈ 3 years at 10⁷ particle-steps per second
-  if (std::isfinite(steps) && steps >= 0.0 && steps <= kMaxSteps && particle_steps <= kMaxParticleSteps)
-    return;
-  const std::string keys = is_tapping(scene.drive)
-                               ? "drive.taps × the period, preparation.settle_time"
-                               : "scene.duration, preparation.settle_time";
-  std::ostringstream m;
-  m << "the run would take " << steps << " steps (" << nominal << " s of simulated time at dt = "
-    << dt << " s";
-  if (std::isfinite(particle_steps))
-    m << ", ≈ " << particle_steps / 1e7 / 3.15e7 << " years on one core at 10⁷ particle-steps/s";
-  m << "); lower " << keys << " or raise integrator.dt";
-  throw InputError(scene.path, "integrator.dt", m.str());
 }
 
 void print_banner(const SceneSpec& scene, const Simulation& sim, const ProtocolClock& clock) {
@@ -85,12 +92,40 @@ void print_banner(const SceneSpec& scene, const Simulation& sim, const ProtocolC
                  scene.drive.quench ? ", quench on" : "");
 }
 
+constexpr const char* kResumeAdvice =
+    "a resume continues the run with the scene it was started with: restore scene.toml (or "
+    "remove it), or start a new run with `gransim run` on the edited scene";
+
 ByteReader extra(const Checkpoint& c, const std::string& key) {
   const auto it = c.extras.entries.find(key);
   if (it == c.extras.entries.end())
     throw InputError(c.path, "", "checkpoint has no '" + key +
                                      "' entry: it was not written by `gransim run`");
   return ByteReader{it->second, 0, c.path + " [" + key + "]"};
+}
+
+// a resume continues the run as its checkpoint recorded it: a scene.toml edited since (a key
+// changed by hand, hoping the rest of the run would use it) is refused, not silently ignored
+void check_scene_unchanged(const std::string& dir, const Checkpoint& c) {
+  const std::string path = dir + "/scene.toml";
+  const auto text = read_text_file(path);
+  if (!text) return;  // removed: the checkpoint holds the scene
+  const std::string recorded = scene_to_toml(parse_scene_string(c.scene_toml, c.path));
+  std::string now;
+  try {
+    now = scene_to_toml(parse_scene_string(*text, path));
+  } catch (const InputError& e) {
+    throw InputError(path, "", std::string("edited since the run started, and no longer a valid "
+                                           "scene (") + e.what() + "); " + kResumeAdvice);
+  }
+  if (now == recorded) return;
+  std::istringstream a(recorded), b(now);
+  std::string la, lb;
+  while (std::getline(a, la) && std::getline(b, lb) && la == lb) {
+  }
+  throw InputError(path, "",
+                   "edited since the run started (the checkpoint's scene has '" + la +
+                       "', this file '" + lb + "'); " + kResumeAdvice);
 }
 
 }  // namespace
@@ -105,6 +140,8 @@ int run_command(const RunOptions& opt) {
   // scene and run directory are checked before any work is done
   SceneSpec scene = parse_scene_file(opt.scene, opt.sets);
   if (opt.allow_unstable) scene.health.allow_unstable = true;
+  // counts and sizes derived from the scene, before anything is allocated or placed
+  check_run_bounds(scene, ProtocolClock(scene).nominal_duration());
   World world = make_world(scene);
   place_particles(world);
   // the protocol clock starts after preparation.settle_time (constant gravity until then); it
@@ -113,6 +150,14 @@ int run_command(const RunOptions& opt) {
   clock.start(world);
   Simulation sim(std::move(world));
   const double dt = scene.integrator.dt, tc = sim.model().min_contact_time();
+  // a contact time no practical dt resolves: the stiffness or the mass is the mistake, not dt
+  if (!scene.health.allow_unstable && !(tc / 20.0 >= 1e-15))
+    throw InputError(scene.path, "integrator.dt",
+                     "the stiffest contact lasts " + short_number(tc) +
+                         " s, too short for any time step (it is set by " +
+                         contact_time_keys(scene) +
+                         "): lower the stiffness (ks, or E for Model P) or raise the mass or "
+                         "density");
   // the integrator's stability limit on the stiffest contact (sim/stability.hpp), then the
   // resolution of the contact itself (fewer than 5 steps per contact time)
   if (const StepAdvice adv = time_step_advice(sim); !scene.health.allow_unstable && !adv.stable)
@@ -123,10 +168,10 @@ int run_command(const RunOptions& opt) {
     m << "dt = " << dt << " s is " << dt / tc << " of the stiffest contact time (" << tc
       << " s); at more than 1/5 the contacts are not resolved and the integration is unstable. "
       << "Use dt <= " << round_down(tc / 5.0) << " s (dt <= " << round_down(tc / 20.0)
-      << " s resolves each contact with 20 steps), or pass --allow-unstable to run it anyway";
+      << " s resolves each contact with 20 steps; the contact time is set by "
+      << contact_time_keys(scene) << "), or pass --allow-unstable to run it anyway";
     throw InputError(scene.path, "integrator.dt", m.str());
   }
-  check_step_count(scene, clock.nominal_duration());
   const std::string out = opt.out.empty() ? default_out(scene.name) : opt.out;
   const DirLock lock(out, "run");
   prepare_run_dir(out, opt.force);
@@ -163,6 +208,7 @@ int resume_command(const ResumeOptions& opt) {
     throw InputError(opt.dir, "DIR", "not a run directory (it does not exist)");
   const DirLock lock(opt.dir, "resume");
   const Checkpoint c = newest_valid_checkpoint(opt.dir);
+  check_scene_unchanged(opt.dir, c);
   Simulation sim = restore_simulation(c);
   SceneSpec scene = sim.world().scene;
   ProtocolClock clock(scene);

@@ -21,6 +21,10 @@ class Simulation {
  public:
   /// take a World with its particles placed; computes the initial forces
   explicit Simulation(World w);
+  /// throws HealthError naming the particle when a position or velocity is not finite (also
+  /// part of every periodic health check; the run loop calls it after the first step and at
+  /// the end too, whatever health.check_every is)
+  void check_finite() const;
   Simulation(World w, BroadPhaseKind bp);
 
   /// advance one time step: drive → predict → broad phase → contacts → forces → correct →
