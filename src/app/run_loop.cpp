@@ -205,8 +205,8 @@ int run_session(RunSession& rs) {
       }
       if (due && !finished()) checkpoint();
     }
-    // "completed" is never said of a state that is not finite
-    if (code == kExitOk) sim.check_finite();
+    // "completed" is never said of a state that blew up since the last periodic check
+    if (code == kExitOk) sim.health_check();
   } catch (const HealthError& e) {
     code = kExitUnstable;
     failure = e.what();

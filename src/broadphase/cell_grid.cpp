@@ -163,10 +163,16 @@ class CellGrid final : public BroadPhase {
         Vec2 d{w.s.x[j] - pi.x, w.s.y[j] - pi.y};
         int sx = 0, sy = 0;
         if (periodic) {
-          sx = -static_cast<int>(std::nearbyint(d.x / w.Lx));
+          // a shift beyond the 8 bits of an image code only arises in a state that has blown
+          // up (non-finite or astronomically far positions): such a pair is no contact, and
+          // its code would spill into the partner's index
+          const double fx = std::nearbyint(d.x / w.Lx);
+          const double fy = ring ? 0.0 : std::nearbyint(d.y / w.Ly);
+          if (!(std::abs(fx) <= 127.0 && std::abs(fy) <= 127.0)) continue;
+          sx = -static_cast<int>(fx);
           d.x += sx * w.Lx;
           if (!ring) {
-            sy = -static_cast<int>(std::nearbyint(d.y / w.Ly));
+            sy = -static_cast<int>(fy);
             d.y += sy * w.Ly;
           }
         }

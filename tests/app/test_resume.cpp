@@ -4,6 +4,7 @@
 // scene and a disk RFM scene, with 1 and 2 threads; SIGINT writes a checkpoint and says how
 // to resume; a damaged newest checkpoint falls back to the one before
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -48,7 +49,9 @@ std::size_t list_size(const fs::path& dir) {
   std::size_t n = 0;
   if (fs::exists(dir))
     for (const auto& e : fs::directory_iterator(dir))
-      n += e.path().filename().string().rfind("checkpoint-", 0) == 0;
+      // complete checkpoints only: a kill during a write leaves checkpoint-….gsck.tmp
+      n += e.path().filename().string().rfind("checkpoint-", 0) == 0 &&
+           e.path().extension() == ".gsck";
   return n;
 }
 
@@ -62,8 +65,10 @@ void PrintTo(const Case& c, std::ostream* os) { *os << c.label; }
 
 class KillResume : public ::testing::TestWithParam<Case> {};
 
+// one folder per test process: two test suites on one machine must not share a run directory
 fs::path fresh(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("gs_resume_" + name);
+  const fs::path d =
+      fs::temp_directory_path() / ("gs_resume_" + name + "_" + std::to_string(::getpid()));
   fs::remove_all(d);
   fs::create_directories(d);
   return d;
