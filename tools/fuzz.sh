@@ -26,7 +26,7 @@ fi
 out=build-fuzz
 mkdir -p "$out"
 flags=(-std=c++20 -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined
-       -Isrc -DTOML_HEADER_ONLY=1
+       -Isrc -isystem /usr/include/eigen3 -DTOML_HEADER_ONLY=1
        # toml++ internal asserts off, as in the shipped library (Debian builds it with NDEBUG and
        # GCC, where TOML_ASSERT_ASSUME is a no-op): the debug-only asserts are known upstream
        # (marzer/tomlplusplus#294, #301) and would stop every run at the first malformed header
