@@ -236,6 +236,8 @@ def make_checkpoints():
     ck("ckpt_payload_cut.gsck", reseal(bytearray(good[:after + 40])), "truncated checkpoint")
     b = bytearray(good); struct.pack_into("<i", b, sp_at, 77)
     ck("ckpt_bad_species.gsck", reseal(b), "unknown species", "restore")
+    b = bytearray(good); struct.pack_into("<d", b, after + 8, 1e38)  # found by fuzz_restore
+    ck("ckpt_time_not_steps.gsck", reseal(b), "not step", "restore")
     b = bytearray(good); struct.pack_into("<d", b, sp_at + 4 * n, 0.5)  # found by fuzz_restore
     ck("ckpt_grain_not_species.gsck", reseal(b), "not its species", "restore")
     b = bytearray(good); struct.pack_into("<d", b, sp_at + 4 * n + 4 * 8 * n, float("nan"))
