@@ -1,15 +1,18 @@
 #!/usr/bin/env bash
 # build the libFuzzer targets in fuzz/ with clang (ASan + UBSan) and run each for N seconds.
-#   tools/fuzz.sh [SECONDS] [TARGET...]     (default 30 s; targets: scene checkpoint)
+#   tools/fuzz.sh [SECONDS] [TARGET...]
+#   (default 30 s each; targets: scene checkpoint state csv restore; the last three get a third
+#   of SECONDS each, so `tools/fuzz.sh 30` fuzzes for about 2.5 minutes in all)
 # Binaries and grown corpora go to build-fuzz/; crashes to build-fuzz/crashes/<target>/.
-# The scene target links only src/{scene,geometry,integrate}; the checkpoint target only the
-# decoder (src/sim/checkpoint_read.cpp), so no full rebuild is needed.
+# Each target compiles only the sources it needs (scene: src/{scene,geometry,integrate};
+# checkpoint: the decoder; state: + world and the state-file reader; csv: src/analysis;
+# restore: the simulation modules), so no full rebuild is needed.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 secs=${1:-30}
 shift || true
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(scene checkpoint)
+[ ${#targets[@]} -gt 0 ] || targets=(scene checkpoint state csv restore)
 
 # clang and the sanitizer/fuzzer runtimes (Debian bookworm: clang-14)
 sudo_() { if [ "$(id -u)" = 0 ]; then "$@"; else sudo "$@"; fi; }
@@ -23,7 +26,7 @@ fi
 out=build-fuzz
 mkdir -p "$out"
 flags=(-std=c++20 -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined
-       -Isrc -DTOML_HEADER_ONLY=1
+       -Isrc -isystem /usr/include/eigen3 -DTOML_HEADER_ONLY=1
        # toml++ internal asserts off, as in the shipped library (Debian builds it with NDEBUG and
        # GCC, where TOML_ASSERT_ASSUME is a no-op): the debug-only asserts are known upstream
        # (marzer/tomlplusplus#294, #301) and would stop every run at the first malformed header
@@ -42,7 +45,15 @@ for t in "${targets[@]}"; do
   case $t in
     scene) build scene fuzz/fuzz_scene.cpp src/scene/*.cpp src/geometry/*.cpp src/integrate/*.cpp ;;
     checkpoint) build checkpoint fuzz/fuzz_checkpoint.cpp src/sim/checkpoint_read.cpp ;;
-    *) echo "unknown target $t (scene, checkpoint)" >&2; exit 2 ;;
+    state) build state fuzz/fuzz_state.cpp src/sim/state_file.cpp src/world/*.cpp \
+             src/scene/*.cpp src/geometry/*.cpp src/integrate/*.cpp src/core/*.cpp \
+             src/output/run_dir.cpp ;;
+    csv) build csv fuzz/fuzz_csv.cpp src/analysis/*.cpp src/core/*.cpp ;;
+    restore) build restore fuzz/fuzz_restore.cpp src/sim/*.cpp src/world/*.cpp src/scene/*.cpp \
+               src/geometry/*.cpp src/integrate/*.cpp src/core/*.cpp src/broadphase/*.cpp \
+               src/contact/*.cpp src/force/*.cpp src/drive/*.cpp \
+               src/output/run_dir.cpp src/output/csv.cpp -lbox2d ;;
+    *) echo "unknown target $t (scene, checkpoint, state, csv, restore)" >&2; exit 2 ;;
   esac
 done
 
@@ -52,8 +63,13 @@ for t in "${targets[@]}"; do
   mkdir -p "$out/corpus/$t" "$out/crashes/$t"
   dict=()
   [ -f "fuzz/$t.dict" ] && dict=(-dict="fuzz/$t.dict")
-  echo "fuzzing $t for $secs s" >&2
-  if ! "$out/fuzz_$t" "$out/corpus/$t" "fuzz/corpus/$t" "${dict[@]}" -max_total_time="$secs" \
+  seeds=()
+  [ -d "fuzz/corpus/$t" ] && seeds=("fuzz/corpus/$t")
+  [ "$t" = restore ] && seeds=("fuzz/corpus/checkpoint")
+  t_secs=$secs
+  case $t in state | csv | restore) t_secs=$(((secs + 2) / 3)) ;; esac
+  echo "fuzzing $t for $t_secs s" >&2
+  if ! "$out/fuzz_$t" "$out/corpus/$t" "${seeds[@]}" "${dict[@]}" -max_total_time="$t_secs" \
       -timeout=10 -rss_limit_mb=2048 -max_len=65536 -print_final_stats=1 \
       -artifact_prefix="$out/crashes/$t/" 2>&1 | tail -n 25; then
     status=1

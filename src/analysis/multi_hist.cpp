@@ -39,7 +39,9 @@ Pooled pool(const std::vector<std::vector<double>>& xs) {
 std::vector<bool> linked_runs(const std::vector<std::vector<double>>& xs, int ref) {
   const int K = static_cast<int>(xs.size());
   auto inside = [&](int k, int l) {
-    const auto [lo, hi] = std::minmax_element(xs[l].begin(), xs[l].end());
+    // not a structured binding: clang 14 (tools/fuzz.sh) cannot capture one in the lambda
+    const auto range = std::minmax_element(xs[l].begin(), xs[l].end());
+    const auto lo = range.first, hi = range.second;
     return std::count_if(xs[k].begin(), xs[k].end(),
                          [&](double v) { return v >= *lo && v <= *hi; }) >= 3;
   };

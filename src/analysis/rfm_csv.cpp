@@ -1,7 +1,9 @@
 // CSV writer and reader for the RFM analysis outputs
 #include "analysis/rfm_csv.hpp"
 
+#include <cerrno>
 #include <charconv>
+#include <cstring>
 #include <cstdio>
 #include <cmath>
 #include <cstdlib>
@@ -9,6 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "core/input_file.hpp"
 #include "core/error.hpp"
 
 namespace gs::rfm {
@@ -40,7 +43,7 @@ double parse_number(const std::string& s, const std::string& where, const std::s
   char* end = nullptr;
   const double v = std::strtod(s.c_str(), &end);
   if (s.empty() || end != s.c_str() + s.size())
-    throw InputError(where, key, "not a number: '" + s + "'");
+    throw InputError(where, key, "column '" + key + "': not a number: '" + s + "'");
   return v;
 }
 
@@ -54,8 +57,10 @@ std::filesystem::path meta_path(const std::filesystem::path& csv) {
 
 CsvWriter::CsvWriter(const std::filesystem::path& path, const std::vector<std::string>& columns,
                      const CsvMeta& meta)
-    : path_(path), out_(path), columns_(columns.size()) {
-  if (!out_) throw InputError(path.string(), "", "cannot open the file for writing");
+    : path_(path), out_(path, std::ios::binary), columns_(columns.size()) {
+  if (!out_)
+    throw OutputError(path.string() + ": cannot open the file for writing: " +
+                      std::strerror(errno));
   // metadata in the sidecar, in the order given
   if (!meta.empty()) {
     nlohmann::ordered_json j = nlohmann::ordered_json::object();
@@ -68,25 +73,59 @@ CsvWriter::CsvWriter(const std::filesystem::path& path, const std::vector<std::s
     const std::filesystem::path side = meta_path(path);
     std::ofstream js(side);
     js << j.dump(2) << '\n';
-    if (!js) throw InputError(side.string(), "", "cannot write the metadata file");
+    if (!js) throw OutputError(side.string() + ": cannot write the metadata file");
   }
-  for (std::size_t i = 0; i < columns.size(); ++i) out_ << (i ? "," : "") << columns[i];
-  out_ << '\n';
+  std::string head;
+  for (std::size_t i = 0; i < columns.size(); ++i) head += (i ? "," : "") + columns[i];
+  put(head + '\n');
+}
+
+void CsvWriter::put(const std::string& line) {
+  errno = 0;
+  out_.write(line.data(), static_cast<std::streamsize>(line.size()));
+  out_.flush();
+  if (!out_) {
+    const int e = errno;
+    // a partial line would read back as a short or wrong row: keep whole rows only
+    std::error_code ec;
+    std::filesystem::resize_file(path_, complete_, ec);
+    throw OutputError(path_.string() + ": write failed: " +
+                      (e ? std::strerror(e) : "unknown error") + " (every complete row is kept)");
+  }
+  complete_ += line.size();
 }
 
 void CsvWriter::row(const std::vector<double>& values) {
   if (values.size() != columns_)
     throw InputError(path_.string(), "", "row has " + std::to_string(values.size()) +
                                              " values, header has " + std::to_string(columns_));
-  for (std::size_t i = 0; i < values.size(); ++i) out_ << (i ? "," : "") << number(values[i]);
-  out_ << '\n';
-  if (!out_) throw InputError(path_.string(), "", "write failed");
+  std::string line;
+  for (std::size_t i = 0; i < values.size(); ++i) line += (i ? "," : "") + number(values[i]);
+  put(line + '\n');
+}
+
+const std::vector<double>& CsvTable::col(const std::string& name) const {
+  const auto it = column.find(name);
+  if (it == column.end()) {
+    std::string have;
+    for (const auto& n : names) have += (have.empty() ? "" : ", ") + n;
+    throw InputError(source + ":header", name,
+                     "missing column '" + name + "' (the header has: " + have + ")");
+  }
+  return it->second;
 }
 
 CsvTable read_csv(const std::filesystem::path& path) {
+  check_input_file(path.string(), "CSV file");
   std::ifstream in(path);
   if (!in) throw InputError(path.string(), "", "cannot open the file for reading");
+  return parse_csv(in, path.string());
+}
+
+CsvTable parse_csv(std::istream& in, const std::string& name) {
+  const std::filesystem::path path(name);
   CsvTable t;
+  t.source = name;
   std::string line;
   int lineno = 0;
   // metadata lines, header, rows
@@ -104,12 +143,20 @@ CsvTable read_csv(const std::filesystem::path& path) {
     }
     if (t.names.empty()) {
       t.names = split(line);
-      for (const auto& n : t.names) t.column[n];
+      // every column once: a repeated name would mix two columns into one
+      for (std::size_t i = 0; i < t.names.size(); ++i) {
+        const std::string& n = t.names[i];
+        if (n.empty() || t.column.count(n))
+          throw InputError(where, n, "column " + std::to_string(i + 1) + ": " +
+                                         (n.empty() ? "empty column name" : "repeated column name"));
+        t.column[n];
+      }
       continue;
     }
     const auto cells = split(line);
     if (cells.size() != t.names.size())
-      throw InputError(where, "", "expected " + std::to_string(t.names.size()) + " values");
+      throw InputError(where, "", "expected " + std::to_string(t.names.size()) + " values, got " +
+                                      std::to_string(cells.size()));
     for (std::size_t i = 0; i < cells.size(); ++i)
       t.column[t.names[i]].push_back(parse_number(cells[i], where, t.names[i]));
   }

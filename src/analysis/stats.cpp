@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
+#include <complex>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -207,6 +209,48 @@ Interval stddev_ci(const std::vector<double>& x, double level, double tau_int) {
 
 // ---- autocorrelation ----------------------------------------------------------------------
 
+namespace {
+
+// in-place iterative radix-2 FFT (size a power of two); inverse without the 1/n
+void fft(std::vector<std::complex<double>>& a, bool inverse) {
+  const std::size_t n = a.size();
+  for (std::size_t i = 1, j = 0; i < n; ++i) {
+    std::size_t bit = n >> 1;
+    for (; j & bit; bit >>= 1) j ^= bit;
+    j ^= bit;
+    if (i < j) std::swap(a[i], a[j]);
+  }
+  for (std::size_t len = 2; len <= n; len <<= 1) {
+    const double ang = 2.0 * std::numbers::pi / static_cast<double>(len) * (inverse ? 1 : -1);
+    const std::complex<double> wl(std::cos(ang), std::sin(ang));
+    for (std::size_t i = 0; i < n; i += len) {
+      std::complex<double> w(1.0);
+      for (std::size_t k = 0; k < len / 2; ++k) {
+        const auto u = a[i + k], v = a[i + k + len / 2] * w;
+        a[i + k] = u + v;
+        a[i + k + len / 2] = u - v;
+        w *= wl;
+      }
+    }
+  }
+}
+
+// Σ_i d_i d_{i+t} for every lag t < n, by the Wiener–Khinchin theorem: O(n log n)
+std::vector<double> lag_sums_fft(const std::vector<double>& d) {
+  std::size_t size = 1;
+  while (size < 2 * d.size()) size <<= 1;
+  std::vector<std::complex<double>> a(size);
+  for (std::size_t i = 0; i < d.size(); ++i) a[i] = d[i];
+  fft(a, false);
+  for (auto& z : a) z = std::norm(z);
+  fft(a, true);
+  std::vector<double> out(d.size());
+  for (std::size_t t = 0; t < d.size(); ++t) out[t] = a[t].real() / static_cast<double>(size);
+  return out;
+}
+
+}  // namespace
+
 AutocorrTime autocorr_time(const std::vector<double>& x, double c) {
   require_size(x, 2, "autocorr_time");
   const std::size_t n = x.size();
@@ -214,8 +258,17 @@ AutocorrTime autocorr_time(const std::vector<double>& x, double c) {
   std::vector<double> d(n);
   for (std::size_t i = 0; i < n; ++i) d[i] = x[i] - m;
 
-  // biased autocovariance C(t) = (1/n) Σ d_i d_{i+t}, lag by lag until the window closes
+  // biased autocovariance C(t) = (1/n) Σ d_i d_{i+t}, lag by lag until the window closes. The
+  // first lags are summed directly; once the window has cost about 5·10⁷ products (a long or
+  // slowly decorrelating series, where lag-by-lag would be quadratic in n) every remaining
+  // lag comes from one FFT
+  std::vector<double> by_fft;
+  const std::size_t direct_lags = std::max<std::size_t>(64, 50'000'000 / n);
   auto cov = [&](std::size_t t) {
+    if (t > direct_lags) {
+      if (by_fft.empty()) by_fft = lag_sums_fft(d);
+      return by_fft[t] / static_cast<double>(n);
+    }
     double s = 0.0;
     for (std::size_t i = 0; i + t < n; ++i) s += d[i] * d[i + t];
     return s / static_cast<double>(n);
@@ -223,8 +276,8 @@ AutocorrTime autocorr_time(const std::vector<double>& x, double c) {
   AutocorrTime r;
   const double c0 = cov(0);
   r.rho.push_back(1.0);
-  if (c0 <= 0.0) {
-    // a constant series has no fluctuations to correlate
+  // a constant series has no fluctuations (what is left of the mean's rounding is not one)
+  if (c0 <= 1e-28 * m * m) {
     r.converged = true;
     return r;
   }

@@ -112,6 +112,13 @@ TapAnalysisResult run_tap_analysis(const std::vector<TapRunInput>& runs,
                        "run '" + label + "' has " + std::to_string(phis.back().size()) +
                            " taps after discarding " + std::to_string(opts.discard) +
                            " (needs at least 20)");
+    // a constant φ has no distribution: no bandwidth, no test, no fit
+    const auto [lo, hi] = std::minmax_element(phis.back().begin(), phis.back().end());
+    if (*lo == *hi)
+      throw InputError(run.series.source, "phi",
+                       "run '" + label + "': φ is the same (" + std::to_string(*lo) +
+                           ") at all " + std::to_string(phis.back().size()) +
+                           " taps after the transient; there is no distribution to analyse");
     r.runs.push_back(summarize(run, phis.back(), opts));
     if (!r.runs.back().tau.converged)
       r.notes.push_back("run '" + label + "': no autocorrelation window M ≥ 5τ below n/2; " +

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "analysis/tap_analysis.hpp"
+#include "core/input_file.hpp"
 #include "core/error.hpp"
 
 namespace gs {
@@ -145,8 +146,11 @@ TapSeries parse_taps_csv(std::istream& in, const std::string& source) {
       const std::string& cell = cells[c];
       char* end = nullptr;
       const double v = std::strtod(cell.c_str(), &end);
+      const std::string col = "column " + std::to_string(c + 1) + " ('" + header[c] + "')";
       if (cell.empty() || end != cell.c_str() + cell.size())
-        throw InputError(where, header[c], "not a number: '" + cell + "'");
+        throw InputError(where, header[c], col + ": not a number: '" + cell + "'");
+      // NaN or inf would reach the statistics (a KDE of NaN) and fail far from the file
+      if (!std::isfinite(v)) throw InputError(where, header[c], col + ": not finite: '" + cell + "'");
       return v;
     };
     const double tap = c_tap >= 0 ? value(c_tap) : static_cast<double>(s.tap.size() + 1);
@@ -166,6 +170,7 @@ TapSeries parse_taps_csv(std::istream& in, const std::string& source) {
 }
 
 TapSeries read_taps_csv(const std::string& path) {
+  check_input_file(path, "taps file");
   std::ifstream f(path);
   if (!f) throw InputError(path, "", "cannot open taps file for reading");
   return parse_taps_csv(f, path);

@@ -9,6 +9,7 @@
 
 #include "app/analyze.hpp"
 #include "core/error.hpp"
+#include "core/input_file.hpp"
 
 namespace gs {
 
@@ -41,9 +42,12 @@ double number(const std::string& text, const std::string& where, const std::stri
 }
 
 void check_file(const std::string& file, const std::string& where, const std::string& key) {
-  std::error_code ec;
-  if (!fs::is_regular_file(file, ec))
-    throw InputError(where, key, "'" + file + "' is not a readable file");
+  // a FIFO, a device or a huge file is named as such
+  try {
+    check_input_file(file, "series file");
+  } catch (const InputError& e) {
+    throw InputError(where, key, e.what());
+  }
 }
 
 }  // namespace
@@ -65,9 +69,9 @@ std::vector<PlainSeries> plain_series(const AnalyzeOptions& opt, double& test_ar
   // --manifest: a CSV with a header naming file, protocol, control and optionally label and
   // test_area; files are relative to the manifest
   if (!opt.manifest.empty()) {
+    check_input_file(opt.manifest, "manifest");
     std::ifstream in(opt.manifest);
-    std::error_code ec;
-    if (!fs::is_regular_file(opt.manifest, ec) || !in)
+    if (!in)
       throw InputError(opt.manifest, "--manifest", "cannot be read (not a regular file)");
     const fs::path base = fs::path(opt.manifest).parent_path();
     std::string line;

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 #include <exception>
+#include <filesystem>
+#include <new>
 
 #include "app/analyze.hpp"
 #include "app/render_cmd.hpp"
@@ -138,6 +140,9 @@ int run_cli(int argc, char** argv) {
   }
   try {
     app.parse(argc, argv);
+  } catch (const CLI::RuntimeError& e) {
+    // a `model` command's outcome, thrown from its callback with gransim's exit code
+    return e.get_exit_code();
   } catch (const CLI::ParseError& e) {
     const int code = app.exit(e);
     return code == 0 ? kExitOk : kExitBadInput;
@@ -156,6 +161,13 @@ int run_cli(int argc, char** argv) {
   } catch (const OutputError& e) {
     std::fprintf(stderr, "gransim: cannot write output: %s\n", e.what());
     return kExitOutput;
+  } catch (const std::filesystem::filesystem_error& e) {
+    // a folder that cannot be created or listed, a file that cannot be replaced
+    std::fprintf(stderr, "gransim: file system error: %s\n", e.what());
+    return kExitOutput;
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "gransim: out of memory (the input asks for more than this machine has)\n");
+    return kExitFailure;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "gransim: internal error: %s\n", e.what());
     return kExitFailure;

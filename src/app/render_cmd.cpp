@@ -6,7 +6,9 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <cstdlib>
 #include <fstream>
+#include <optional>
 
 #include "app/progress.hpp"
 #include "app/render_input.hpp"
@@ -15,6 +17,7 @@
 #include "core/error.hpp"
 #include "drive/schedule.hpp"
 #include "output/png.hpp"
+#include "output/run_dir.hpp"
 #include "scene/render_section.hpp"
 #include "sim/simulation.hpp"
 #if defined(GS_HAVE_FFMPEG)
@@ -157,6 +160,22 @@ Image draw(FrameMaker& maker, const Snapshot& s) {
     if (n.rfind("frame_", 0) == 0 && e.path().extension() == ".png") out.push_back(e.path());
   }
   std::sort(out.begin(), out.end());
+  // frames are numbered without gaps (a resumed run continues the numbering): a missing frame
+  // would jump in the movie, so it is an error naming the gap
+  for (std::size_t k = 1; k < out.size(); ++k) {
+    const auto number = [](const fs::path& p) {
+      const std::string n = p.stem().string().substr(6);
+      char* end = nullptr;
+      const long v = std::strtol(n.c_str(), &end, 10);
+      return (n.empty() || *end != '\0') ? -1L : v;
+    };
+    const long a = number(out[k - 1]), b = number(out[k]);
+    if (a < 0 || b < 0 || b != a + 1)
+      throw InputError((dir / "frames").string(), "",
+                       "the recorded frames are not numbered consecutively: " +
+                           out[k].filename().string() + " follows " +
+                           out[k - 1].filename().string() + " (a frame is missing or misnamed)");
+  }
   return out;
 }
 
@@ -171,17 +190,29 @@ Image draw(FrameMaker& maker, const Snapshot& s) {
 }  // namespace
 
 int render_command(const RenderCommandOptions& o) {
+  // default output: DIR/frame.png for a run directory, else beside the input
+  const fs::path in(o.input);
+  const std::string out = !o.out.empty()       ? o.out
+                          : fs::is_directory(in) ? (in / "frame.png").string()
+                                                 : fs::path(in).replace_extension(".png").string();
+  // the output is checked before anything is drawn: a PNG, not an input, not a run's own file
+  if (fs::path(out).extension() != ".png")
+    throw InputError(out, "-o", "the picture is a PNG: the output name must end in .png");
+  const std::vector<std::string> inputs = {
+      o.input, fs::is_directory(in) ? (in / "state.csv").string() : "", o.flags.scene};
+  check_output_file(out, inputs, "-o", [](const fs::path& p) {
+    return p.parent_path().filename() != "frames" && p.filename() != "final.png";
+  });
   SnapshotRequest req{o.flags.scene, o.flags.sets, o.frame};
   const Snapshot s = load_snapshot(o.input, req);
   RenderSpec r = s.world.scene.render;
   apply_flags(o.flags, r);
   FrameMaker maker(r, s.world.scene.path);
   const Image img = draw(maker, s);
-  // default output: DIR/frame.png for a run directory, else beside the input
-  const fs::path in(o.input);
-  const std::string out = !o.out.empty()       ? o.out
-                          : fs::is_directory(in) ? (in / "frame.png").string()
-                                                 : fs::path(in).replace_extension(".png").string();
+  // a picture written into a run directory waits for no writer there
+  const std::string run = run_dir_of(out);
+  std::optional<DirLock> lock;
+  if (!run.empty()) lock.emplace(run, "render");
   write_png(out, img);
   std::printf("wrote %s: %dx%d, %zu particles at t = %.6g s from the %s %s (%s)\n", out.c_str(),
               img.width, img.height, s.world.size(), s.world.s.t, s.kind.c_str(),
@@ -234,6 +265,14 @@ int movie_command(const MovieCommandOptions& o) {
                                : fs::path(in).replace_extension(".mp4").string());
   if (fs::exists(out) && !o.force)
     throw InputError(out, "", "exists; choose another -o or pass --force to replace it");
+  if (fs::path(out).extension() != ".mp4")
+    throw InputError(out, "-o", "the movie is an MP4: the output name must end in .mp4");
+  check_output_file(out, {o.input, o.flags.scene}, "-o",
+                    [](const fs::path& p) { return p.extension() == ".mp4"; });
+  // a movie written into a run directory waits for no writer there
+  const std::string run = run_dir_of(out);
+  std::optional<DirLock> lock;
+  if (!run.empty()) lock.emplace(run, "movie");
 
   MovieEncoder enc;
   int w = 0, h = 0;

@@ -4,6 +4,7 @@
 #include "app/run_session.hpp"
 #include "app/trajectory.hpp"
 #include "core/error.hpp"
+#include "core/input_file.hpp"
 #include "drive/protocol.hpp"
 #include "scene/parse.hpp"
 #include "sim/state_file.hpp"
@@ -110,6 +111,8 @@ const std::vector<SnapshotReader>& snapshot_readers() {
 Snapshot load_snapshot(const std::string& path, const SnapshotRequest& req) {
   const fs::path p(path);
   if (!fs::exists(p)) throw InputError(path, "", "no such file or directory");
+  // a FIFO or a device would block or never end: named as such before any reader opens it
+  if (!fs::is_directory(p)) check_input_file(path, "saved state");
   for (const SnapshotReader& r : snapshot_readers())
     if (r.accepts(p)) return r.read(p, req);
   std::string kinds;

@@ -1,6 +1,7 @@
 // the frame recorder and the trajectory writer: observers that sample on their own schedule
 #include "app/render_recorder.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -128,7 +129,12 @@ class FrameRecorder final : public Observer {
         // might never show it)
         if (begins && t + half >= spec_.start && excitation_length(d) < interval) return true;
         if (t + half < at(next_k_)) return false;
-        while (at(next_k_) <= t + half) ++next_k_;
+        // the first frame time after this step: jump near it, then settle with the same
+        // comparison (a slow-motion schedule may pass many frame times in one step)
+        long k = std::max(next_k_, static_cast<long>(std::floor((t + half - spec_.start) / interval)));
+        while (k > next_k_ && at(k - 1) > t + half) --k;
+        while (at(k) <= t + half) ++k;
+        next_k_ = k;
         return true;
       }
       case RenderSchedule::Steps:

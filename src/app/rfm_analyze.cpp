@@ -130,8 +130,8 @@ void read_moments(const fs::path& p, std::vector<double>& m, std::vector<double>
   std::error_code ec;
   if (!fs::exists(p, ec)) return;
   const rfm::CsvTable t = rfm::read_csv(p);
-  m = t.column.at("moment");
-  e = t.column.at("error");
+  m = t.col("moment");
+  e = t.col("error");
 }
 
 // P(v) at v = 0: the bin holding 0, or the mean of the two bins meeting there
@@ -196,14 +196,14 @@ void analyze_structure(const RfmRun& r, const fs::path& out, RunResult& res) {
   if (fs::exists(r.dir / "sk.csv", ec)) {
     const rfm::CsvTable t = rfm::read_csv(r.dir / "sk.csv");
     std::vector<rfm::SkShell> shells;
-    const auto& k = t.column.at("k");
+    const auto& k = t.col("k");
     for (std::size_t i = 0; i < k.size(); ++i) {
       rfm::SkShell s;
       s.k = k[i];
-      s.n = t.column.at("n")[i];
-      s.s = t.column.at("S")[i];
-      s.s_err = t.column.at("S_err")[i];
-      s.modes = static_cast<long>(t.column.at("modes")[i]);
+      s.n = t.col("n")[i];
+      s.s = t.col("S")[i];
+      s.s_err = t.col("S_err")[i];
+      s.modes = static_cast<long>(t.col("modes")[i]);
       shells.push_back(s);
     }
     rfm::RfmSystem sys;
@@ -246,9 +246,9 @@ void write_gh_bisection(const RfmRun& r, const fs::path& out) {
   const int levels = std::max(1, static_cast<int>(std::lround(std::log2(n))));
   rfm::CsvWriter w(out / "gh_bisection.csv", {"R", "G1", "G1_err", "P_bisection", "P_uniform"},
                    {{"levels", static_cast<double>(levels)}, {"N", n}});
-  const auto& R = t.column.at("R");
+  const auto& R = t.col("R");
   for (std::size_t i = 0; i < R.size(); ++i)
-    w.row({R[i], t.column.at("G1")[i], t.column.at("G1_err")[i],
+    w.row({R[i], t.col("G1")[i], t.col("G1_err")[i],
            models::bisection_density(R[i], levels),
            R[i] < 1.0 ? (n - 1.0) * std::pow(1.0 - R[i], n - 2.0) : 0.0});
 }

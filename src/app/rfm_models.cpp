@@ -30,6 +30,7 @@ struct Common {
   std::uint64_t seed = 1;
   bool charts = true;
   bool quiet = false;
+  bool force = false;
 };
 
 struct BisectionOpt {
@@ -59,6 +60,27 @@ std::string num(double v) {
   return std::isfinite(v) ? s.str() : "null";
 }
 
+// the output folder, once every argument is checked: refused when it holds files (unless
+// --force: they are then overwritten) or when it is a run or sweep; locked while written
+std::unique_ptr<DirLock> open_out(const Common& c) {
+  const fs::path out(c.out);
+  std::error_code ec;
+  if (fs::exists(out, ec) && !fs::is_directory(out, ec))
+    throw InputError(c.out, "--out", "exists and is not a folder; choose another --out");
+  if (fs::exists(out / "run.json", ec) || fs::exists(out / "sweep.json", ec) ||
+      fs::exists(out / "scene.toml", ec))
+    throw InputError(c.out, "--out", "holds a run or a sweep; choose another --out");
+  bool empty = true;
+  for (const auto& e : fs::directory_iterator(out, ec))
+    if (e.path().filename() != ".lock") empty = false;
+  if (!empty && !c.force)
+    throw InputError(c.out, "--out",
+                     "is not empty; pass --force to overwrite its files, or choose another --out");
+  fs::create_directories(out, ec);
+  if (ec) throw OutputError(c.out + ": cannot create the folder: " + ec.message());
+  return std::make_unique<DirLock>(c.out, "model");
+}
+
 // model.json: a flat list of headline numbers
 void write_model_json(const fs::path& out, const std::string& model,
                       const std::vector<std::pair<std::string, double>>& f) {
@@ -78,9 +100,9 @@ void finish(const Common& c, const fs::path& out) {
 // the segment lengths of the multiplicative bisection against (−ln x)^(n−1)/(n−1)! (T.3.36)
 void run_bisection(const Common& c, BisectionOpt o) {
   const fs::path out(c.out);
-  fs::create_directories(out);
   o.p.seed = c.seed;
   o.p.validate();
+  const auto lock = open_out(c);
   const models::BisectionResult r = models::run_bisection(o.p);
   models::write_bisection_csv(out / "bisection.csv", r);
   std::vector<std::pair<std::string, double>> f{
@@ -105,12 +127,32 @@ void run_bisection(const Common& c, BisectionOpt o) {
 // from a measured free-path table (the Single Particle Model), and free heating
 void run_walk(const Common& c, WalkOpt o) {
   const fs::path out(c.out);
-  fs::create_directories(out);
   o.p.seed = c.seed;
   o.p.validate();
+  for (double l : o.radii)
+    if (!(l > 0) || !std::isfinite(l))
+      throw InputError("gransim model walk", "--radius", "radii must be positive and finite");
+  // the free-path table is read before anything is written
+  rfm::CsvTable paths;
+  if (!o.paths.empty()) paths = rfm::read_csv(o.paths);
+  models::PathTable tab;
+  if (!o.paths.empty()) {
+    const auto& l = paths.col("l");
+    const auto& p = paths.col("P");
+    for (std::size_t i = 0; i < l.size(); ++i)
+      if (std::isfinite(p[i]) && p[i] >= 0) {
+        tab.l.push_back(l[i]);
+        tab.p.push_back(p[i]);
+      }
+    try {
+      tab.validate();
+    } catch (const InputError& e) {
+      throw InputError(o.paths, "", e.what());
+    }
+  }
+  const auto lock = open_out(c);
   std::vector<std::pair<std::string, double>> f;
   for (double l : o.radii) {
-    if (!(l > 0)) throw InputError("gransim model walk", "--radius", "radii must be positive");
     models::WalkParams p = o.p;
     if (p.v_max == 0) p.v_max = 8.0 * models::walk_velocity_scale(p, l);
     const models::WalkResult r = models::disc_walk(p, l);
@@ -133,15 +175,6 @@ void run_walk(const Common& c, WalkOpt o) {
   }
   // the Single Particle Model with a measured P_l (columns l and P of a freepath.csv)
   if (!o.paths.empty()) {
-    const rfm::CsvTable t = rfm::read_csv(o.paths);
-    models::PathTable tab;
-    const auto& l = t.column.at("l");
-    const auto& p = t.column.at("P");
-    for (std::size_t i = 0; i < l.size(); ++i)
-      if (std::isfinite(p[i]) && p[i] >= 0) {
-        tab.l.push_back(l[i]);
-        tab.p.push_back(p[i]);
-      }
     models::WalkParams wp = o.p;
     double lmean = 0.0, norm = 0.0;
     for (std::size_t i = 0; i < tab.l.size(); ++i) {
@@ -172,9 +205,8 @@ void run_walk(const Common& c, WalkOpt o) {
 // appendix B: the 1D interval with absorbing ends, arrivals at x = L against B.32
 void run_interval(const Common& c, IntervalOpt o) {
   const fs::path out(c.out);
-  fs::create_directories(out);
   o.p.seed = c.seed;
-  if (!(o.length > 0)) throw InputError("gransim model interval", "--length", "must be positive");
+  if (!(o.length > 0) || !std::isfinite(o.length)) throw InputError("gransim model interval", "--length", "must be positive");
   if (o.p.v_max == 0) o.p.v_max = 5.0 * models::walk_velocity_scale(o.p, o.length);
   o.p.validate();
   models::IntervalStart st;
@@ -185,6 +217,7 @@ void run_interval(const Common& c, IntervalOpt o) {
   else
     throw InputError("gransim model interval", "--start",
                      "must be uniform or centre (got '" + o.start + "')");
+  const auto lock = open_out(c);
   const models::WalkResult r = models::interval_walk(o.p, o.length, st);
   models::write_interval_csv(out / "interval.csv", r, o.p, o.length);
   const double theory =
@@ -204,10 +237,15 @@ void run_interval(const Common& c, IntervalOpt o) {
 // multiplicative cascades: S(k) of the mass field, its exact expectation, the D_f fit
 void run_cascade(const Common& c, CascadeOpt o) {
   const fs::path out(c.out);
-  fs::create_directories(out);
   std::vector<std::string> kinds = o.kinds;
   if (kinds.size() == 1 && kinds[0] == "all")
     kinds = {"ucp", "unoncp", "symmetrised", "meakin1", "meakin2", "meakin3", "meakin4"};
+  for (const std::string& k : kinds) {
+    models::CascadeParams p = o.p;
+    p.kind = models::cascade_from_name(k);
+    p.validate();
+  }
+  const auto lock = open_out(c);
   std::vector<std::pair<std::string, double>> f;
   for (const std::string& k : kinds) {
     models::CascadeParams p = o.p;
@@ -255,6 +293,12 @@ void guarded(F&& f) {
   } catch (const InputError& e) {
     std::fprintf(stderr, "gransim: error: %s\n", e.what());
     throw CLI::RuntimeError(kExitBadInput);
+  } catch (const OutputError& e) {
+    std::fprintf(stderr, "gransim: cannot write output: %s\n", e.what());
+    throw CLI::RuntimeError(kExitOutput);
+  } catch (const fs::filesystem_error& e) {
+    std::fprintf(stderr, "gransim: cannot write output: %s\n", e.what());
+    throw CLI::RuntimeError(kExitOutput);
   } catch (const CLI::Error&) {
     throw;
   } catch (const std::exception& e) {
@@ -269,6 +313,7 @@ void common_options(CLI::App* s, Common& c) {
   s->add_flag(
       "--no-charts", [&c](std::int64_t) { c.charts = false; }, "write CSV/JSON only");
   s->add_flag("-q,--quiet", c.quiet, "no summary lines");
+  s->add_flag("--force", c.force, "write into a folder that already holds files (they are overwritten)");
 }
 
 }  // namespace

@@ -13,6 +13,8 @@
 #include <sstream>
 
 #include "app/observers.hpp"
+#include "app/run_bounds.hpp"
+#include "app/run_info.hpp"
 #include "app/run_session.hpp"
 #include "app/version.hpp"
 #include "core/error.hpp"
@@ -38,30 +40,6 @@ std::string default_out(const std::string& name) {
   return "runs/" + (name.empty() ? std::string("run") : name) + "-" + buf;
 }
 
-// the number of steps must be one the run can count and finish: a tiny Δt or a huge duration
-// (or settle time, or tap count) is refused up front, naming the keys that make it
-void check_step_count(const SceneSpec& scene, double nominal) {
-  const double dt = scene.integrator.dt;
-  const double steps = nominal / dt;
-  double particles = 0.0;
-  for (const auto& sp : scene.species) particles += std::max(sp.count, 0);
-  const double particle_steps = steps * std::max(particles, 1.0);
-  constexpr double kMaxSteps = 1e15;          // far beyond any run; well inside int64 and exact doubles
-  constexpr double kMaxParticleSteps = 1e15;  // ≈ 3 years at 10⁷ particle-steps per second
-  if (std::isfinite(steps) && steps >= 0.0 && steps <= kMaxSteps && particle_steps <= kMaxParticleSteps)
-    return;
-  const std::string keys = is_tapping(scene.drive)
-                               ? "drive.taps × the period, preparation.settle_time"
-                               : "scene.duration, preparation.settle_time";
-  std::ostringstream m;
-  m << "the run would take " << steps << " steps (" << nominal << " s of simulated time at dt = "
-    << dt << " s";
-  if (std::isfinite(particle_steps))
-    m << ", ≈ " << particle_steps / 1e7 / 3.15e7 << " years on one core at 10⁷ particle-steps/s";
-  m << "); lower " << keys << " or raise integrator.dt";
-  throw InputError(scene.path, "integrator.dt", m.str());
-}
-
 void print_banner(const SceneSpec& scene, const Simulation& sim, const ProtocolClock& clock) {
   const double dt = scene.integrator.dt;
   const auto nsteps = static_cast<long long>(std::llround(clock.nominal_duration() / dt));
@@ -81,12 +59,40 @@ void print_banner(const SceneSpec& scene, const Simulation& sim, const ProtocolC
                  scene.drive.quench ? ", quench on" : "");
 }
 
+constexpr const char* kResumeAdvice =
+    "a resume continues the run with the scene it was started with: restore scene.toml (or "
+    "remove it), or start a new run with `gransim run` on the edited scene";
+
 ByteReader extra(const Checkpoint& c, const std::string& key) {
   const auto it = c.extras.entries.find(key);
   if (it == c.extras.entries.end())
     throw InputError(c.path, "", "checkpoint has no '" + key +
                                      "' entry: it was not written by `gransim run`");
   return ByteReader{it->second, 0, c.path + " [" + key + "]"};
+}
+
+// a resume continues the run as its checkpoint recorded it: a scene.toml edited since (a key
+// changed by hand, hoping the rest of the run would use it) is refused, not silently ignored
+void check_scene_unchanged(const std::string& dir, const Checkpoint& c) {
+  const std::string path = dir + "/scene.toml";
+  const auto text = read_text_file(path);
+  if (!text) return;  // removed: the checkpoint holds the scene
+  const std::string recorded = scene_to_toml(parse_scene_string(c.scene_toml, c.path));
+  std::string now;
+  try {
+    now = scene_to_toml(parse_scene_string(*text, path));
+  } catch (const InputError& e) {
+    throw InputError(path, "", std::string("edited since the run started, and no longer a valid "
+                                           "scene (") + e.what() + "); " + kResumeAdvice);
+  }
+  if (now == recorded) return;
+  std::istringstream a(recorded), b(now);
+  std::string la, lb;
+  while (std::getline(a, la) && std::getline(b, lb) && la == lb) {
+  }
+  throw InputError(path, "",
+                   "edited since the run started (the checkpoint's scene has '" + la +
+                       "', this file '" + lb + "'); " + kResumeAdvice);
 }
 
 }  // namespace
@@ -107,6 +113,8 @@ int run_command(const RunOptions& opt) {
     saved = read_saved_state(scene);
     fit_scene_to_state(scene, *saved);
   }
+  // counts and sizes derived from the scene, before anything is allocated or placed
+  check_run_bounds(scene, ProtocolClock(scene).nominal_duration());
   World world = make_world(scene);
   if (saved)
     place_saved_state(world, *saved);
@@ -119,7 +127,6 @@ int run_command(const RunOptions& opt) {
   Simulation sim(std::move(world));
   const bool history = saved && take_saved_history(sim, *saved);
   check_time_step(sim);
-  check_step_count(scene, clock.nominal_duration());
   const std::string out = opt.out.empty() ? default_out(scene.name) : opt.out;
   const DirLock lock(out, "run");
   prepare_run_dir(out, opt.force);
@@ -161,6 +168,7 @@ int resume_command(const ResumeOptions& opt) {
     throw InputError(opt.dir, "DIR", "not a run directory (it does not exist)");
   const DirLock lock(opt.dir, "resume");
   const Checkpoint c = newest_valid_checkpoint(opt.dir);
+  check_scene_unchanged(opt.dir, c);
   Simulation sim = restore_simulation(c);
   SceneSpec scene = sim.world().scene;
   ProtocolClock clock(scene);

@@ -155,8 +155,11 @@ int run_session(RunSession& rs) {
     std::int64_t since_check = kProgressEvery;  // progress and stop checks from the first step
     while (!finished()) {
       const std::int64_t m = batch();
+      const bool first = sim.world().s.step == 0;
       sim.run(m);
       since_check += m;
+      // non-finite state is caught at once, whatever health.check_every is
+      if (first) sim.check_finite();
       // may end a relaxation early (moves the clock origin) or ask for a quench's reset
       if (clock.after_step(sim.world()) == ClockEvent::Quench) sim.zero_velocities();
       if (rs.wall_settled < 0 && !settling()) rs.wall_settled = wall_now();
@@ -186,6 +189,8 @@ int run_session(RunSession& rs) {
       }
       if (due && !finished()) checkpoint();
     }
+    // "completed" is never said of a state that blew up since the last periodic check
+    if (code == kExitOk) sim.health_check();
   } catch (const HealthError& e) {
     code = kExitUnstable;
     failure = e.what();

@@ -125,6 +125,9 @@ std::uint64_t replica_seed(std::uint64_t base, int replica) {
   return h & 0x7fffffffffffffffULL;
 }
 
+// runs per sweep: each is a directory, a log file and a child process
+constexpr double kMaxSweepRuns = 100000;
+
 SweepPlan plan_sweep(const SweepOptions& opt, bool check_dirs) {
   // the parameters, then every combination parsed up front: a bad key or value stops the
   // sweep before anything runs (exit 2, the message names the --param)
@@ -142,6 +145,27 @@ SweepPlan plan_sweep(const SweepOptions& opt, bool check_dirs) {
   const SceneSpec base = parse_scene_file(opt.scene, opt.sets);
   plan.base_hash = text_hash(scene_to_toml(base));
   const std::vector<SweepRun> values = sweep_runs(plan.params);
+  // every run gets a directory, a log and a scene parse before anything starts
+  const double runs = static_cast<double>(values.size()) * opt.replicas;
+  if (runs > kMaxSweepRuns)
+    throw InputError("", opt.replicas > 1 ? "--replicas" : "--param",
+                     "the sweep would hold " + std::to_string(static_cast<long long>(runs)) +
+                         " runs (" + std::to_string(values.size()) + " values × " +
+                         std::to_string(opt.replicas) + " replicas); at most " +
+                         std::to_string(static_cast<long long>(kMaxSweepRuns)) +
+                         " runs per sweep");
+  // two values that name the same directory would write one run over the other
+  std::map<std::string, std::string> names;
+  for (const SweepRun& v : values) {
+    std::string ov;
+    for (const auto& o : v.overrides) ov += (ov.empty() ? "" : ", ") + o;
+    const auto [it, fresh] = names.emplace(v.name, ov);
+    if (!fresh)
+      throw InputError("", "--param",
+                       "the values " + it->second + " and " + ov +
+                           " give the same run directory name '" + v.name +
+                           "'; sweep distinct values");
+  }
   for (int rep = 0; rep < opt.replicas; ++rep)
     for (const SweepRun& v : values) {
       Job j;
@@ -174,6 +198,20 @@ SweepPlan plan_sweep(const SweepOptions& opt, bool check_dirs) {
   std::error_code ec;
   fs::create_directories(plan.out + "/logs", ec);
   if (ec) throw InputError(plan.out, "", "cannot create the sweep directory: " + ec.message());
+  // a run directory is no sweep directory; a folder with other files is refused without --force
+  for (const char* f : {"run.json", "scene.toml", "series.csv"})
+    if (fs::exists(plan.out + "/" + f, ec))
+      throw InputError(plan.out, "--out",
+                       std::string("holds a run (") + f + "), not a sweep; choose another --out");
+  if (!fs::exists(plan.out + "/sweep.json", ec) && !opt.force) {
+    std::set<std::string> known = {".lock", "logs"};
+    for (const Job& j : plan.jobs) known.insert(fs::path(j.dir).filename().string());
+    for (const auto& e : fs::directory_iterator(plan.out, ec))
+      if (!known.count(e.path().filename().string()))
+        throw InputError(plan.out, "--out",
+                         "is not empty and holds no sweep (" + e.path().filename().string() +
+                             "); pass --force to sweep into it anyway, or choose another --out");
+  }
   if (const auto old = read_text_file(plan.out + "/sweep.json")) {
     const auto h = json_string_field(*old, "base_scene_hash");
     if (h && *h != plan.base_hash)

@@ -17,11 +17,13 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <optional>
 #include <thread>
 
 #include "app/run.hpp"
 #include "app/sweep_detail.hpp"
 #include "core/error.hpp"
+#include "output/run_dir.hpp"
 
 #ifdef GS_HAVE_MPI
 #include <mpi.h>
@@ -183,7 +185,11 @@ int sweep_mpi(const SweepOptions& opt) {
   SweepPlan plan;
   std::string error;
   int code = kExitOk;
+  // rank 0 holds the sweep directory's lock, as a serial sweep does; each run's child process
+  // locks its own run directory
+  std::optional<DirLock> lock;
   try {
+    if (rank == 0) lock.emplace(plan_sweep(opt, false).out, "sweep");
     plan = plan_sweep(opt, rank == 0);
   } catch (const InputError& e) {
     error = e.what();

@@ -9,6 +9,7 @@
 #include <map>
 #include <sstream>
 
+#include "core/input_file.hpp"
 #include "view/render_world.hpp"
 #include "core/error.hpp"
 
@@ -78,7 +79,16 @@ void write_trajectory_frame(std::ostream& out, const World& w, const ContactSet*
 // ---------------------------------------------------------------------------------------------
 // reading
 
-TrajectoryReader::TrajectoryReader(const std::string& path) : path_(path), in_(path) {
+namespace {
+// checked before the stream opens it (a FIFO would block the open)
+const std::string& checked_trajectory(const std::string& path) {
+  check_input_file(path, "trajectory file");
+  return path;
+}
+}  // namespace
+
+TrajectoryReader::TrajectoryReader(const std::string& path)
+    : path_(path), in_(checked_trajectory(path)) {
   if (!in_) throw InputError(path, "", "cannot open the trajectory file");
 }
 

@@ -87,11 +87,19 @@ class CellGrid final : public BroadPhase {
     // never many more cells than grains (a far grain, a huge dilute box)
     cell = std::max(cell, ring ? wx / (4.0 * static_cast<double>(n))
                                : std::sqrt(wx * wy / (4.0 * static_cast<double>(n))));
-    nx_ = std::max(1, static_cast<int>(std::floor(wx / cell)));
-    ny_ = ring ? 1 : std::max(1, static_cast<int>(std::floor(wy / cell)));
+    // cells along one axis, at most ~4 per grain: a grain astronomically far from the others
+    // (a blown-up run, a hostile checkpoint) must not ask for more cells than an int counts;
+    // the indices below are clamped to the grid, so grains beyond it share the edge cells
+    // (more candidate pairs, never a missed one)
+    const double most = 4.0 * static_cast<double>(n) + 16.0;
+    auto axis = [most](double cells) {
+      return cells >= 1.0 ? static_cast<int>(std::min(cells, most)) : 1;  // NaN: 1
+    };
+    nx_ = axis(std::floor(wx / cell));
+    ny_ = ring ? 1 : axis(std::floor(wy / cell));
     if (!periodic) {  // walled: cells of exactly `cell`, one spare row and column
-      nx_ = static_cast<int>(wx / cell) + 1;
-      ny_ = static_cast<int>(wy / cell) + 1;
+      nx_ = axis(std::floor(wx / cell)) + 1;
+      ny_ = axis(std::floor(wy / cell)) + 1;
     }
     const double cx = periodic ? wx / nx_ : cell;
     const double cy = periodic ? (ring ? 1.0 : wy / ny_) : cell;
@@ -105,8 +113,12 @@ class CellGrid final : public BroadPhase {
         px -= wx * std::floor(px / wx);
         if (!ring) py -= wy * std::floor(py / wy);
       }
-      const int ix = std::clamp(static_cast<int>(px / cx), 0, nx_ - 1);
-      const int iy = std::clamp(static_cast<int>(py / cy), 0, ny_ - 1);
+      // clamped as doubles: a far or non-finite position must not overflow the int
+      auto index = [](double v, int cells) {
+        return v >= 0.0 ? static_cast<int>(std::min(v, cells - 1.0)) : 0;
+      };
+      const int ix = index(px / cx, nx_);
+      const int iy = index(py / cy, ny_);
       cell_of_[i] = iy * nx_ + ix;
       ++start_[cell_of_[i] + 1];
     }
@@ -163,10 +175,16 @@ class CellGrid final : public BroadPhase {
         Vec2 d{w.s.x[j] - pi.x, w.s.y[j] - pi.y};
         int sx = 0, sy = 0;
         if (periodic) {
-          sx = -static_cast<int>(std::nearbyint(d.x / w.Lx));
+          // a shift beyond the 8 bits of an image code only arises in a state that has blown
+          // up (non-finite or astronomically far positions): such a pair is no contact, and
+          // its code would spill into the partner's index
+          const double fx = std::nearbyint(d.x / w.Lx);
+          const double fy = ring ? 0.0 : std::nearbyint(d.y / w.Ly);
+          if (!(std::abs(fx) <= 127.0 && std::abs(fy) <= 127.0)) continue;
+          sx = -static_cast<int>(fx);
           d.x += sx * w.Lx;
           if (!ring) {
-            sy = -static_cast<int>(std::nearbyint(d.y / w.Ly));
+            sy = -static_cast<int>(fy);
             d.y += sy * w.Ly;
           }
         }

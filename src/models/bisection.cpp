@@ -10,10 +10,21 @@
 
 namespace gs::models {
 
+namespace {
+constexpr double kMaxBisectionSegments = 1e11;
+}  // namespace
+
 void BisectionParams::validate() const {
   if (levels < 1 || levels > 24)
     throw InputError("bisection", "levels", "need 1 ≤ levels ≤ 24, got " + std::to_string(levels));
   if (realisations < 2) throw InputError("bisection", "realisations", "need at least 2");
+  // the work is realisations × 2^levels segments: refuse what could not finish in hours
+  const double segments = static_cast<double>(realisations) * std::ldexp(1.0, levels);
+  if (segments > kMaxBisectionSegments)
+    throw InputError("bisection", "realisations",
+                     "realisations × 2^levels = " + std::to_string(segments) +
+                         " segments (about " + std::to_string(static_cast<long long>(segments / 1e8)) +
+                         " s at 10^8 segments per second); the limit is 10^11");
   if (bins < 1) throw InputError("bisection", "bins", "need at least 1");
   if (!(x_min > 0.0 && x_min < 1.0)) throw InputError("bisection", "x_min", "need 0 < x_min < 1");
   if (m_max < 1) throw InputError("bisection", "m_max", "need m_max ≥ 1");

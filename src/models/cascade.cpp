@@ -177,6 +177,12 @@ std::vector<double> cascade_field(CascadeKind kind, int levels, RngStream& rng) 
 void CascadeParams::validate() const {
   if (levels < 1 || levels > 12) throw InputError("cascade", "levels", "need 1 ≤ levels ≤ 12");
   if (realisations < 2) throw InputError("cascade", "realisations", "need at least 2");
+  // each realisation fills and transforms a 2^levels × 2^levels field
+  const double cells = static_cast<double>(realisations) * std::ldexp(1.0, 2 * levels);
+  if (cells > 1e11)
+    throw InputError("cascade", "realisations",
+                     "realisations × 4^levels = " + std::to_string(cells) +
+                         " field cells (hours of work); the limit is 10^11");
   if (n_max < 0 || n_max > (1 << (levels - 1)))
     throw InputError("cascade", "n_max", "need 0 ≤ n_max ≤ 2^(levels−1) (Nyquist)");
   if (!(box > 0.0)) throw InputError("cascade", "box", "must be positive");

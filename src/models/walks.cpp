@@ -20,6 +20,8 @@ void WalkParams::validate() const {
   if (!(mass > 0.0)) throw InputError("walks", "mass", "M must be positive");
   if (dt < 0.0) throw InputError("walks", "dt", "must be ≥ 0 (0 chooses it)");
   if (walks < 2) throw InputError("walks", "walks", "need at least 2 walks");
+  if (walks > 1'000'000'000)
+    throw InputError("walks", "walks", "at most 10^9 walks (each takes thousands of steps)");
   if (bins < 1) throw InputError("walks", "bins", "need at least 1 bin");
   if (v_max < 0.0) throw InputError("walks", "v_max", "must be ≥ 0 (0 chooses it)");
   if (max_steps < 1) throw InputError("walks", "max_steps", "must be ≥ 1");

@@ -48,11 +48,14 @@ void write_png(const std::string& path, const Image& img) {
   im.width = static_cast<png_uint_32>(img.width);
   im.height = static_cast<png_uint_32>(img.height);
   im.format = opaque ? PNG_FORMAT_RGB : PNG_FORMAT_RGBA;
-  File f = open_file(path, "wb", "write PNG");
+  // an output that cannot be written (no such folder, read-only, disk full) is exit 5
+  std::FILE* raw = std::fopen(path.c_str(), "wb");
+  if (!raw) throw OutputError(path + ": cannot write PNG: " + std::strerror(errno));
+  File f(raw);
   if (!png_image_write_to_stdio(&im, f.get(), 0, pixels, 0, nullptr))
-    throw InputError(path, "", std::string("libpng cannot write: ") + im.message);
+    throw OutputError(path + ": libpng cannot write: " + im.message);
   if (std::fflush(f.get()) != 0)
-    throw InputError(path, "", std::string("cannot write PNG: ") + std::strerror(errno));
+    throw OutputError(path + ": cannot write PNG: " + std::strerror(errno));
 }
 
 Image read_png(const std::string& path) {

@@ -75,6 +75,49 @@ DirLock::~DirLock() {
   if (fd_ >= 0) ::close(fd_);  // closing the descriptor releases the lock
 }
 
+namespace {
+
+bool is_run_dir(const fs::path& d) {
+  std::error_code ec;
+  return !d.empty() && (fs::exists(d / "run.json", ec) || fs::exists(d / "scene.toml", ec) ||
+                        fs::exists(d / ".lock", ec));
+}
+
+// the same file, whether or not it exists yet (weakly canonical: symlinks and ".." resolved)
+bool same_path(const fs::path& a, const fs::path& b) {
+  std::error_code ec;
+  if (fs::exists(a, ec) && fs::exists(b, ec)) return fs::equivalent(a, b, ec);
+  const fs::path ca = fs::weakly_canonical(fs::absolute(a), ec);
+  const fs::path cb = fs::weakly_canonical(fs::absolute(b), ec);
+  return ca == cb;
+}
+
+}  // namespace
+
+std::string run_dir_of(const std::string& file) {
+  std::error_code ec;
+  const fs::path parent = fs::weakly_canonical(fs::absolute(fs::path(file)), ec).parent_path();
+  if (is_run_dir(parent)) return parent.string();
+  if (parent.filename() == "frames" && is_run_dir(parent.parent_path()))
+    return parent.parent_path().string();
+  return "";
+}
+
+void check_output_file(const std::string& out, const std::vector<std::string>& inputs,
+                       const std::string& flag,
+                       const std::function<bool(const std::filesystem::path&)>& own) {
+  std::error_code ec;
+  for (const std::string& in : inputs)
+    if (!in.empty() && same_path(out, in))
+      throw InputError(out, flag, "is an input of this command; choose another " + flag);
+  if (fs::is_directory(out, ec))
+    throw InputError(out, flag, "is a folder; " + flag + " names the output file");
+  const std::string run = run_dir_of(out);
+  if (run.empty() || !fs::exists(out, ec)) return;
+  if (own(fs::path(out))) return;
+  throw InputError(out, flag, "is a file of the run in " + run + "; choose another " + flag);
+}
+
 void write_file_atomic(const std::string& path, const std::string& contents) {
   const std::string tmp = path + ".tmp";
   const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);

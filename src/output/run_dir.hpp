@@ -1,6 +1,9 @@
 // run directories: created fresh, never overwritten without --force
 #pragma once
+#include <filesystem>
+#include <functional>
 #include <string>
+#include <vector>
 
 namespace gs {
 
@@ -23,6 +26,17 @@ class DirLock {
  private:
   int fd_ = -1;
 };
+
+/// the run directory a file lies in: its folder, or the folder above (a run's frames/), when
+/// that holds run.json, scene.toml or .lock; "" otherwise
+std::string run_dir_of(const std::string& file);
+
+/// an output file must not be one of the command's inputs, nor an existing file of a run other
+/// than one the command itself may replace (`own(path)`: e.g. a PNG outside frames/ that is not
+/// final.png): InputError naming `flag` otherwise
+void check_output_file(const std::string& out, const std::vector<std::string>& inputs,
+                       const std::string& flag,
+                       const std::function<bool(const std::filesystem::path&)>& own);
 
 /// write a whole small file atomically (temporary file, fsync, rename)
 void write_file_atomic(const std::string& path, const std::string& contents);

@@ -14,6 +14,7 @@
 #include "scene/reader.hpp"
 #include "scene/render_section.hpp"
 #include "scene/rfm_section.hpp"
+#include "core/input_file.hpp"
 #include "scene/snapshot_section.hpp"
 
 namespace gs {
@@ -494,9 +495,7 @@ SceneSpec parse_scene_string(std::string_view text, const std::string& name_for_
 
 SceneSpec parse_scene_file(const std::string& path, const std::vector<std::string>& overrides) {
   // a directory opens as a stream on Linux: refuse it by name
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec))
-    throw InputError(path, "", "is a directory, not a scene file");
+  check_input_file(path, "scene file", kMaxSceneBytes);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, "", "cannot open the scene file");
   std::ostringstream buf;

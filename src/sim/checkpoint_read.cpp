@@ -6,6 +6,7 @@
 #include <fstream>
 #include <iterator>
 
+#include "core/input_file.hpp"
 #include "core/bytes.hpp"
 #include "core/error.hpp"
 #include "sim/checkpoint.hpp"
@@ -105,9 +106,7 @@ Checkpoint decode_checkpoint(std::string_view bytes, const std::string& name) {
 }
 
 Checkpoint read_checkpoint(const std::string& path) {
-  struct stat st {};
-  if (::stat(path.c_str(), &st) != 0) throw InputError(path, "", "checkpoint does not exist");
-  if (S_ISDIR(st.st_mode)) throw InputError(path, "", "is a directory, not a checkpoint file");
+  check_input_file(path, "checkpoint file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, "", "cannot open checkpoint");
   const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};

@@ -429,19 +429,31 @@ void Simulation::zero_velocities() {
 
 // non-finite state, overlaps beyond the scene threshold, or energy growing without driving
 // input stop the run with a diagnosis
-void Simulation::health_check() {
+void Simulation::check_finite() const {
   const State& s = w_.s;
   for (std::size_t i = 0; i < w_.size(); ++i) {
     if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i]) || !std::isfinite(s.vx[i]) ||
         !std::isfinite(s.vy[i]) || !std::isfinite(s.w[i])) {
       std::ostringstream m;
       m << "non-finite position or velocity of particle " << w_.id[i] << " at step " << s.step
-        << " (t = " << s.t << " s); dt = " << dt_ << " s is "
-        << dt_ / model_.min_contact_time() << " contact times: the integration blew up, try dt <= "
-        << model_.min_contact_time() / 20 << " s";
+        << " (t = " << s.t << " s); ";
+      if (s.step <= 1)
+        // no integration error grows in one step: the scene's numbers overflow by themselves
+        m << "already at the first step: an initial velocity, the gravity or a force is too "
+             "large for double precision (check [[preparation.particle]] velocities and the "
+             "[drive] keys)";
+      else
+        m << "dt = " << dt_ << " s is " << dt_ / model_.min_contact_time()
+          << " contact times: the integration blew up, try dt <= "
+          << model_.min_contact_time() / 20 << " s";
       throw HealthError(m.str());
     }
   }
+}
+
+void Simulation::health_check() {
+  check_finite();
+  const State& s = w_.s;
   if (stats_.max_overlap_rel > w_.scene.health.max_overlap) {
     std::ostringstream m;
     m << "overlap of " << stats_.max_overlap_rel << " grain radii exceeds health.max_overlap = "

@@ -21,6 +21,14 @@ class Simulation {
  public:
   /// take a World with its particles placed; computes the initial forces
   explicit Simulation(World w);
+  /// throws HealthError naming the particle when a position or velocity is not finite (also
+  /// part of every periodic health check; the run loop calls it after the first step too,
+  /// whatever health.check_every is)
+  void check_finite() const;
+  /// the periodic health check (non-finite state, overlaps, energy growth without driving
+  /// input): HealthError with a diagnosis. The run loop also calls it once at the end, so a
+  /// run that blew up between two checks is not reported as completed
+  void health_check();
   Simulation(World w, BroadPhaseKind bp);
 
   /// advance one time step: drive → predict → broad phase → contacts → forces → correct →
@@ -99,7 +107,6 @@ class Simulation {
   bool removes_drift_after(std::int64_t step) const;
   bool checks_health_after(std::int64_t step) const;
   bool sorts_before(std::int64_t step) const;
-  void health_check();
   /// kinetic + contact elastic + gravitational energy (J); elastic ½k_sδ² (Model S), not
   /// counted for Model P (a lower bound)
   double mechanical_energy() const;

@@ -62,11 +62,47 @@ double round_down(double x) {
   return std::floor(x / scale) * scale;
 }
 
+std::string short_number(double v) {
+  std::ostringstream m;
+  m << v;
+  return m.str();
+}
+
+// the keys that set the contact time √(m/k): the stiffest material and the lightest grain, so
+// that advice about dt names what to change when no practical dt can resolve the contact
+std::string contact_time_keys(const SceneSpec& scene) {
+  std::ostringstream m;
+  const bool p = scene.model.kind == ModelKind::P;
+  const MaterialSpec* stiff = nullptr;
+  for (const auto& mat : scene.materials)
+    if (!stiff || (p ? mat.E > stiff->E : mat.ks > stiff->ks)) stiff = &mat;
+  const SpeciesSpec* light = nullptr;
+  auto mass = [](const SpeciesSpec& sp) {
+    return sp.mass ? *sp.mass : sp.density * sp.radius * sp.radius;  // the scale is what matters
+  };
+  for (const auto& sp : scene.species)
+    if (sp.count > 0 && (!light || mass(sp) < mass(*light))) light = &sp;
+  if (stiff)
+    m << "material '" << stiff->name << "' " << (p ? "E = " : "ks = ") << (p ? stiff->E : stiff->ks);
+  if (light)
+    m << (stiff ? ", " : "") << "species '" << light->name << "' "
+      << (light->mass ? "mass = " + short_number(*light->mass) + " kg"
+                      : "density = " + short_number(light->density) + " kg/m²");
+  return m.str();
+}
+
 }  // namespace
 
 void check_time_step(const Simulation& sim) {
   const SceneSpec& sc = sim.world().scene;
   const double dt = sc.integrator.dt, tc = sim.model().min_contact_time();
+  // a contact time no practical dt resolves: the stiffness or the mass is the mistake, not dt
+  if (!sc.health.allow_unstable && !(tc / 20.0 >= 1e-15))
+    throw InputError(sc.path, "integrator.dt",
+                     "the stiffest contact lasts " + short_number(tc) +
+                         " s, too short for any time step (it is set by " + contact_time_keys(sc) +
+                         "): lower the stiffness (ks, or E for Model P) or raise the mass or "
+                         "density");
   // the integrator's stability limit on the stiffest contact (above), then the
   // resolution of the contact itself (fewer than 5 steps per contact time)
   if (const StepAdvice adv = time_step_advice(sim); !sc.health.allow_unstable && !adv.stable)
@@ -77,7 +113,8 @@ void check_time_step(const Simulation& sim) {
     m << "dt = " << dt << " s is " << dt / tc << " of the stiffest contact time (" << tc
       << " s); at more than 1/5 the contacts are not resolved and the integration is unstable. "
       << "Use dt <= " << round_down(tc / 5.0) << " s (dt <= " << round_down(tc / 20.0)
-      << " s resolves each contact with 20 steps), or pass --allow-unstable to run it anyway";
+      << " s resolves each contact with 20 steps; the contact time is set by "
+      << contact_time_keys(sc) << "), or pass --allow-unstable to run it anyway";
     throw InputError(sc.path, "integrator.dt", m.str());
   }
 }

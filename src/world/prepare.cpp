@@ -29,11 +29,14 @@ std::vector<Vec2> lattice(double x0, double y0, double x1, double y1, double a, 
     const double y = y0 + a / 2 + row * dy;
     if (y > y1 - a / 2 + 1e-12) break;
     const double shift = (hex && row % 2) ? a / 2 : 0.0;
+    const std::size_t before = pts.size();
     for (int col = 0;; ++col) {
       const double x = x0 + a / 2 + shift + col * a;
       if (x > x1 - a / 2 + 1e-12) break;
       pts.push_back({x, y});
     }
+    // a box narrower than one site holds no row at all (and an open top has ~10⁹ m of rows)
+    if (pts.size() == before && shift == 0.0) break;
     if (pts.size() >= need && !hex) break;
   }
   return pts;

@@ -12,6 +12,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <set>
+#include <functional>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -29,6 +31,9 @@ struct Launch {
   std::vector<std::string> env;  ///< "NAME=value" added to the environment
   int alarm_s = 30;              ///< SIGALRM after this long (stops hangs)
   double signal_after_s = -1.0;  ///< send `signal` after this many seconds (−1: never)
+  /// send `signal` once this returns true (polled every 5 ms; wins over signal_after_s): an
+  /// observed event such as a checkpoint file appearing, robust on a loaded machine
+  std::function<bool()> signal_when;
   int signal = SIGKILL;
   long file_size_limit = -1;     ///< RLIMIT_FSIZE in bytes (a full disk for every file); −1 none
 };
@@ -59,7 +64,13 @@ inline Outcome run_binary(const std::vector<std::string>& args, const std::files
     ::_exit(127);
   }
   int status = 0;
-  if (how.signal_after_s >= 0) {
+  if (how.signal_when) {
+    while (!how.signal_when()) {
+      if (::waitpid(pid, &status, WNOHANG) == pid) goto done;
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    ::kill(pid, how.signal);
+  } else if (how.signal_after_s >= 0) {
     const auto until = std::chrono::steady_clock::now() +
                        std::chrono::duration<double>(how.signal_after_s);
     while (std::chrono::steady_clock::now() < until) {
@@ -147,6 +158,24 @@ test_rect = [0.01, 0.01, 0.09, 0.05]
 discard_taps = 2
 series_every = 500
 )";
+}
+
+/// an event to send a signal on (Launch::signal_when): a checkpoint in DIR that was not there
+/// when this was called (a resumed run's own first checkpoint, not its predecessor's)
+inline std::function<bool()> new_checkpoint_in(const std::filesystem::path& dir) {
+  auto names = [dir] {
+    std::set<std::string> out;
+    std::error_code ec;
+    for (const auto& e : std::filesystem::directory_iterator(dir, ec))
+      if (e.path().extension() == ".gsck") out.insert(e.path().filename().string());
+    return out;
+  };
+  const std::set<std::string> before = names();
+  return [names, before] {
+    for (const std::string& n : names())
+      if (!before.count(n)) return true;
+    return false;
+  };
 }
 
 /// a fresh empty directory for the running gtest test: <tmp>/<prefix>_<pid>_<test name>

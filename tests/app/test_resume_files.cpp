@@ -25,7 +25,8 @@ TEST(ResumeFiles, LockAndFinalPictureMayShrinkBetweenSittings) {
   Launch stop;
   stop.alarm_s = 120;
   stop.signal = SIGINT;
-  stop.signal_after_s = 1.5;
+  // each sitting is stopped once it has written a checkpoint (an event, not a moment)
+  stop.signal_when = testing::new_checkpoint_in(dir);
   // the demo records a movie and draws final.png at every stop; checkpoints every 500 steps
   const auto first = run_binary({"run", std::string(GS_SOURCE_DIR) + "/scenes/demo.toml", "--out",
                                  dir.string(), "-q", "--set", "scene.duration=60", "--set",
@@ -35,11 +36,13 @@ TEST(ResumeFiles, LockAndFinalPictureMayShrinkBetweenSittings) {
   ASSERT_TRUE(fs::exists(dir / "final.png"));
   // a longer PID in the lock, then a second sitting that checkpoints with it
   std::ofstream(dir / ".lock") << "123456789\n";
+  stop.signal_when = testing::new_checkpoint_in(dir);
   const auto second = run_binary({"resume", dir.string(), "-q"}, tmp / "second.log", stop);
   ASSERT_EQ(second.code, 4) << second.output;
   // the next writer's PID is shorter, the picture smaller: the resume goes on regardless
   std::ofstream(dir / ".lock") << "1\n";
   std::ofstream(dir / "final.png") << "x";
+  stop.signal_when = testing::new_checkpoint_in(dir);
   const auto third = run_binary({"resume", dir.string(), "-q"}, tmp / "third.log", stop);
   EXPECT_EQ(third.code, 4) << third.output;
   EXPECT_EQ(third.output.find("skipping"), std::string::npos) << third.output;

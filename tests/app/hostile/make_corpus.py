@@ -1,7 +1,10 @@
 #!/usr/bin/env python3
-"""Regenerate the hostile scene corpus: every file is a small valid scene with one thing broken.
-MANIFEST lists file<TAB>substring the error message must contain (besides the file name)."""
-import os, re, struct
+"""Regenerate the hostile corpus: scenes, CSV series, state files and a fixture run directory,
+each with one thing broken, and the MANIFEST the test (test_hostile.cpp) reads: one case a line,
+file<TAB>class<TAB>expected exit code<TAB>substring of the message<TAB>command. The command's
+placeholders are filled in by the test ({file}, {out}, {run}, {locked}, {fifo}, … — see
+test_hostile.cpp); "-" as the file: the case has no corpus file of its own."""
+import os, re, struct, zlib, shutil
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
@@ -62,10 +65,16 @@ def sub(text, old, new):
     assert old in text, old
     return text.replace(old, new, 1)
 
-CASES = {}  # name -> (bytes, expected substring)
+CASES = {}  # name -> (bytes, expected substring, exit code, class, command)
+RUN = "run {file} --out {out} --quiet"
 
-def case(name, text, expect, code=2):
-    CASES[name] = (text.encode() if isinstance(text, str) else text, expect, code)
+def case(name, text, expect, code=2, cls="scene", cmd=RUN):
+    CASES[name] = (text.encode() if isinstance(text, str) else text, expect, code, cls, cmd)
+
+COMMANDS = []  # (class, exit code, substring, command) of cases without a corpus file
+
+def command(cls, code, expect, cmd):
+    COMMANDS.append((cls, code, expect, cmd))
 
 # syntax
 case("syntax_unclosed_table.toml", sub(BASE, "[box]", "[box"), ":")
@@ -174,6 +183,10 @@ case("protocol_f_zero.toml", POLY + '\n[drive]\nkind = "rotating_g"\nf = 0.0\nta
 case("protocol_random_force_D_zero.toml", sub(BASE, 'kind = "none"', 'kind = "random_force"\nD = 0.0'), "D")
 case("protocol_negative_taps.toml", POLY + '\n[drive]\nkind = "negative_g"\ntaps = -1\n', "taps")
 
+# the cases of the other commands (render, movie, analyze, sweep, model, resume) and the fixture
+# run directory, kept in a file of their own to keep this one short
+exec(open(os.path.join(HERE, "corpus_more.py")).read())
+
 # ---- checkpoints: mutations of a valid seed (fuzz/corpus/checkpoint/pile.gsck) ----
 SEED = os.path.join(HERE, "..", "..", "..", "fuzz", "corpus", "checkpoint", "pile.gsck")
 CKPT = {}  # name -> (bytes, expected substring, stage: "read" or "restore")
@@ -223,6 +236,10 @@ def make_checkpoints():
     ck("ckpt_payload_cut.gsck", reseal(bytearray(good[:after + 40])), "truncated checkpoint")
     b = bytearray(good); struct.pack_into("<i", b, sp_at, 77)
     ck("ckpt_bad_species.gsck", reseal(b), "unknown species", "restore")
+    b = bytearray(good); struct.pack_into("<d", b, after + 8, 1e38)  # found by fuzz_restore
+    ck("ckpt_time_not_steps.gsck", reseal(b), "not step", "restore")
+    b = bytearray(good); struct.pack_into("<d", b, sp_at + 4 * n, 0.5)  # found by fuzz_restore
+    ck("ckpt_grain_not_species.gsck", reseal(b), "not its species", "restore")
     b = bytearray(good); struct.pack_into("<d", b, sp_at + 4 * n + 4 * 8 * n, float("nan"))
     ck("ckpt_nan_position.gsck", reseal(b), "non-finite", "restore")
     bad_scene = scene.replace(b"radius = ", b"radius = -", 1)
@@ -235,15 +252,20 @@ def make_checkpoints():
 
 def main():
     make_checkpoints()
+    make_more()
     for f in os.listdir(HERE):
-        if f.endswith(".toml"):
+        if f.endswith((".toml", ".csv")):
             os.remove(os.path.join(HERE, f))
+    make_fixture_run()
     with open(os.path.join(HERE, "MANIFEST"), "w") as m:
-        m.write("# scene file<TAB>substring the error message must contain<TAB>expected exit code (make_corpus.py)\n")
-        for name, (data, expect, code) in sorted(CASES.items()):
+        m.write("# file<TAB>class<TAB>exit code<TAB>substring of the message<TAB>command "
+                "(make_corpus.py; placeholders: test_hostile.cpp)\n")
+        for name, (data, expect, code, cls, cmd) in sorted(CASES.items()):
             with open(os.path.join(HERE, name), "wb") as f:
                 f.write(data)
-            m.write(f"{name}\t{expect}\t{code}\n")
+            m.write(f"{name}\t{cls}\t{code}\t{expect}\t{cmd}\n")
+        for cls, code, expect, cmd in COMMANDS:
+            m.write(f"-\t{cls}\t{code}\t{expect}\t{cmd}\n")
     for f in os.listdir(HERE):
         if f.endswith(".gsck"):
             os.remove(os.path.join(HERE, f))
@@ -253,7 +275,7 @@ def main():
             with open(os.path.join(HERE, name), "wb") as f:
                 f.write(data)
             m.write(f"{name}\t{expect}\t{stage}\n")
-    print(len(CASES), "scene files,", len(CKPT), "checkpoints")
+    print(len(CASES), "files,", len(COMMANDS), "commands,", len(CKPT), "checkpoints")
 
 if __name__ == "__main__":
     main()
