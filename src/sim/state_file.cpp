@@ -93,7 +93,7 @@ StateRows parse_state_rows(const std::string& text, const std::string& path, lon
 
 void check_count(const StateRows& r, long long declared, const std::string& path) {
   if (declared >= 0 && static_cast<long long>(r.size()) != declared)
-    throw InputError(path, "", "truncated or edited: " + std::to_string(declared) +
+    throw InputError(path, "", "truncated or edited: n=" + std::to_string(declared) +
                                    " particles declared, the file has " +
                                    std::to_string(r.size()) + " rows");
 }
