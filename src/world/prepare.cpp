@@ -51,7 +51,18 @@ void place_particles(World& w) {
 
   // explicit particles win over any placement rule
   if (!prep.particles.empty()) {
-    for (const auto& p : prep.particles) {
+    for (std::size_t i = 0; i < prep.particles.size(); ++i) {
+      const auto& p = prep.particles[i];
+      // a centre outside a walled box would fall outside the walls for the whole run
+      const std::string key = "preparation.particle[" + std::to_string(i) + "].";
+      if (sc.box.kind == BoxKind::Walls && !(p.x >= 0.0 && p.x <= w.Lx))
+        throw InputError(sc.path, key + "x", "x = " + std::to_string(p.x) +
+                                                  " m is outside the box's walls [0, " +
+                                                  std::to_string(w.Lx) + "] m");
+      if (sc.box.kind == BoxKind::Walls && !(p.y >= 0.0 && (!sc.box.lid || p.y <= w.Ly)))
+        throw InputError(sc.path, key + "y", "y = " + std::to_string(p.y) +
+                                                  " m is outside the box (below its floor" +
+                                                  std::string(sc.box.lid ? " or above its lid" : "") + ")");
       int k = -1;
       for (std::size_t s = 0; s < w.species.size(); ++s)
         if (w.species[s].name == p.species) k = static_cast<int>(s);

@@ -147,7 +147,7 @@ case("too_many_grains_periodic.toml", sub(BASE, "count = 10", "count = 100000"),
 case("too_many_grains_walls.toml", sub(sub(POLY, "count = 10", "count = 5000"), "height = 0.6",
      "height = 0.1") + "\n[preparation]\ncolumn_height = 0.05\n", "fit")
 case("particle_outside_box.toml", sub(POLY, "count = 10", "count = 1") +
-     "\n[[preparation.particle]]\nx = 5.0\ny = 0.1\n", "", 0)
+     "\n[[preparation.particle]]\nx = 5.0\ny = 0.1\n", "preparation.particle[0].x")
 case("value_radius_tiny.toml", sub(BASE, "radius = 0.0015", "radius = 1e-300"), "width")
 # accepted on purpose (exit code in the third column): explicit particles may overlap
 case("particles_overlapping.toml", sub(BASE, "count = 10", "count = 2") +
