@@ -11,6 +11,9 @@ import shutil
 import subprocess
 import tempfile
 import unittest
+import sys
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from tiny_scenes import tiny_tapping  # noqa: E402
 
 import pandas as pd
 
@@ -19,39 +22,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 TEXT_COLUMNS = {"label", "protocol", "reference", "dir", "status", "file", "species"}
 
 # 40 grains tapped 22 times (analyze needs 20 after the 2 discarded), a few seconds
-TAPPING = """
-[scene]
-name = "tiny_tapping"
-[[material]]
-name = "grain"
-[[species]]
-name = "big"
-radius = 0.009
-count = 18
-[[species]]
-name = "small"
-radius = 0.00636
-count = 22
-[box]
-width = 0.1
-height = 0.5
-[preparation]
-seed = 5
-settle_time = 0.5
-[integrator]
-kind = "velocity_verlet"
-dt = 1e-4
-[drive]
-kind = "negative_g"
-g_p = 2.0
-t1 = 0.01
-period = 0.5
-taps = 22
-[output]
-test_rect = [0.01, 0.01, 0.09, 0.05]
-discard_taps = 2
-series_every = 500
-"""
+TAPPING = tiny_tapping(0.5, 22)
 
 
 def load(path):

@@ -12,6 +12,9 @@ import subprocess
 import tempfile
 import unittest
 import xml.etree.ElementTree as ET
+import sys
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from tiny_scenes import tiny_tapping  # noqa: E402
 
 import ase.io
 import numpy as np
@@ -23,46 +26,14 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 SOURCE = os.path.normpath(os.path.join(HERE, "..", ".."))
 BINARY = os.environ.get("GS_BINARY", os.path.join(SOURCE, "build", "gransim"))
 
-# 40 decagons (18 big, 22 small) in a 0.1 m box, 4 taps of T = 1 s with 0.01 s pulses of 2 g;
-# snapshots every 0.4 s and at each tap's measurement, a trajectory frame every 0.5 s
-TAPPING = """
-[scene]
-name = "tiny_tapping"
-[[material]]
-name = "grain"
-[[species]]
-name = "big"
-radius = 0.009
-count = 18
-[[species]]
-name = "small"
-radius = 0.00636
-count = 22
-[box]
-width = 0.1
-height = 0.5
-[preparation]
-seed = 5
-settle_time = 0.5
-[integrator]
-kind = "velocity_verlet"
-dt = 1e-4
-[drive]
-kind = "negative_g"
-g_p = 2.0
-t1 = 0.01
-period = 1.0
-taps = 4
-[output]
-test_rect = [0.01, 0.01, 0.09, 0.05]
-discard_taps = 2
-series_every = 500
-[output.snapshots]
+# 4 taps of T = 1 s; snapshots every 0.4 s and at each tap's measurement, a trajectory frame
+# every 0.5 s
+TAPPING = tiny_tapping(1.0, 4, """[output.snapshots]
 every_time = 0.4
 at_taps = true
 [render]
 trajectory_every = 5000
-"""
+""")
 
 
 def run(args, cwd):
