@@ -43,8 +43,10 @@ build() {
 }
 for t in "${targets[@]}"; do
   case $t in
-    scene) build scene fuzz/fuzz_scene.cpp src/scene/*.cpp src/geometry/*.cpp src/integrate/*.cpp ;;
-    checkpoint) build checkpoint fuzz/fuzz_checkpoint.cpp src/sim/checkpoint_read.cpp ;;
+    scene) build scene fuzz/fuzz_scene.cpp src/scene/*.cpp src/geometry/*.cpp src/integrate/*.cpp \
+             src/core/input_file.cpp ;;
+    checkpoint) build checkpoint fuzz/fuzz_checkpoint.cpp src/sim/checkpoint_read.cpp \
+                  src/core/input_file.cpp ;;
     state) build state fuzz/fuzz_state.cpp src/sim/state_file.cpp src/world/*.cpp \
              src/scene/*.cpp src/geometry/*.cpp src/integrate/*.cpp src/core/*.cpp \
              src/output/run_dir.cpp ;;
