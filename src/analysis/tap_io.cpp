@@ -154,6 +154,11 @@ TapSeries parse_taps_csv(std::istream& in, const std::string& source) {
       return v;
     };
     const double tap = c_tap >= 0 ? value(c_tap) : static_cast<double>(s.tap.size() + 1);
+    // a tap is a count: whole, not negative, and small enough to be counted exactly
+    if (!(tap >= 0.0 && tap <= 1e15 && tap == std::floor(tap)))
+      throw InputError(source + ":" + std::to_string(lineno), "tap",
+                       "column 'tap': not a tap number (a whole number from 0 to 10^15): '" +
+                           cells[static_cast<std::size_t>(c_tap)] + "'");
     // taps count up: a repeated or reversed tap number is two files mixed, or a file edited
     if (!s.tap.empty() && !(tap > s.tap.back()))
       throw InputError(source + ":" + std::to_string(lineno), "tap",

@@ -275,5 +275,22 @@ TEST(TapCsv, ByteOrderMarkAndTapOrder) {
   }
 }
 
+// a tap number is a whole count (the fuzzer's 2·10⁵⁷ once overflowed a message's integer)
+TEST(TapCsv, TapNumbersAreWholeCounts) {
+  for (const char* text : {"tap,phi\n1,0.82\n2.5,0.83\n", "tap,phi\n1,0.82\n2e57,0.83\n",
+                           "tap,phi\n1,0.82\n-3,0.83\n"}) {
+    std::istringstream in(text);
+    try {
+      parse_taps_csv(in, "t.csv");
+      FAIL() << "no exception for " << text;
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.where(), "t.csv:3");
+      EXPECT_EQ(e.key(), "tap");
+    }
+  }
+  std::istringstream ok("tap,phi\n0,0.82\n1,0.83\n");
+  EXPECT_EQ(parse_taps_csv(ok, "ok.csv").phi.size(), 2u);
+}
+
 }  // namespace
 }  // namespace gs
