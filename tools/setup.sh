@@ -13,7 +13,7 @@ packages=(
   libosmesa6-dev libavcodec-dev libavformat-dev libswscale-dev libavutil-dev
   libopenmpi-dev openmpi-bin
   nlohmann-json3-dev
-  python3 python3-numpy python3-matplotlib python3-pybind11
+  python3 python3-numpy python3-matplotlib python3-pybind11 python3-dev
 )
 
 # install what is missing (apt-get update first, as a fresh machine's lists may be empty)
