@@ -119,6 +119,11 @@ Simulation restore_simulation(const Checkpoint& c) {
   // the constructor evaluates forces (and contacts) afresh; the stored history then replaces
   // what that evaluation produced, so the next step sees exactly the saved state
   Simulation sim(std::move(w));
+  load_checkpoint_history(sim, c, true);
+  return sim;
+}
+
+void load_checkpoint_history(Simulation& sim, const Checkpoint& c, bool degenerate_count) {
   State& s = sim.world().s;
   s.ax = c.s.ax;
   s.ay = c.s.ay;
@@ -127,9 +132,8 @@ Simulation restore_simulation(const Checkpoint& c) {
   ContactSet cs;
   cs.keys = c.keys;
   cs.state = c.contact_state;
-  cs.degenerate = c.degenerate;
+  if (degenerate_count) cs.degenerate = c.degenerate;
   sim.restore_contacts(std::move(cs));
-  return sim;
 }
 
 }  // namespace gs

@@ -62,5 +62,9 @@ Checkpoint read_checkpoint(const std::string& path);
 /// rebuild the World from the stored scene and continue bitwise: the next step() gives the
 /// same state as the uninterrupted run. InputError when the contents do not fit together.
 Simulation restore_simulation(const Checkpoint& c);
+/// put a checkpoint's history into a Simulation built on its state: accelerations, integrator
+/// history and persistent contacts (with the degenerate-contact counter when asked), replacing
+/// what the constructor's force evaluation produced
+void load_checkpoint_history(Simulation& sim, const Checkpoint& c, bool degenerate_count);
 
 }  // namespace gs

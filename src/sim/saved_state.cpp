@@ -181,16 +181,8 @@ bool take_saved_history(Simulation& sim, const SavedState& st) {
       then.integrator.kind != now.integrator.kind || then.integrator.dt != now.integrator.dt ||
       then.model.kind != now.model.kind)
     return false;
-  // as in restore_simulation: the stored history replaces what the constructor evaluated
-  State& s = sim.world().s;
-  s.ax = c.s.ax;
-  s.ay = c.s.ay;
-  s.aw = c.s.aw;
-  sim.integrator().load(c.integ);
-  ContactSet cs;
-  cs.keys = c.keys;
-  cs.state = c.contact_state;
-  sim.restore_contacts(std::move(cs));
+  // as in restore_simulation; a fork starts its own count of degenerate contacts
+  load_checkpoint_history(sim, c, false);
   return true;
 }
 
