@@ -9,13 +9,12 @@
 #include <vector>
 
 #include "geometry/prepared.hpp"
+#include "run_steps.hpp"
 #include "scene/parse.hpp"
 #include "sim/builders.hpp"
 #include "sim/simulation.hpp"
 #include "sim/state_file.hpp"
 #include "world/prepare.hpp"
-
-#include "run_steps.hpp"
 
 namespace gs {
 namespace {
@@ -87,18 +86,18 @@ void BM_PileStep(benchmark::State& st) {
   const double n = static_cast<double>(sim.world().size());
   st.counters["contacts/N"] = static_cast<double>(sim.contacts().keys.size()) / n;
   st.counters["candidates/N"] = static_cast<double>(sim.last_forces().candidates) / n;
-  st.counters["particle-steps/s"] = benchmark::Counter(
-      static_cast<double>(sim.world().size()) * static_cast<double>(steps),
-      benchmark::Counter::kIsRate);
+  st.counters["particle-steps/s"] =
+      benchmark::Counter(static_cast<double>(sim.world().size()) * static_cast<double>(steps),
+                         benchmark::Counter::kIsRate);
   // wall time per step (an iteration is kRunBatch steps), s
-  st.counters["s/step"] = benchmark::Counter(static_cast<double>(steps),
-                                             benchmark::Counter::kIsRate |
-                                                 benchmark::Counter::kInvert);
+  st.counters["s/step"] = benchmark::Counter(
+      static_cast<double>(steps), benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 BENCHMARK(BM_PileStep)
     ->Args({static_cast<int>(IntegratorKind::Gear6), static_cast<int>(BroadPhaseKind::Box2DTree)})
     ->Args({static_cast<int>(IntegratorKind::Gear6), static_cast<int>(BroadPhaseKind::CellGrid)})
-    ->Args({static_cast<int>(IntegratorKind::VelocityVerlet), static_cast<int>(BroadPhaseKind::Box2DTree)})
+    ->Args({static_cast<int>(IntegratorKind::VelocityVerlet),
+            static_cast<int>(BroadPhaseKind::Box2DTree)})
     ->Unit(benchmark::kMicrosecond)
     ->UseRealTime();  // wall time: with 2 threads the main thread's CPU time misses the waits
 
@@ -111,9 +110,9 @@ void BM_DiskFluidStep(benchmark::State& st) {
   sim.run(200);  // leave the lattice-like start
   std::int64_t steps = 0;
   for (auto _ : st) steps += run_iteration(sim);
-  st.counters["particle-steps/s"] = benchmark::Counter(
-      static_cast<double>(sim.world().size()) * static_cast<double>(steps),
-      benchmark::Counter::kIsRate);
+  st.counters["particle-steps/s"] =
+      benchmark::Counter(static_cast<double>(sim.world().size()) * static_cast<double>(steps),
+                         benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_DiskFluidStep)->Arg(10000)->Unit(benchmark::kMicrosecond)->UseRealTime();
 

@@ -8,9 +8,9 @@
 #include "app/render_input.hpp"
 #include "app/render_recorder.hpp"
 #include "output/png.hpp"
-#include "sim/simulation.hpp"
 #include "render/demo_scene.hpp"
 #include "render/renderer.hpp"
+#include "sim/simulation.hpp"
 #if defined(GS_HAVE_FFMPEG)
 #include "output/movie/movie.hpp"
 #endif
@@ -244,7 +244,11 @@ void BM_RealPileRenderEncode720p(benchmark::State& st) {
   st.SetLabel("x264 " + o.preset);
   std::filesystem::remove(path);
 }
-BENCHMARK(BM_RealPileRenderEncode720p)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_RealPileRenderEncode720p)
+    ->Arg(0)
+    ->Arg(1)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 #endif
 
 }  // namespace

@@ -9,18 +9,16 @@
 #include <memory>
 
 #include "measure/rfm_observer.hpp"
+#include "one_thread.hpp"
+#include "run_steps.hpp"
 #include "scene/parse.hpp"
 #include "sim/simulation.hpp"
 #include "world/prepare.hpp"
-
-#include "one_thread.hpp"
-#include "run_steps.hpp"
 
 namespace gs {
 std::unique_ptr<BroadPhase> make_ring_neighbours();  // broadphase/ring_neighbours.cpp
 
 namespace {
-
 
 // the scene's fluid after `warm` seconds of driving (uniform start for the 2D fluid: the
 // square lattice of the reference scene is a dense block that takes ~0.1 s to spread)
@@ -34,9 +32,9 @@ std::unique_ptr<Simulation> warmed(const char* scene, double warm, std::vector<s
 }
 
 void rate(benchmark::State& st, const Simulation& sim, std::int64_t steps) {
-  st.counters["particle-steps/s"] = benchmark::Counter(
-      static_cast<double>(sim.world().size()) * static_cast<double>(steps),
-      benchmark::Counter::kIsRate);
+  st.counters["particle-steps/s"] =
+      benchmark::Counter(static_cast<double>(sim.world().size()) * static_cast<double>(steps),
+                         benchmark::Counter::kIsRate);
   st.counters["contacts"] = static_cast<double>(sim.contacts().keys.size());
 }
 

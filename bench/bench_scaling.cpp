@@ -20,12 +20,11 @@
 #include <numeric>
 #include <random>
 
+#include "one_thread.hpp"
+#include "run_steps.hpp"
 #include "sim/builders.hpp"
 #include "sim/simulation.hpp"
 #include "world/prepare.hpp"
-
-#include "one_thread.hpp"
-#include "run_steps.hpp"
 
 namespace gs {
 namespace {
@@ -83,10 +82,14 @@ Simulation& fluid_at(int n, bool mixed) {
   auto& slot = cache[{n, mixed}];
   if (!slot) {
     World w;
-    if (n == 50000) w = tiled(5, 1, mixed);
-    else if (n == 100000) w = tiled(5, 2, mixed);
-    else if (n == 1000000) w = tiled(10, 10, mixed);
-    else w = settled(n);
+    if (n == 50000)
+      w = tiled(5, 1, mixed);
+    else if (n == 100000)
+      w = tiled(5, 2, mixed);
+    else if (n == 1000000)
+      w = tiled(10, 10, mixed);
+    else
+      w = settled(n);
     if (mixed) w.scene.integrator.sort_every = 0;
     slot = std::make_unique<Simulation>(std::move(w));
     if (slot->sort_every() > 0) slot->sort_particles();  // as a sorting run keeps it

@@ -18,14 +18,15 @@ namespace gs::py_bind {
 
 py::array image_to_array(Image img, int channels) {
   if (channels != 3 && channels != 4)
-    throw InputError("render", "channels", "must be 3 (RGB) or 4 (RGBA), got " +
-                                               std::to_string(channels));
+    throw InputError("render", "channels",
+                     "must be 3 (RGB) or 4 (RGBA), got " + std::to_string(channels));
   auto* owned = new Image(std::move(img));
   py::capsule free_it(owned, [](void* p) { delete static_cast<Image*>(p); });
   const py::ssize_t h = owned->height, w = owned->width;
   // RGB is a strided view of the RGBA buffer: no copy either way
-  return py::array_t<std::uint8_t>({h, w, py::ssize_t{channels}}, {w * 4, py::ssize_t{4}, py::ssize_t{1}},
-                                   owned->rgba.data(), free_it);
+  return py::array_t<std::uint8_t>({h, w, py::ssize_t{channels}},
+                                   {w * 4, py::ssize_t{4}, py::ssize_t{1}}, owned->rgba.data(),
+                                   free_it);
 }
 
 Image array_to_image(const py::array& any) {
@@ -49,8 +50,8 @@ namespace {
 struct PyRenderer {
   std::unique_ptr<FrameMaker> maker;
   PyRenderer(const SceneSpec& scene, const std::vector<std::string>& overrides) {
-    SceneSpec s = overrides.empty() ? scene
-                                    : parse_scene_string(scene_to_toml(scene), scene.path, overrides);
+    SceneSpec s =
+        overrides.empty() ? scene : parse_scene_string(scene_to_toml(scene), scene.path, overrides);
     maker = std::make_unique<FrameMaker>(s.render, scene.path);
   }
   py::array render(const PySim& s, int channels) {
@@ -86,12 +87,16 @@ void bind_render(py::module_& m) {
       .def_property_readonly("width", [](const PyRenderer& r) { return r.maker->spec().width; })
       .def_property_readonly("height", [](const PyRenderer& r) { return r.maker->spec().height; });
 
-  m.def("write_png", [](const std::string& path, const py::array& a) {
-    write_png(path, array_to_image(a));
-  }, py::arg("path"), py::arg("image"), "write an H×W×3 or H×W×4 uint8 image as PNG");
-  m.def("read_png", [](const std::string& path, int channels) {
-    return image_to_array(read_png(path), channels);
-  }, py::arg("path"), py::arg("channels") = 4, "read a PNG as an H×W×channels uint8 array");
+  m.def(
+      "write_png",
+      [](const std::string& path, const py::array& a) { write_png(path, array_to_image(a)); },
+      py::arg("path"), py::arg("image"), "write an H×W×3 or H×W×4 uint8 image as PNG");
+  m.def(
+      "read_png",
+      [](const std::string& path, int channels) {
+        return image_to_array(read_png(path), channels);
+      },
+      py::arg("path"), py::arg("channels") = 4, "read a PNG as an H×W×channels uint8 array");
 
 #if defined(GS_HAVE_FFMPEG)
   m.attr("have_movie") = true;
@@ -109,26 +114,33 @@ void bind_render(py::module_& m) {
            }),
            py::arg("path"), py::arg("width"), py::arg("height"), py::arg("fps") = 30,
            py::arg("crf") = 20, py::arg("preset") = "medium", py::arg("codec") = "")
-      .def("add_frame", [](PyMovie& p, const py::array& a) { p.enc.add_frame(array_to_image(a)); },
-           py::arg("frame"))
+      .def(
+          "add_frame", [](PyMovie& p, const py::array& a) { p.enc.add_frame(array_to_image(a)); },
+          py::arg("frame"))
       .def("close", [](PyMovie& p) { p.enc.close(); })
       .def_property_readonly("frames", [](const PyMovie& p) { return p.enc.frames(); })
       .def_property_readonly("codec", [](const PyMovie& p) { return p.enc.codec_name(); });
-  m.def("probe_movie", [](const std::string& path) {
-    const MovieInfo i = probe_movie(path);
-    py::dict d;
-    d["width"] = i.width;
-    d["height"] = i.height;
-    d["frames"] = i.frames;
-    d["duration"] = i.duration;
-    d["fps"] = i.fps;
-    d["codec"] = i.codec;
-    d["pixel_format"] = i.pixel_format;
-    return d;
-  }, py::arg("path"), "decode a movie and say what it holds");
-  m.def("movie_frame", [](const std::string& path, int index, int channels) {
-    return image_to_array(movie_frame(path, index), channels);
-  }, py::arg("path"), py::arg("index"), py::arg("channels") = 3);
+  m.def(
+      "probe_movie",
+      [](const std::string& path) {
+        const MovieInfo i = probe_movie(path);
+        py::dict d;
+        d["width"] = i.width;
+        d["height"] = i.height;
+        d["frames"] = i.frames;
+        d["duration"] = i.duration;
+        d["fps"] = i.fps;
+        d["codec"] = i.codec;
+        d["pixel_format"] = i.pixel_format;
+        return d;
+      },
+      py::arg("path"), "decode a movie and say what it holds");
+  m.def(
+      "movie_frame",
+      [](const std::string& path, int index, int channels) {
+        return image_to_array(movie_frame(path, index), channels);
+      },
+      py::arg("path"), py::arg("index"), py::arg("channels") = 3);
 #else
   m.attr("have_movie") = false;
 #endif

@@ -101,36 +101,45 @@ void bind_rfm(py::module_& m) {
                throw InputError("StructureFactor2D", "grouping",
                                 "must be \"exact\" or \"rounded\" (got \"" + grouping + "\")");
              return std::make_unique<rfm::StructureFactor2D>(
-                 box, n_max, grouping == "exact" ? rfm::ShellGrouping::exact : rfm::ShellGrouping::rounded);
+                 box, n_max,
+                 grouping == "exact" ? rfm::ShellGrouping::exact : rfm::ShellGrouping::rounded);
            }),
            py::arg("box"), py::arg("n_max"), py::arg("grouping") = "exact")
-      .def("add_snapshot", [](rfm::StructureFactor2D& s, const Doubles& pts) {
-        s.add_snapshot(to_points(pts));
-      }, py::arg("positions"), "one snapshot of N×2 positions, m")
+      .def(
+          "add_snapshot",
+          [](rfm::StructureFactor2D& s, const Doubles& pts) { s.add_snapshot(to_points(pts)); },
+          py::arg("positions"), "one snapshot of N×2 positions, m")
       .def("shells", [](const rfm::StructureFactor2D& s) { return shells_dict(s.shells()); })
       .def_property_readonly("snapshots", &rfm::StructureFactor2D::snapshots)
-      .def("fit_df", [](const rfm::StructureFactor2D& s, double k_lo, double k_hi) {
-        const auto sh = s.shells();
-        return df_dict(rfm::fit_df(sh, k_lo, k_hi));
-      }, py::arg("k_lo"), py::arg("k_hi"), "S(k) ∝ k^−D_f fitted on k_lo ≤ k ≤ k_hi (1/m)")
-      .def("fit_df_rfm", [](const rfm::StructureFactor2D& s, double box, long n, double diameter,
-                            double eps_n, double eps_t) {
-        const auto sh = s.shells();
-        rfm::RfmSystem sys;
-        sys.box = box;
-        sys.n = n;
-        sys.diameter = diameter;
-        sys.eps_n = eps_n;
-        sys.eps_t = eps_t;
-        return df_dict(rfm::fit_df_rfm(sh, sys));
-      }, py::arg("box"), py::arg("n"), py::arg("diameter"), py::arg("eps_n"), py::arg("eps_t"),
-         "the thesis's fit window: 2π/L_Eff ≤ k ≤ k′");
+      .def(
+          "fit_df",
+          [](const rfm::StructureFactor2D& s, double k_lo, double k_hi) {
+            const auto sh = s.shells();
+            return df_dict(rfm::fit_df(sh, k_lo, k_hi));
+          },
+          py::arg("k_lo"), py::arg("k_hi"), "S(k) ∝ k^−D_f fitted on k_lo ≤ k ≤ k_hi (1/m)")
+      .def(
+          "fit_df_rfm",
+          [](const rfm::StructureFactor2D& s, double box, long n, double diameter, double eps_n,
+             double eps_t) {
+            const auto sh = s.shells();
+            rfm::RfmSystem sys;
+            sys.box = box;
+            sys.n = n;
+            sys.diameter = diameter;
+            sys.eps_n = eps_n;
+            sys.eps_t = eps_t;
+            return df_dict(rfm::fit_df_rfm(sh, sys));
+          },
+          py::arg("box"), py::arg("n"), py::arg("diameter"), py::arg("eps_n"), py::arg("eps_t"),
+          "the thesis's fit window: 2π/L_Eff ≤ k ≤ k′");
 
   py::class_<rfm::PairCorrelation2D>(r, "PairCorrelation2D", "g(R) in a periodic square box")
       .def(py::init<double, double, int>(), py::arg("box"), py::arg("r_max"), py::arg("bins"))
-      .def("add_snapshot", [](rfm::PairCorrelation2D& g, const Doubles& pts) {
-        g.add_snapshot(to_points(pts));
-      }, py::arg("positions"))
+      .def(
+          "add_snapshot",
+          [](rfm::PairCorrelation2D& g, const Doubles& pts) { g.add_snapshot(to_points(pts)); },
+          py::arg("positions"))
       .def("bins", [](const rfm::PairCorrelation2D& g) {
         std::vector<double> rr, gg, ee;
         for (const auto& b : g.bins()) {
@@ -146,117 +155,153 @@ void bind_rfm(py::module_& m) {
       });
 
   py::class_<rfm::Histogram>(r, "Histogram", "counts in bins, normalised by every sample added")
-      .def("add", [](rfm::Histogram& h, const Doubles& v) {
-        if (v.ndim() == 2) rfm::add_components(h, to_points(v));
-        else rfm::add_values(h, flat(v));
-      }, py::arg("values"), "1-D values, or N×2 velocities (both components)")
+      .def(
+          "add",
+          [](rfm::Histogram& h, const Doubles& v) {
+            if (v.ndim() == 2)
+              rfm::add_components(h, to_points(v));
+            else
+              rfm::add_values(h, flat(v));
+          },
+          py::arg("values"), "1-D values, or N×2 velocities (both components)")
       .def("bins", &hist_dict)
       .def_property_readonly("total", &rfm::Histogram::total);
   r.def("velocity_histogram", &rfm::velocity_histogram, py::arg("v_max"), py::arg("bins"),
         "bins on [−v_max, v_max) for one velocity component, m/s");
   r.def("free_path_histogram", &rfm::free_path_histogram, py::arg("l_min"), py::arg("l_max"),
         py::arg("bins"), "logarithmic bins of free path lengths, m");
-  r.def("fit_tail", [](const rfm::Histogram& h, double count_lo, double count_hi, double v_abs_min,
-                       double error_scale) {
-    rfm::TailFitOptions o;
-    o.count_lo = count_lo;
-    o.count_hi = count_hi;
-    o.v_abs_min = v_abs_min;
-    o.error_scale = error_scale;
-    const rfm::TailFit f = rfm::fit_tail(h, o);
-    py::dict d;
-    d["alpha"] = f.best.alpha;
-    d["a"] = f.best.a;
-    d["b"] = f.best.b;
-    d["chi2_r"] = f.best.chi2_r;
-    d["any_accepted"] = f.any_accepted;
-    d["alpha_lo"] = f.alpha_lo;
-    d["alpha_hi"] = f.alpha_hi;
-    d["points"] = f.points;
-    return d;
-  }, py::arg("hist"), py::arg("count_lo") = 50.0, py::arg("count_hi") = 5000.0,
-     py::arg("v_abs_min") = 0.0, py::arg("error_scale") = 1.0,
-     "stretched-exponential tail P = A exp(−B|v|^α): the α grid scan's best fit");
-  r.def("fit_crossover", [](const rfm::Histogram& h, double alpha, bool fit_alpha, double min_count) {
-    const rfm::CrossoverFit f = rfm::fit_crossover(h, alpha, fit_alpha, min_count);
-    py::dict d;
-    d["d"] = f.d;
-    d["v_r"] = f.v_r;
-    d["v_r_err"] = f.v_r_err;
-    d["v_c"] = f.v_c;
-    d["v_c_err"] = f.v_c_err;
-    d["alpha"] = f.alpha;
-    d["alpha_err"] = f.alpha_err;
-    d["chi2_r"] = f.chi2_r;
-    d["v_a"] = f.v_a();
-    return d;
-  }, py::arg("hist"), py::arg("alpha") = 1.0, py::arg("fit_alpha") = false,
-     py::arg("min_count") = 10.0, "the Gaussian-to-exponential crossover density");
-  r.def("fit_free_paths", [](const rfm::Histogram& h, double l_fit_min, double min_count) {
-    const rfm::FreePathFit f = rfm::fit_free_paths(h, l_fit_min, min_count);
-    py::dict d;
-    d["d_f"] = f.d_f;
-    d["d_f_err"] = f.d_f_err;
-    d["c"] = f.c;
-    d["a0"] = f.a0;
-    d["chi2_r"] = f.chi2_r;
-    d["points"] = f.points;
-    return d;
-  }, py::arg("hist"), py::arg("l_fit_min") = 0.0, py::arg("min_count") = 10.0);
+  r.def(
+      "fit_tail",
+      [](const rfm::Histogram& h, double count_lo, double count_hi, double v_abs_min,
+         double error_scale) {
+        rfm::TailFitOptions o;
+        o.count_lo = count_lo;
+        o.count_hi = count_hi;
+        o.v_abs_min = v_abs_min;
+        o.error_scale = error_scale;
+        const rfm::TailFit f = rfm::fit_tail(h, o);
+        py::dict d;
+        d["alpha"] = f.best.alpha;
+        d["a"] = f.best.a;
+        d["b"] = f.best.b;
+        d["chi2_r"] = f.best.chi2_r;
+        d["any_accepted"] = f.any_accepted;
+        d["alpha_lo"] = f.alpha_lo;
+        d["alpha_hi"] = f.alpha_hi;
+        d["points"] = f.points;
+        return d;
+      },
+      py::arg("hist"), py::arg("count_lo") = 50.0, py::arg("count_hi") = 5000.0,
+      py::arg("v_abs_min") = 0.0, py::arg("error_scale") = 1.0,
+      "stretched-exponential tail P = A exp(−B|v|^α): the α grid scan's best fit");
+  r.def(
+      "fit_crossover",
+      [](const rfm::Histogram& h, double alpha, bool fit_alpha, double min_count) {
+        const rfm::CrossoverFit f = rfm::fit_crossover(h, alpha, fit_alpha, min_count);
+        py::dict d;
+        d["d"] = f.d;
+        d["v_r"] = f.v_r;
+        d["v_r_err"] = f.v_r_err;
+        d["v_c"] = f.v_c;
+        d["v_c_err"] = f.v_c_err;
+        d["alpha"] = f.alpha;
+        d["alpha_err"] = f.alpha_err;
+        d["chi2_r"] = f.chi2_r;
+        d["v_a"] = f.v_a();
+        return d;
+      },
+      py::arg("hist"), py::arg("alpha") = 1.0, py::arg("fit_alpha") = false,
+      py::arg("min_count") = 10.0, "the Gaussian-to-exponential crossover density");
+  r.def(
+      "fit_free_paths",
+      [](const rfm::Histogram& h, double l_fit_min, double min_count) {
+        const rfm::FreePathFit f = rfm::fit_free_paths(h, l_fit_min, min_count);
+        py::dict d;
+        d["d_f"] = f.d_f;
+        d["d_f_err"] = f.d_f_err;
+        d["c"] = f.c;
+        d["a0"] = f.a0;
+        d["chi2_r"] = f.chi2_r;
+        d["points"] = f.points;
+        return d;
+      },
+      py::arg("hist"), py::arg("l_fit_min") = 0.0, py::arg("min_count") = 10.0);
 
-  r.def("abs_moments", [](const Doubles& x, int m_max) {
-    return arr(rfm::abs_moments(flat(x), m_max));
-  }, py::arg("x"), py::arg("m_max") = 12, "⟨|x|^m⟩ for m = 1 … m_max");
-  r.def("fit_scaling_exponent", [](const Doubles& n, const Doubles& y, const Doubles& y_err) {
-    const rfm::ExponentFit f = rfm::fit_scaling_exponent(flat(n), flat(y), flat(y_err));
-    py::dict d;
-    d["exponent"] = f.exponent;
-    d["exponent_err"] = f.exponent_err;
-    d["amplitude"] = f.amplitude;
-    d["chi2_r"] = f.chi2_r;
-    return d;
-  }, py::arg("n"), py::arg("y"), py::arg("y_err") = Doubles(), "y = c N^(−exponent)");
-  r.def("granular_temperature", [](const Doubles& v) {
-    return v.ndim() == 2 ? rfm::granular_temperature(std::span<const Vec2>(to_points(v)))
-                         : rfm::granular_temperature(flat(v));
-  }, py::arg("v"), "T = ⟨v²⟩ per degree of freedom: N×2 velocities or 1-D values, m²/s²");
-  r.def("block_average", [](const Doubles& x, std::size_t block_len) {
-    const rfm::BlockAverage b = rfm::block_average(flat(x), block_len);
-    py::dict d;
-    d["mean"] = b.mean;
-    d["error"] = b.error;
-    d["block_means"] = arr(b.block_means);
-    d["block_len"] = b.block_len;
-    return d;
-  }, py::arg("series"), py::arg("block_len"));
+  r.def(
+      "abs_moments",
+      [](const Doubles& x, int m_max) { return arr(rfm::abs_moments(flat(x), m_max)); },
+      py::arg("x"), py::arg("m_max") = 12, "⟨|x|^m⟩ for m = 1 … m_max");
+  r.def(
+      "fit_scaling_exponent",
+      [](const Doubles& n, const Doubles& y, const Doubles& y_err) {
+        const rfm::ExponentFit f = rfm::fit_scaling_exponent(flat(n), flat(y), flat(y_err));
+        py::dict d;
+        d["exponent"] = f.exponent;
+        d["exponent_err"] = f.exponent_err;
+        d["amplitude"] = f.amplitude;
+        d["chi2_r"] = f.chi2_r;
+        return d;
+      },
+      py::arg("n"), py::arg("y"), py::arg("y_err") = Doubles(), "y = c N^(−exponent)");
+  r.def(
+      "granular_temperature",
+      [](const Doubles& v) {
+        return v.ndim() == 2 ? rfm::granular_temperature(std::span<const Vec2>(to_points(v)))
+                             : rfm::granular_temperature(flat(v));
+      },
+      py::arg("v"), "T = ⟨v²⟩ per degree of freedom: N×2 velocities or 1-D values, m²/s²");
+  r.def(
+      "block_average",
+      [](const Doubles& x, std::size_t block_len) {
+        const rfm::BlockAverage b = rfm::block_average(flat(x), block_len);
+        py::dict d;
+        d["mean"] = b.mean;
+        d["error"] = b.error;
+        d["block_means"] = arr(b.block_means);
+        d["block_len"] = b.block_len;
+        return d;
+      },
+      py::arg("series"), py::arg("block_len"));
   r.def("reduced_length", &rfm::reduced_length, py::arg("box"), py::arg("n"), py::arg("diameter"));
-  r.def("reduced_coordinates", [](const Doubles& x, double box, double diameter) {
-    return arr(rfm::reduced_coordinates(flat(x), box, diameter));
-  }, py::arg("x"), py::arg("box"), py::arg("diameter"));
-  r.def("neighbour_gaps", [](const Doubles& x, double l_reduced, int h) {
-    return arr(rfm::neighbour_gaps(flat(x), l_reduced, h));
-  }, py::arg("reduced"), py::arg("l_reduced"), py::arg("h") = 1);
-  r.def("fit_line", [](const Doubles& x, const Doubles& y, const Doubles& sigma) {
-    const rfm::LineFit f = rfm::fit_line(flat(x), flat(y), flat(sigma));
-    py::dict d;
-    d["a"] = f.a;
-    d["b"] = f.b;
-    d["a_err"] = f.a_err;
-    d["b_err"] = f.b_err;
-    d["chi2"] = f.chi2;
-    d["points"] = f.points;
-    return d;
-  }, py::arg("x"), py::arg("y"), py::arg("sigma") = Doubles(), "y = a + b x (weighted)");
-  r.def("fit_power_law", [](const Doubles& x, const Doubles& y, const Doubles& y_err) {
-    const rfm::PowerLawFit f = rfm::fit_power_law(flat(x), flat(y), flat(y_err));
-    py::dict d;
-    d["exponent"] = f.exponent;
-    d["exponent_err"] = f.exponent_err;
-    d["amplitude"] = f.amplitude;
-    d["chi2_r"] = f.chi2_r;
-    d["points"] = f.points;
-    return d;
-  }, py::arg("x"), py::arg("y"), py::arg("y_err") = Doubles(), "y = A x^p on logarithms");
+  r.def(
+      "reduced_coordinates",
+      [](const Doubles& x, double box, double diameter) {
+        return arr(rfm::reduced_coordinates(flat(x), box, diameter));
+      },
+      py::arg("x"), py::arg("box"), py::arg("diameter"));
+  r.def(
+      "neighbour_gaps",
+      [](const Doubles& x, double l_reduced, int h) {
+        return arr(rfm::neighbour_gaps(flat(x), l_reduced, h));
+      },
+      py::arg("reduced"), py::arg("l_reduced"), py::arg("h") = 1);
+  r.def(
+      "fit_line",
+      [](const Doubles& x, const Doubles& y, const Doubles& sigma) {
+        const rfm::LineFit f = rfm::fit_line(flat(x), flat(y), flat(sigma));
+        py::dict d;
+        d["a"] = f.a;
+        d["b"] = f.b;
+        d["a_err"] = f.a_err;
+        d["b_err"] = f.b_err;
+        d["chi2"] = f.chi2;
+        d["points"] = f.points;
+        return d;
+      },
+      py::arg("x"), py::arg("y"), py::arg("sigma") = Doubles(), "y = a + b x (weighted)");
+  r.def(
+      "fit_power_law",
+      [](const Doubles& x, const Doubles& y, const Doubles& y_err) {
+        const rfm::PowerLawFit f = rfm::fit_power_law(flat(x), flat(y), flat(y_err));
+        py::dict d;
+        d["exponent"] = f.exponent;
+        d["exponent_err"] = f.exponent_err;
+        d["amplitude"] = f.amplitude;
+        d["chi2_r"] = f.chi2_r;
+        d["points"] = f.points;
+        return d;
+      },
+      py::arg("x"), py::arg("y"), py::arg("y_err") = Doubles(), "y = A x^p on logarithms");
   r.def("mean_free_path", &rfm::mean_free_path, py::arg("box"), py::arg("diameter"), py::arg("n"));
 }
 

@@ -52,7 +52,8 @@ py::dict contacts_dict(const Simulation& sim) {
       overlap({n});
   auto I = i.mutable_unchecked<1>(), J = j.mutable_unchecked<1>(), W = wall.mutable_unchecked<1>();
   auto P = point.mutable_unchecked<2>(), N = normal.mutable_unchecked<2>();
-  auto FN = fn.mutable_unchecked<1>(), FT = ft.mutable_unchecked<1>(), O = overlap.mutable_unchecked<1>();
+  auto FN = fn.mutable_unchecked<1>(), FT = ft.mutable_unchecked<1>(),
+       O = overlap.mutable_unchecked<1>();
   for (py::ssize_t k = 0; k < n; ++k) {
     const ContactRecord& r = cs.records[static_cast<std::size_t>(k)];
     const std::uint32_t kj = key_j(r.key);
@@ -149,10 +150,11 @@ void bind_scene_sim(py::module_& m) {
                     "every key with its value as TOML text, defaults included")
       .def_property_readonly("dt", [](const SceneSpec& s) { return s.integrator.dt; })
       .def_property_readonly("taps", [](const SceneSpec& s) { return s.drive.taps; })
-      .def_property_readonly("test_rect", [](const SceneSpec& s) {
-        return py::make_tuple(s.output.test_rect[0], s.output.test_rect[1], s.output.test_rect[2],
-                              s.output.test_rect[3]);
-      })
+      .def_property_readonly("test_rect",
+                             [](const SceneSpec& s) {
+                               return py::make_tuple(s.output.test_rect[0], s.output.test_rect[1],
+                                                     s.output.test_rect[2], s.output.test_rect[3]);
+                             })
       .def("to_toml", &scene_to_toml, "a complete TOML scene that parses back to this one")
       .def("__repr__", [](const SceneSpec& s) {
         return "<gransim.Scene '" + s.name + "' from " + s.path + ">";
@@ -197,8 +199,9 @@ void bind_scene_sim(py::module_& m) {
                                    std::to_string(p.tap) + ")");
             while (!at()) {
               const World& ww = s.sim->world();
-              const std::int64_t m =
-                  s.clock->watches_steps() ? 1 : 1 + steps_before_excitation(ww.scene.drive, ww.s.t, dt);
+              const std::int64_t m = s.clock->watches_steps()
+                                         ? 1
+                                         : 1 + steps_before_excitation(ww.scene.drive, ww.s.t, dt);
               s.advance(std::max<std::int64_t>(1, m));
             }
             return tap_dict(s.sim->world(),
@@ -231,72 +234,69 @@ void bind_scene_sim(py::module_& m) {
       .def_property_readonly("step_count", [](const PySim& s) { return s.sim->world().s.step; })
       .def_property_readonly("dt", [](const PySim& s) { return s.sim->dt(); })
       .def("__len__", [](const PySim& s) { return s.sim->world().size(); })
-      .def_property_readonly("box", [](const PySim& s) {
-        const World& w = s.sim->world();
-        return py::make_tuple(w.Lx, w.Ly);
-      })
-      .def_property_readonly("periodic", [](const PySim& s) {
-        return s.sim->world().box != BoxKind::Walls;
-      })
-      .def_property_readonly("gravity", [](const PySim& s) {
-        return py::make_tuple(s.sim->gravity().x, s.sim->gravity().y);
-      })
-      .def_property_readonly("tap", [](const PySim& s) {
-        const World& w = s.sim->world();
-        const DrivePhase p = drive_phase(w.scene.drive, w.s.t + s.sim->dt());
-        return p.settling ? -1L : p.tap;
-      }, "the period the next step is in (taps completed before it); -1 while settling")
-      .def_property_readonly("kinetic_energy", [](const PySim& s) {
-        return s.sim->world().kinetic_energy();
-      })
+      .def_property_readonly("box",
+                             [](const PySim& s) {
+                               const World& w = s.sim->world();
+                               return py::make_tuple(w.Lx, w.Ly);
+                             })
+      .def_property_readonly("periodic",
+                             [](const PySim& s) { return s.sim->world().box != BoxKind::Walls; })
+      .def_property_readonly(
+          "gravity",
+          [](const PySim& s) { return py::make_tuple(s.sim->gravity().x, s.sim->gravity().y); })
+      .def_property_readonly(
+          "tap",
+          [](const PySim& s) {
+            const World& w = s.sim->world();
+            const DrivePhase p = drive_phase(w.scene.drive, w.s.t + s.sim->dt());
+            return p.settling ? -1L : p.tap;
+          },
+          "the period the next step is in (taps completed before it); -1 while settling")
+      .def_property_readonly("kinetic_energy",
+                             [](const PySim& s) { return s.sim->world().kinetic_energy(); })
       .def_property_readonly("sort_every", [](const PySim& s) { return s.sim->sort_every(); })
       .def_property_readonly("order_generation",
                              [](const PySim& s) { return s.sim->order_generation(); })
-      .def_property_readonly("species_names", [](const PySim& s) {
-        std::vector<std::string> names;
-        for (const Species& sp : s.sim->world().species) names.push_back(sp.name);
-        return names;
-      })
+      .def_property_readonly("species_names",
+                             [](const PySim& s) {
+                               std::vector<std::string> names;
+                               for (const Species& sp : s.sim->world().species)
+                                 names.push_back(sp.name);
+                               return names;
+                             })
       // views: the arrays of the World itself, read-only, alive as long as the Simulation
-      .def_property_readonly("x", [](py::object self) {
-        return view(self, self.cast<PySim&>().sim->world().s.x);
-      })
-      .def_property_readonly("y", [](py::object self) {
-        return view(self, self.cast<PySim&>().sim->world().s.y);
-      })
-      .def_property_readonly("vx", [](py::object self) {
-        return view(self, self.cast<PySim&>().sim->world().s.vx);
-      })
-      .def_property_readonly("vy", [](py::object self) {
-        return view(self, self.cast<PySim&>().sim->world().s.vy);
-      })
-      .def_property_readonly("theta", [](py::object self) {
-        return view(self, self.cast<PySim&>().sim->world().s.th);
-      })
-      .def_property_readonly("omega", [](py::object self) {
-        return view(self, self.cast<PySim&>().sim->world().s.w);
-      })
-      .def_property_readonly("species", [](py::object self) {
-        return view(self, self.cast<PySim&>().sim->world().sp);
-      })
-      .def_property_readonly("radius", [](py::object self) {
-        return view(self, self.cast<PySim&>().sim->world().radius);
-      })
-      .def_property_readonly("mass", [](py::object self) {
-        return view(self, self.cast<PySim&>().sim->world().mass);
-      })
-      .def_property_readonly("ids", [](py::object self) {
-        return view(self, self.cast<PySim&>().sim->world().id);
-      })
+      .def_property_readonly(
+          "x", [](py::object self) { return view(self, self.cast<PySim&>().sim->world().s.x); })
+      .def_property_readonly(
+          "y", [](py::object self) { return view(self, self.cast<PySim&>().sim->world().s.y); })
+      .def_property_readonly(
+          "vx", [](py::object self) { return view(self, self.cast<PySim&>().sim->world().s.vx); })
+      .def_property_readonly(
+          "vy", [](py::object self) { return view(self, self.cast<PySim&>().sim->world().s.vy); })
+      .def_property_readonly(
+          "theta",
+          [](py::object self) { return view(self, self.cast<PySim&>().sim->world().s.th); })
+      .def_property_readonly(
+          "omega", [](py::object self) { return view(self, self.cast<PySim&>().sim->world().s.w); })
+      .def_property_readonly(
+          "species",
+          [](py::object self) { return view(self, self.cast<PySim&>().sim->world().sp); })
+      .def_property_readonly(
+          "radius",
+          [](py::object self) { return view(self, self.cast<PySim&>().sim->world().radius); })
+      .def_property_readonly(
+          "mass", [](py::object self) { return view(self, self.cast<PySim&>().sim->world().mass); })
+      .def_property_readonly(
+          "ids", [](py::object self) { return view(self, self.cast<PySim&>().sim->world().id); })
       // copies: N×2 arrays built from two separate vectors
-      .def_property_readonly("positions", [](const PySim& s) {
-        return pairs(s.sim->world().s.x, s.sim->world().s.y);
-      })
-      .def_property_readonly("velocities", [](const PySim& s) {
-        return pairs(s.sim->world().s.vx, s.sim->world().s.vy);
-      })
-      .def("contacts", [](const PySim& s) { return contacts_dict(*s.sim); },
-           "the last step's touching contacts as arrays (copies)");
+      .def_property_readonly(
+          "positions", [](const PySim& s) { return pairs(s.sim->world().s.x, s.sim->world().s.y); })
+      .def_property_readonly(
+          "velocities",
+          [](const PySim& s) { return pairs(s.sim->world().s.vx, s.sim->world().s.vy); })
+      .def(
+          "contacts", [](const PySim& s) { return contacts_dict(*s.sim); },
+          "the last step's touching contacts as arrays (copies)");
 }
 
 }  // namespace gs::py_bind

@@ -102,8 +102,10 @@ py::dict summary_dict(const TapRunSummary& s) {
 
 OverlapOptions overlap_options(const std::string& method, int bins, double min_fraction) {
   OverlapOptions o;
-  if (method == "histogram") o.method = DensityMethod::Histogram;
-  else if (method == "kde") o.method = DensityMethod::Kde;
+  if (method == "histogram")
+    o.method = DensityMethod::Histogram;
+  else if (method == "kde")
+    o.method = DensityMethod::Kde;
   else
     throw InputError("analysis", "method",
                      "must be \"histogram\" or \"kde\" (got \"" + method + "\")");
@@ -129,7 +131,8 @@ void bind_tapping(py::module_& m) {
           const auto run = item.cast<py::dict>();
           TapRunInput r;
           r.label = run.contains("label") ? run["label"].cast<std::string>() : "";
-          r.protocol = run.contains("protocol") ? run["protocol"].cast<std::string>() : "negative_g";
+          r.protocol =
+              run.contains("protocol") ? run["protocol"].cast<std::string>() : "negative_g";
           r.control = run.contains("control") ? run["control"].cast<double>() : 0.0;
           r.series.source = r.label.empty() ? "run " + std::to_string(in.size()) : r.label;
           r.series.phi = run["phi"].cast<Series>();
@@ -191,42 +194,43 @@ void bind_tapping(py::module_& m) {
         d["notes"] = r.notes;
         return d;
       },
-      py::arg("runs"), py::arg("discard") = 10, py::arg("level") = 0.95,
-      py::arg("alpha") = 0.05, py::arg("test_area") = 0.16, py::arg("reference") = "",
-      py::arg("reference2") = "", py::arg("method") = "histogram", py::arg("bins") = 0,
-      py::arg("phi_rlp") = 0.81, py::arg("phi_rcp") = 0.855, py::arg("bootstrap") = 100,
-      py::arg("out_dir") = "",
+      py::arg("runs"), py::arg("discard") = 10, py::arg("level") = 0.95, py::arg("alpha") = 0.05,
+      py::arg("test_area") = 0.16, py::arg("reference") = "", py::arg("reference2") = "",
+      py::arg("method") = "histogram", py::arg("bins") = 0, py::arg("phi_rlp") = 0.81,
+      py::arg("phi_rcp") = 0.855, py::arg("bootstrap") = 100, py::arg("out_dir") = "",
       "the tapping analysis (as `gransim analyze`) of runs given as dicts with 'phi' (per tap) "
       "and optionally 'label', 'protocol', 'control', 'tap', 'phi_left', 'phi_right'");
 
-  m.def("beta_from_phi",
-        [](const Series& ref, const Series& phi, double v_g, const std::string& method, int bins,
-           double min_fraction) {
-          return beta_dict(beta_from_phi(ref, phi, v_g, overlap_options(method, bins, min_fraction)));
-        },
-        py::arg("phi_ref"), py::arg("phi"), py::arg("v_g"), py::arg("method") = "histogram",
-        py::arg("bins") = 0, py::arg("min_fraction") = 0.05,
-        "β − β_ref (1/m²) and ln Z − ln Z_ref by overlapping histograms of φ (Q against 1/φ)");
-  m.def("beta_from_volume",
-        [](const Series& ref, const Series& v, const std::string& method, int bins,
-           double min_fraction) {
-          return beta_dict(beta_from_volume(ref, v, overlap_options(method, bins, min_fraction)));
-        },
-        py::arg("v_ref"), py::arg("v"), py::arg("method") = "histogram", py::arg("bins") = 0,
-        py::arg("min_fraction") = 0.05, "the same from volumes (Q against V)");
-  m.def("fit_quadron",
-        [](const Series& beta_hat, const Series& phi, const Series& phi_err,
-           const Series& beta_err, double phi_rlp, double phi_rcp) {
-          QuadronParams p;
-          p.phi_rlp = phi_rlp;
-          p.phi_rcp = phi_rcp;
-          return quadron_dict(fit_quadron(beta_hat, phi, phi_err, beta_err, p));
-        },
-        py::arg("beta_hat"), py::arg("phi"), py::arg("phi_err") = Series{},
-        py::arg("beta_err") = Series{}, py::arg("phi_rlp") = 0.81, py::arg("phi_rcp") = 0.855,
-        "fit a = N z̄/V_g and β₀ of the ideal quadron solution to (β̂, φ̄)");
-  m.def("quadron_phi",
-        py::vectorize([](double beta, double a, double phi_rlp, double phi_rcp) {
+  m.def(
+      "beta_from_phi",
+      [](const Series& ref, const Series& phi, double v_g, const std::string& method, int bins,
+         double min_fraction) {
+        return beta_dict(beta_from_phi(ref, phi, v_g, overlap_options(method, bins, min_fraction)));
+      },
+      py::arg("phi_ref"), py::arg("phi"), py::arg("v_g"), py::arg("method") = "histogram",
+      py::arg("bins") = 0, py::arg("min_fraction") = 0.05,
+      "β − β_ref (1/m²) and ln Z − ln Z_ref by overlapping histograms of φ (Q against 1/φ)");
+  m.def(
+      "beta_from_volume",
+      [](const Series& ref, const Series& v, const std::string& method, int bins,
+         double min_fraction) {
+        return beta_dict(beta_from_volume(ref, v, overlap_options(method, bins, min_fraction)));
+      },
+      py::arg("v_ref"), py::arg("v"), py::arg("method") = "histogram", py::arg("bins") = 0,
+      py::arg("min_fraction") = 0.05, "the same from volumes (Q against V)");
+  m.def(
+      "fit_quadron",
+      [](const Series& beta_hat, const Series& phi, const Series& phi_err, const Series& beta_err,
+         double phi_rlp, double phi_rcp) {
+        QuadronParams p;
+        p.phi_rlp = phi_rlp;
+        p.phi_rcp = phi_rcp;
+        return quadron_dict(fit_quadron(beta_hat, phi, phi_err, beta_err, p));
+      },
+      py::arg("beta_hat"), py::arg("phi"), py::arg("phi_err") = Series{},
+      py::arg("beta_err") = Series{}, py::arg("phi_rlp") = 0.81, py::arg("phi_rcp") = 0.855,
+      "fit a = N z̄/V_g and β₀ of the ideal quadron solution to (β̂, φ̄)");
+  m.def("quadron_phi", py::vectorize([](double beta, double a, double phi_rlp, double phi_rcp) {
           QuadronParams p;
           p.phi_rlp = phi_rlp;
           p.phi_rcp = phi_rcp;
@@ -243,38 +247,45 @@ void bind_tapping(py::module_& m) {
         }),
         py::arg("beta"), py::arg("a"), py::arg("v_g"), py::arg("phi_rlp") = 0.81,
         py::arg("phi_rcp") = 0.855, "ln Z of the ideal quadron gas");
-  m.def("quadron_gas_phi",
-        [](double beta, int taps, double a, double v_g, double refresh, std::uint64_t seed,
-           std::uint64_t stream) {
-          QuadronGasSpec g;
-          g.a = a;
-          g.v_g = v_g;
-          g.refresh = refresh;
-          return py::array(py::cast(quadron_gas_phi(beta, taps, g, seed, stream)));
-        },
-        py::arg("beta"), py::arg("taps"), py::arg("a") = 556.5, py::arg("v_g") = 0.13,
-        py::arg("refresh") = 1.0, py::arg("seed") = 1, py::arg("stream") = 0,
-        "a synthetic φ series of an ideal quadron gas at β (1/m²): known φ̄, ln Z and τ_int");
-  m.def("autocorr_time", [](const Series& x, double c) {
-    const AutocorrTime t = autocorr_time(x, c);
-    py::dict d;
-    d["tau_int"] = t.tau_int;
-    d["tau_err"] = t.tau_err;
-    d["window"] = t.window;
-    d["converged"] = t.converged;
-    d["rho"] = py::array(py::cast(t.rho));
-    return d;
-  }, py::arg("x"), py::arg("c") = 5.0, "integrated autocorrelation time (Sokal's window)");
-  m.def("normality_chi2", [](const Series& x, double alpha, int bins) {
-    const NormalityTest t = normality_chi2(x, alpha, bins);
-    py::dict d;
-    d["statistic"] = t.statistic;
-    d["bins"] = t.bins;
-    d["dof"] = t.dof;
-    d["p_value"] = t.p_value;
-    d["normal"] = t.normal;
-    return d;
-  }, py::arg("x"), py::arg("alpha") = 0.05, py::arg("bins") = 0);
+  m.def(
+      "quadron_gas_phi",
+      [](double beta, int taps, double a, double v_g, double refresh, std::uint64_t seed,
+         std::uint64_t stream) {
+        QuadronGasSpec g;
+        g.a = a;
+        g.v_g = v_g;
+        g.refresh = refresh;
+        return py::array(py::cast(quadron_gas_phi(beta, taps, g, seed, stream)));
+      },
+      py::arg("beta"), py::arg("taps"), py::arg("a") = 556.5, py::arg("v_g") = 0.13,
+      py::arg("refresh") = 1.0, py::arg("seed") = 1, py::arg("stream") = 0,
+      "a synthetic φ series of an ideal quadron gas at β (1/m²): known φ̄, ln Z and τ_int");
+  m.def(
+      "autocorr_time",
+      [](const Series& x, double c) {
+        const AutocorrTime t = autocorr_time(x, c);
+        py::dict d;
+        d["tau_int"] = t.tau_int;
+        d["tau_err"] = t.tau_err;
+        d["window"] = t.window;
+        d["converged"] = t.converged;
+        d["rho"] = py::array(py::cast(t.rho));
+        return d;
+      },
+      py::arg("x"), py::arg("c") = 5.0, "integrated autocorrelation time (Sokal's window)");
+  m.def(
+      "normality_chi2",
+      [](const Series& x, double alpha, int bins) {
+        const NormalityTest t = normality_chi2(x, alpha, bins);
+        py::dict d;
+        d["statistic"] = t.statistic;
+        d["bins"] = t.bins;
+        d["dof"] = t.dof;
+        d["p_value"] = t.p_value;
+        d["normal"] = t.normal;
+        return d;
+      },
+      py::arg("x"), py::arg("alpha") = 0.05, py::arg("bins") = 0);
 }
 
 }  // namespace gs::py_bind

@@ -31,7 +31,8 @@ py::array image_to_array(Image img, int channels);
 /// an H×W×3 or H×W×4 uint8 array as an Image (opaque alpha for 3 channels)
 Image array_to_image(const py::array& a);
 /// an N×2 float array (or a list of pairs) as points, m
-std::vector<Vec2> to_points(const py::array_t<double, py::array::c_style | py::array::forcecast>& a);
+std::vector<Vec2> to_points(
+    const py::array_t<double, py::array::c_style | py::array::forcecast>& a);
 
 void bind_scene_sim(py::module_& m);
 void bind_render(py::module_& m);

@@ -12,9 +12,12 @@ namespace gs {
 
 std::string kernel_name(Kernel k) {
   switch (k) {
-    case Kernel::Normal: return "normal";
-    case Kernel::Epanechnikov: return "epanechnikov";
-    case Kernel::Box: return "box";
+    case Kernel::Normal:
+      return "normal";
+    case Kernel::Epanechnikov:
+      return "epanechnikov";
+    case Kernel::Box:
+      return "box";
   }
   return "normal";
 }
@@ -29,20 +32,26 @@ Kernel kernel_from_name(const std::string& name) {
 double kernel_value(Kernel k, double u) {
   switch (k) {
     // (B3) with the normalisation (2π)^{-1/2} that makes (B2) hold
-    case Kernel::Normal: return std::exp(-0.5 * u * u) / std::sqrt(2.0 * std::numbers::pi);
+    case Kernel::Normal:
+      return std::exp(-0.5 * u * u) / std::sqrt(2.0 * std::numbers::pi);
     // (B5)
-    case Kernel::Epanechnikov: return std::abs(u) <= 1.0 ? 0.75 * (1.0 - u * u) : 0.0;
+    case Kernel::Epanechnikov:
+      return std::abs(u) <= 1.0 ? 0.75 * (1.0 - u * u) : 0.0;
     // (B6)
-    case Kernel::Box: return std::abs(u) <= 0.5 ? 1.0 : 0.0;
+    case Kernel::Box:
+      return std::abs(u) <= 0.5 ? 1.0 : 0.0;
   }
   return 0.0;
 }
 
 double kernel_roughness(Kernel k) {
   switch (k) {
-    case Kernel::Normal: return 0.5 / std::sqrt(std::numbers::pi);
-    case Kernel::Epanechnikov: return 0.6;
-    case Kernel::Box: return 1.0;
+    case Kernel::Normal:
+      return 0.5 / std::sqrt(std::numbers::pi);
+    case Kernel::Epanechnikov:
+      return 0.6;
+    case Kernel::Box:
+      return 1.0;
   }
   return 1.0;
 }
@@ -50,9 +59,12 @@ double kernel_roughness(Kernel k) {
 double kernel_reach(Kernel k) {
   switch (k) {
     // exp(−u²/2) < 1e-16 beyond |u| ≈ 8.6
-    case Kernel::Normal: return 8.6;
-    case Kernel::Epanechnikov: return 1.0;
-    case Kernel::Box: return 0.5;
+    case Kernel::Normal:
+      return 8.6;
+    case Kernel::Epanechnikov:
+      return 1.0;
+    case Kernel::Box:
+      return 0.5;
   }
   return 1.0;
 }
@@ -92,7 +104,8 @@ std::vector<double> kde(const std::vector<double>& x, const std::vector<double>&
     // (B1): P(x) = 1/(n h) Σ K((x − x_i)/h)
     auto it = std::lower_bound(s.begin(), s.end(), grid[g] - reach);
     double sum = 0.0;
-    for (; it != s.end() && *it <= grid[g] + reach; ++it) sum += kernel_value(k, (grid[g] - *it) / h);
+    for (; it != s.end() && *it <= grid[g] + reach; ++it)
+      sum += kernel_value(k, (grid[g] - *it) / h);
     p[g] = sum * norm;
   }
   return p;

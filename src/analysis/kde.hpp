@@ -8,7 +8,7 @@ namespace gs {
 
 /// the kernels of appendix B (each integrates to one, B2)
 enum class Kernel {
-  Normal,        ///< (2π)^{-1/2} exp(−u²/2) (B3, normalisation corrected: docs/physics.md §8.9)
+  Normal,  ///< (2π)^{-1/2} exp(−u²/2) (B3, normalisation corrected: docs/physics.md §8.9)
   Epanechnikov,  ///< (3/4)(1 − u²) on [−1, 1] (B5)
   Box            ///< 1 on [−1/2, 1/2] (B6): a shifted histogram of bin width h
 };

@@ -6,8 +6,7 @@
 
 namespace gs {
 
-LmOutcome levenberg_marquardt(const Residuals& residuals, Eigen::VectorXd p0,
-                              const LmSettings& s) {
+LmOutcome levenberg_marquardt(const Residuals& residuals, Eigen::VectorXd p0, const LmSettings& s) {
   LmOutcome o;
   o.p = std::move(p0);
   o.chi2 = residuals(o.p, o.r, &o.jac);
@@ -24,7 +23,7 @@ LmOutcome levenberg_marquardt(const Residuals& residuals, Eigen::VectorXd p0,
       const Eigen::VectorXd trial = o.p + step;
       Eigen::VectorXd r;
       const double c = step.allFinite() ? residuals(trial, r, nullptr)
-                                       : std::numeric_limits<double>::quiet_NaN();
+                                        : std::numeric_limits<double>::quiet_NaN();
       if (std::isfinite(c) && c <= o.chi2) {
         const double drop = o.chi2 - c, old = o.chi2;
         const bool stalled =

@@ -19,7 +19,7 @@ struct LmSettings {
   double grow = 10.0;        ///< damping factor after a rejected step
   double shrink = 0.2;       ///< damping factor after an accepted step
   double lambda_max = 1e16;  ///< no step lowers χ² even at this damping: at the minimum
-  double rel_tol = 1e-12;    ///< converged when an accepted step lowers χ² by less than this fraction
+  double rel_tol = 1e-12;  ///< converged when an accepted step lowers χ² by less than this fraction
   /// …counted only while the damping is below this (near Gauss–Newton steps)
   double stall_below_lambda = std::numeric_limits<double>::infinity();
   /// optional: converged when this says the accepted step is negligible against p

@@ -1,12 +1,11 @@
 #include "analysis/multi_hist.hpp"
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numeric>
 #include <random>
-
-#include <Eigen/Dense>
 
 #include "analysis/stats.hpp"
 #include "core/error.hpp"
@@ -66,8 +65,7 @@ std::vector<double> inverse(const std::vector<double>& phi) {
 std::vector<MultiBeta> sum_chain(const std::vector<int>& order,
                                  const std::vector<BetaEstimate>& links, int ref) {
   std::vector<MultiBeta> out(order.size());
-  const int p_ref =
-      static_cast<int>(std::find(order.begin(), order.end(), ref) - order.begin());
+  const int p_ref = static_cast<int>(std::find(order.begin(), order.end(), ref) - order.begin());
   out[ref].valid = true;
   for (int p = p_ref + 1; p < static_cast<int>(order.size()); ++p) {
     const MultiBeta& prev = out[order[p - 1]];
@@ -107,8 +105,9 @@ std::vector<BetaEstimate> chain_links(const std::vector<std::vector<double>>& ph
       const auto [lo_a, hi_a] = std::minmax_element(a.begin(), a.end());
       const auto [lo_b, hi_b] = std::minmax_element(b.begin(), b.end());
       const double range = std::max(*hi_a, *hi_b) - std::min(*lo_a, *lo_b);
-      if (w > 0.0) o.bins = std::clamp(static_cast<int>(std::ceil(range / w)) *
-                                           opts.chain_bins_per_scott, 5, 2000);
+      if (w > 0.0)
+        o.bins =
+            std::clamp(static_cast<int>(std::ceil(range / w)) * opts.chain_bins_per_scott, 5, 2000);
     }
     BetaEstimate l = beta_from_phi(a, b, v_g, o);
     if (opts.tau_int.size() == phi.size())
@@ -251,7 +250,8 @@ JointFit joint_histogram_fit(const std::vector<std::vector<double>>& counts,
       next = theta + t * step;
     }
     double moved = 0.0;
-    for (int u = 1; u < U; ++u) moved = std::max(moved, std::abs(t * step[2 * (u - 1) + 1]) * x_range);
+    for (int u = 1; u < U; ++u)
+      moved = std::max(moved, std::abs(t * step[2 * (u - 1) + 1]) * x_range);
     theta = next;
     if (moved < tolerance) f.converged = true;
   }
@@ -276,8 +276,9 @@ MultiHistResult multi_histogram_beta(const std::vector<std::vector<double>>& phi
       throw InputError("", "runs", "run " + std::to_string(k) + " has fewer than 3 taps");
     for (double v : phi[k])
       if (!(v > 0.0 && v <= 1.0))
-        throw InputError("", "phi", "run " + std::to_string(k) + ": φ = " + std::to_string(v) +
-                                        " is not in (0, 1]");
+        throw InputError(
+            "", "phi",
+            "run " + std::to_string(k) + ": φ = " + std::to_string(v) + " is not in (0, 1]");
   }
   MultiHistResult r;
 
@@ -293,8 +294,8 @@ MultiHistResult multi_histogram_beta(const std::vector<std::vector<double>>& phi
   for (std::size_t p = 0; p < r.links.size(); ++p)
     if (!r.links[p].valid)
       r.notes.push_back("chain: runs " + std::to_string(r.order[p]) + " and " +
-                        std::to_string(r.order[p + 1]) + " do not overlap (" +
-                        r.links[p].fit.note + ")");
+                        std::to_string(r.order[p + 1]) + " do not overlap (" + r.links[p].fit.note +
+                        ")");
 
   // the joint fit on the pooled values of x = 1/φ (unbinned)
   std::vector<std::vector<double>> xs(K);
@@ -331,7 +332,8 @@ MultiHistResult multi_histogram_beta(const std::vector<std::vector<double>>& phi
     std::vector<std::vector<double>> sample(K), sample_x(K);
     for (int rep = 0; rep < opts.bootstrap; ++rep) {
       for (int k = 0; k < K; ++k) {
-        const double tau = opts.tau_int.size() == static_cast<std::size_t>(K) ? opts.tau_int[k] : 0.5;
+        const double tau =
+            opts.tau_int.size() == static_cast<std::size_t>(K) ? opts.tau_int[k] : 0.5;
         sample[k] = resample(phi[k], static_cast<int>(std::lround(2.0 * tau)), rng);
         sample_x[k] = inverse(sample[k]);
       }
@@ -352,8 +354,10 @@ MultiHistResult multi_histogram_beta(const std::vector<std::vector<double>>& phi
     // a run's error needs most replicas to have reached it
     const std::size_t need = static_cast<std::size_t>(opts.bootstrap) / 2 + 1;
     for (int k = 0; k < K; ++k) {
-      if (cb[k].size() >= need) r.chain[k].dbeta_err = stddev(cb[k]), r.chain[k].dlnz_err = stddev(cz[k]);
-      if (jb[k].size() >= need) r.joint[k].dbeta_err = stddev(jb[k]), r.joint[k].dlnz_err = stddev(jz[k]);
+      if (cb[k].size() >= need)
+        r.chain[k].dbeta_err = stddev(cb[k]), r.chain[k].dlnz_err = stddev(cz[k]);
+      if (jb[k].size() >= need)
+        r.joint[k].dbeta_err = stddev(jb[k]), r.joint[k].dlnz_err = stddev(jz[k]);
     }
     r.chain[ref].dbeta_err = r.chain[ref].dlnz_err = 0.0;
     r.joint[ref].dbeta_err = r.joint[ref].dlnz_err = 0.0;

@@ -23,14 +23,14 @@ namespace gs {
 
 /// choices of the multiple-run estimators
 struct MultiHistOptions {
-  int chain_bins_per_scott = 4; ///< chain: bins per Scott width of the pair (finer bins keep
-                                ///< the tilt across one bin small, which biases the slope)
-  int bootstrap = 100;          ///< bootstrap replicas for the errors (0: none, errors NaN)
-  std::vector<double> tau_int;  ///< per run, taps; blocks of max(1, round(2τ_int)) (empty: 1)
+  int chain_bins_per_scott = 4;   ///< chain: bins per Scott width of the pair (finer bins keep
+                                  ///< the tilt across one bin small, which biases the slope)
+  int bootstrap = 100;            ///< bootstrap replicas for the errors (0: none, errors NaN)
+  std::vector<double> tau_int;    ///< per run, taps; blocks of max(1, round(2τ_int)) (empty: 1)
   std::uint64_t seed = 20150827;  ///< seed of the bootstrap draws
-  int max_iterations = 20000;   ///< joint fit: alternations before it gives up
-  double tolerance = 1e-10;     ///< joint fit: largest change of b_k (1/(units of x)) to stop
-  OverlapOptions overlap;       ///< the pairwise fits of the chain
+  int max_iterations = 20000;     ///< joint fit: alternations before it gives up
+  double tolerance = 1e-10;       ///< joint fit: largest change of b_k (1/(units of x)) to stop
+  OverlapOptions overlap;         ///< the pairwise fits of the chain
 };
 
 /// one run's estimate relative to the reference
@@ -44,15 +44,15 @@ struct MultiBeta {
 
 /// both estimators for every run
 struct MultiHistResult {
-  std::vector<int> order;            ///< run indices by increasing φ̄ (the chain)
-  std::vector<BetaEstimate> links;   ///< links[i]: run order[i+1] against run order[i]
-  std::vector<MultiBeta> chain;      ///< per run (input order), summed along the chain
-  std::vector<MultiBeta> joint;      ///< per run (input order), the joint fit
-  bool joint_converged = false;      ///< the joint fit met its tolerance
-  int joint_iterations = 0;          ///< alternations it took
-  int values = 0;                    ///< distinct values of x in the joint fit
-  int replicas = 0;                  ///< bootstrap replicas that were used
-  std::vector<std::string> notes;    ///< runs left out and why
+  std::vector<int> order;           ///< run indices by increasing φ̄ (the chain)
+  std::vector<BetaEstimate> links;  ///< links[i]: run order[i+1] against run order[i]
+  std::vector<MultiBeta> chain;     ///< per run (input order), summed along the chain
+  std::vector<MultiBeta> joint;     ///< per run (input order), the joint fit
+  bool joint_converged = false;     ///< the joint fit met its tolerance
+  int joint_iterations = 0;         ///< alternations it took
+  int values = 0;                   ///< distinct values of x in the joint fit
+  int replicas = 0;                 ///< bootstrap replicas that were used
+  std::vector<std::string> notes;   ///< runs left out and why
 };
 
 /// both estimates of β − β_ref and ln Z − ln Z_ref for every run; phi[k] are run k's taps
@@ -66,9 +66,9 @@ MultiHistResult multi_histogram_beta(const std::vector<std::vector<double>>& phi
 /// ln Z_k − ln Z_ref; connected[k] says whether run k is linked to the reference, given or
 /// (empty) found through bins that two runs share
 struct JointFit {
-  std::vector<double> b;          ///< b_k − b_ref, 1/(units of x)
-  std::vector<double> dlnz;       ///< ln Z_k − ln Z_ref
-  std::vector<bool> connected;    ///< linked to the reference by shared bins
+  std::vector<double> b;        ///< b_k − b_ref, 1/(units of x)
+  std::vector<double> dlnz;     ///< ln Z_k − ln Z_ref
+  std::vector<bool> connected;  ///< linked to the reference by shared bins
   bool converged = false;
   int iterations = 0;
 };

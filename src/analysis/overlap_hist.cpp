@@ -64,7 +64,8 @@ struct Scale {
   Eigen::MatrixXd to_powers(int m) const {
     Eigen::MatrixXd t = Eigen::MatrixXd::Zero(m, m);
     for (int j = 0; j < m; ++j)
-      for (int i = 0; i <= j; ++i) t(i, j) = binomial(j, i) * std::pow(-xm, j - i) * std::pow(s, -j);
+      for (int i = 0; i <= j; ++i)
+        t(i, j) = binomial(j, i) * std::pow(-xm, j - i) * std::pow(s, -j);
     return t;
   }
 };

@@ -20,11 +20,11 @@ enum class DensityMethod {
 /// choices of the overlapping-histogram method
 struct OverlapOptions {
   DensityMethod method = DensityMethod::Histogram;  ///< density estimate (default histogram)
-  int bins = 0;               ///< common bins over the pair's range; 0: Scott's rule (below)
-  double min_fraction = 0.05; ///< keep bins where both densities exceed this share of their max
+  int bins = 0;                ///< common bins over the pair's range; 0: Scott's rule (below)
+  double min_fraction = 0.05;  ///< keep bins where both densities exceed this share of their max
   Kernel kernel = Kernel::Normal;  ///< kernel of the estimates that define the region (and of
                                    ///< the KDE method's densities)
-  double bandwidth = 0.0;     ///< their h in units of the variable; 0: Silverman per sample
+  double bandwidth = 0.0;          ///< their h in units of the variable; 0: Silverman per sample
 };
 
 /// one point of the Q line
@@ -36,20 +36,20 @@ struct QPoint {
 
 /// the line (and parabola) through Q against the variable
 struct QFit {
-  bool valid = false;               ///< false when fewer than 3 usable points overlap
-  std::string note;                 ///< why the fit is not valid, or caveats
-  std::vector<QPoint> points;       ///< the points used (both densities above threshold)
-  double slope = 0.0;               ///< dQ/dx, 1/(units of x)
-  double slope_err = 0.0;           ///< standard error of the slope, 1/(units of x)
-  double intercept = 0.0;           ///< Q at x = 0, dimensionless
-  double intercept_err = 0.0;       ///< standard error of the intercept
-  double cov_slope_intercept = 0.0; ///< covariance of slope and intercept, 1/(units of x)
-  double chi2 = 0.0;                ///< Pearson χ² of the line (histogram: binomial), dimensionless
-  int dof = 0;                      ///< points − 2
-  double r2 = 0.0;                  ///< weighted coefficient of determination of the line
-  double quad = 0.0;                ///< c of the weighted fit Q = a + b x + c x², 1/(units of x)²
-  double quad_err = 0.0;            ///< standard error of c (NaN with fewer than 4 points)
-  double bin_width = 0.0;           ///< width of the common bins, units of x
+  bool valid = false;                ///< false when fewer than 3 usable points overlap
+  std::string note;                  ///< why the fit is not valid, or caveats
+  std::vector<QPoint> points;        ///< the points used (both densities above threshold)
+  double slope = 0.0;                ///< dQ/dx, 1/(units of x)
+  double slope_err = 0.0;            ///< standard error of the slope, 1/(units of x)
+  double intercept = 0.0;            ///< Q at x = 0, dimensionless
+  double intercept_err = 0.0;        ///< standard error of the intercept
+  double cov_slope_intercept = 0.0;  ///< covariance of slope and intercept, 1/(units of x)
+  double chi2 = 0.0;       ///< Pearson χ² of the line (histogram: binomial), dimensionless
+  int dof = 0;             ///< points − 2
+  double r2 = 0.0;         ///< weighted coefficient of determination of the line
+  double quad = 0.0;       ///< c of the weighted fit Q = a + b x + c x², 1/(units of x)²
+  double quad_err = 0.0;   ///< standard error of c (NaN with fewer than 4 points)
+  double bin_width = 0.0;  ///< width of the common bins, units of x
 };
 
 /// the Q line of `sample` (P₁) against `ref` (P₀) on a common binning of the pair's range.
@@ -97,10 +97,10 @@ BetaEstimate with_variance_factor(BetaEstimate b, double factor);
 
 /// a weighted polynomial least-squares fit y ≈ Σ_j c_j x^j, errors σ_i (all > 0)
 struct PolyFit {
-  std::vector<double> coef;               ///< c_0 … c_degree, in the units of y/x^j
-  std::vector<std::vector<double>> cov;   ///< covariance of the coefficients
-  double chi2 = 0.0;                      ///< Σ ((y − fit)/σ)²
-  double r2 = 0.0;                        ///< weighted coefficient of determination
+  std::vector<double> coef;              ///< c_0 … c_degree, in the units of y/x^j
+  std::vector<std::vector<double>> cov;  ///< covariance of the coefficients
+  double chi2 = 0.0;                     ///< Σ ((y − fit)/σ)²
+  double r2 = 0.0;                       ///< weighted coefficient of determination
 };
 /// the fit is done in centred, scaled x for conditioning and transformed back exactly
 PolyFit weighted_polyfit(const std::vector<double>& x, const std::vector<double>& y,

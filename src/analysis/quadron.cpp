@@ -148,7 +148,8 @@ QuadronFit fit_quadron(const std::vector<double>& beta_hat, const std::vector<do
   const Residuals residuals = [&](const Eigen::VectorXd& q, Eigen::VectorXd& r,
                                   Eigen::MatrixXd* jac) {
     const double a = q(0), b0 = q(1);
-    if (!(a > 0.0) || !std::isfinite(a) || !std::isfinite(b0)) return std::numeric_limits<double>::quiet_NaN();
+    if (!(a > 0.0) || !std::isfinite(a) || !std::isfinite(b0))
+      return std::numeric_limits<double>::quiet_NaN();
     r.resize(static_cast<Eigen::Index>(n));
     if (jac) jac->resize(static_cast<Eigen::Index>(n), 2);
     for (std::size_t i = 0; i < n; ++i) {

@@ -41,18 +41,18 @@ double quadron_lnz(double beta, double a, double v_g, const QuadronParams& p = {
 
 /// result of the fit of (P.26) with β = β̂ + β₀
 struct QuadronFit {
-  bool converged = false;    ///< the Levenberg–Marquardt iteration met its tolerance
-  std::string note;          ///< what went wrong, if anything
-  int iterations = 0;        ///< LM iterations used
-  int points = 0;            ///< data points used
-  double a = 0.0;            ///< N z̄/V_g, 1/m²
-  double a_err = 0.0;        ///< standard error of a, 1/m²
-  double beta0 = 0.0;        ///< the additive constant β₀ of the relative β̂, 1/m²
-  double beta0_err = 0.0;    ///< standard error of β₀, 1/m²
-  double cov_a_beta0 = 0.0;  ///< covariance of a and β₀, 1/m⁴
-  double chi2 = 0.0;         ///< Σ (residual/σ_eff)², dimensionless
-  int dof = 0;               ///< points − 2
-  bool errors_scaled = false;///< true when no errors were given: covariance scaled by χ²/dof
+  bool converged = false;      ///< the Levenberg–Marquardt iteration met its tolerance
+  std::string note;            ///< what went wrong, if anything
+  int iterations = 0;          ///< LM iterations used
+  int points = 0;              ///< data points used
+  double a = 0.0;              ///< N z̄/V_g, 1/m²
+  double a_err = 0.0;          ///< standard error of a, 1/m²
+  double beta0 = 0.0;          ///< the additive constant β₀ of the relative β̂, 1/m²
+  double beta0_err = 0.0;      ///< standard error of β₀, 1/m²
+  double cov_a_beta0 = 0.0;    ///< covariance of a and β₀, 1/m⁴
+  double chi2 = 0.0;           ///< Σ (residual/σ_eff)², dimensionless
+  int dof = 0;                 ///< points − 2
+  bool errors_scaled = false;  ///< true when no errors were given: covariance scaled by χ²/dof
 };
 
 /// fit a = N z̄/V_g and β₀ by Levenberg–Marquardt to φ̄_i at β̂_i + β₀ (P.26). Residuals are

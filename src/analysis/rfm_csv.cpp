@@ -3,16 +3,16 @@
 
 #include <cerrno>
 #include <charconv>
-#include <cstring>
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "core/input_file.hpp"
 #include "core/error.hpp"
+#include "core/input_file.hpp"
 
 namespace gs::rfm {
 
@@ -59,8 +59,8 @@ CsvWriter::CsvWriter(const std::filesystem::path& path, const std::vector<std::s
                      const CsvMeta& meta)
     : path_(path), out_(path, std::ios::binary), columns_(columns.size()) {
   if (!out_)
-    throw OutputError(path.string() + ": cannot open the file for writing: " +
-                      std::strerror(errno));
+    throw OutputError(path.string() +
+                      ": cannot open the file for writing: " + std::strerror(errno));
   // metadata in the sidecar, in the order given
   if (!meta.empty()) {
     nlohmann::ordered_json j = nlohmann::ordered_json::object();
@@ -97,8 +97,9 @@ void CsvWriter::put(const std::string& line) {
 
 void CsvWriter::row(const std::vector<double>& values) {
   if (values.size() != columns_)
-    throw InputError(path_.string(), "", "row has " + std::to_string(values.size()) +
-                                             " values, header has " + std::to_string(columns_));
+    throw InputError(path_.string(), "",
+                     "row has " + std::to_string(values.size()) + " values, header has " +
+                         std::to_string(columns_));
   std::string line;
   for (std::size_t i = 0; i < values.size(); ++i) line += (i ? "," : "") + number(values[i]);
   put(line + '\n');
@@ -147,16 +148,18 @@ CsvTable parse_csv(std::istream& in, const std::string& name) {
       for (std::size_t i = 0; i < t.names.size(); ++i) {
         const std::string& n = t.names[i];
         if (n.empty() || t.column.count(n))
-          throw InputError(where, n, "column " + std::to_string(i + 1) + ": " +
-                                         (n.empty() ? "empty column name" : "repeated column name"));
+          throw InputError(where, n,
+                           "column " + std::to_string(i + 1) + ": " +
+                               (n.empty() ? "empty column name" : "repeated column name"));
         t.column[n];
       }
       continue;
     }
     const auto cells = split(line);
     if (cells.size() != t.names.size())
-      throw InputError(where, "", "expected " + std::to_string(t.names.size()) + " values, got " +
-                                      std::to_string(cells.size()));
+      throw InputError(where, "",
+                       "expected " + std::to_string(t.names.size()) + " values, got " +
+                           std::to_string(cells.size()));
     for (std::size_t i = 0; i < cells.size(); ++i)
       t.column[t.names[i]].push_back(parse_number(cells[i], where, t.names[i]));
   }

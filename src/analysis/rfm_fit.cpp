@@ -95,8 +95,9 @@ LmResult fit_lm(const Model& f, std::span<const double> x, std::span<const doubl
   if (y.size() != n || sigma.size() != n)
     throw InputError("fit_lm", "", "x, y and sigma must have the same length");
   if (n <= static_cast<std::size_t>(p0.size()))
-    throw InputError("fit_lm", "", "need more points (" + std::to_string(n) +
-                                       ") than parameters (" + std::to_string(p0.size()) + ")");
+    throw InputError("fit_lm", "",
+                     "need more points (" + std::to_string(n) + ") than parameters (" +
+                         std::to_string(p0.size()) + ")");
   const auto rows = static_cast<Eigen::Index>(n);
   // r_i = (y_i − f(x_i))/σ_i; ∂r_i/∂p_k by central differences
   const Residuals residuals = [&](const Eigen::VectorXd& p, Eigen::VectorXd& r,
@@ -112,7 +113,8 @@ LmResult fit_lm(const Model& f, std::span<const double> x, std::span<const doubl
         pp[k] += h;
         pm[k] -= h;
         for (std::size_t i = 0; i < n; ++i)
-          (*jac)(static_cast<Eigen::Index>(i), k) = -(f(x[i], pp) - f(x[i], pm)) / (2.0 * h) / sigma[i];
+          (*jac)(static_cast<Eigen::Index>(i), k) =
+              -(f(x[i], pp) - f(x[i], pm)) / (2.0 * h) / sigma[i];
       }
     }
     return r.squaredNorm();

@@ -31,12 +31,12 @@ LineFit fit_line(std::span<const double> x, std::span<const double> y,
 
 /// a power law y = A·x^p fitted as a straight line on ln y against ln x
 struct PowerLawFit {
-  double exponent = 0.0;      ///< p, dimensionless
-  double exponent_err = 0.0;  ///< standard error of p (inflated by √χ²_r when χ²_r > 1)
-  double amplitude = 0.0;     ///< A, units of y/x^p
+  double exponent = 0.0;          ///< p, dimensionless
+  double exponent_err = 0.0;      ///< standard error of p (inflated by √χ²_r when χ²_r > 1)
+  double amplitude = 0.0;         ///< A, units of y/x^p
   double ln_amplitude_err = 0.0;  ///< standard error of ln A (inflated like exponent_err)
-  double chi2_r = 0.0;        ///< reduced χ² of the fit on logarithms, dimensionless
-  int points = 0;             ///< points used (those with x > 0 and y > 0)
+  double chi2_r = 0.0;            ///< reduced χ² of the fit on logarithms, dimensionless
+  int points = 0;                 ///< points used (those with x > 0 and y > 0)
 };
 
 /// fits y = A·x^p using only points with x > 0 and y > 0; σ_ln y = y_err/y. An empty
@@ -46,9 +46,9 @@ PowerLawFit fit_power_law(std::span<const double> x, std::span<const double> y,
 
 /// options of the Levenberg–Marquardt minimiser
 struct LmOptions {
-  int max_iterations = 500;   ///< iteration cap
-  double rel_tol = 1e-12;     ///< stop when χ² improves by less than this fraction
-  double lambda0 = 1e-3;      ///< initial damping, dimensionless
+  int max_iterations = 500;  ///< iteration cap
+  double rel_tol = 1e-12;    ///< stop when χ² improves by less than this fraction
+  double lambda0 = 1e-3;     ///< initial damping, dimensionless
 };
 
 /// the result of a nonlinear least-squares fit

@@ -34,8 +34,8 @@ FreePathFit fit_free_paths(const Histogram& h, double l_fit_min, double min_coun
     sln.push_back(1.0 / std::sqrt(b.count));
   }
   if (l.size() < 5)
-    throw InputError("fit_free_paths", "min_count", "only " + std::to_string(l.size()) +
-                                                        " bins are usable; need at least 5");
+    throw InputError("fit_free_paths", "min_count",
+                     "only " + std::to_string(l.size()) + " bins are usable; need at least 5");
 
   // start: for each trial D_f, ln P − (D_f−2) ln l = ln A₀ − C l^(D_f−1) is a line
   double best_chi2 = std::numeric_limits<double>::infinity();
@@ -61,7 +61,8 @@ FreePathFit fit_free_paths(const Histogram& h, double l_fit_min, double min_coun
   const Model model = [&lo, &hi](double x, const Eigen::VectorXd& q) {
     const auto i = static_cast<std::size_t>(x);
     const double beta = q[0] - 1.0, c = q[1];
-    const double ea = std::exp(-c * std::pow(lo[i], beta)), eb = std::exp(-c * std::pow(hi[i], beta));
+    const double ea = std::exp(-c * std::pow(lo[i], beta)),
+                 eb = std::exp(-c * std::pow(hi[i], beta));
     return q[2] / (c * beta) * (ea - eb) / (hi[i] - lo[i]);
   };
   std::vector<double> index(l.size());
@@ -84,8 +85,9 @@ void write_freepath_csv(const std::filesystem::path& path, const Histogram& h,
                         const FreePathFit* fit) {
   CsvMeta meta;
   if (fit) {
-    meta = {{"D_f", fit->d_f}, {"D_f_err", fit->d_f_err}, {"C", fit->c}, {"C_err", fit->c_err},
-            {"A0", fit->a0},   {"A0_err", fit->a0_err},   {"chi2_r", fit->chi2_r}};
+    meta = {{"D_f", fit->d_f},      {"D_f_err", fit->d_f_err}, {"C", fit->c},
+            {"C_err", fit->c_err},  {"A0", fit->a0},           {"A0_err", fit->a0_err},
+            {"chi2_r", fit->chi2_r}};
   }
   CsvWriter w(path, {"l", "count", "P", "P_err", "P_fit"}, meta);
   for (const HistBin& b : h.bins()) {

@@ -12,7 +12,9 @@
 namespace gs::rfm {
 
 PairCorrelation2D::PairCorrelation2D(double box, double r_max, int n_bins)
-    : box_(box), r_max_(r_max), n_bins_(n_bins),
+    : box_(box),
+      r_max_(r_max),
+      n_bins_(n_bins),
       pairs_(static_cast<std::size_t>(std::max(n_bins, 0)), 0.0) {
   if (!(box > 0.0)) throw InputError("PairCorrelation2D", "box", "box side must be positive");
   if (!(r_max > 0.0) || r_max > 0.5 * box)
@@ -65,8 +67,10 @@ void PairCorrelation2D::count_cells(std::span<const Vec2> r) {
 void PairCorrelation2D::add_snapshot(std::span<const Vec2> r) {
   if (r.size() < 2) throw InputError("PairCorrelation2D::add_snapshot", "", "need two particles");
   // the cell list needs at least three cells per side to avoid double counting
-  if (box_ / r_max_ >= 3.0) count_cells(r);
-  else count_brute(r);
+  if (box_ / r_max_ >= 3.0)
+    count_cells(r);
+  else
+    count_brute(r);
   const double n = static_cast<double>(r.size());
   ideal_density_ += n * (n - 1.0) / (2.0 * box_ * box_);
   ++snapshots_;

@@ -26,8 +26,8 @@ struct Binning {
   /// the bin holding x, or −1 outside [lo, hi)
   int index(double x) const {
     if (!(x >= lo) || !(x < hi)) return -1;
-    const double u = scale == Scale::linear ? (x - lo) / (hi - lo)
-                                            : std::log(x / lo) / std::log(hi / lo);
+    const double u =
+        scale == Scale::linear ? (x - lo) / (hi - lo) : std::log(x / lo) / std::log(hi / lo);
     const int i = static_cast<int>(u * n);
     return i < 0 ? 0 : (i >= n ? n - 1 : i);
   }
@@ -39,7 +39,8 @@ struct Binning {
   }
   /// arithmetic centre (linear) or geometric centre (log) of bin i
   double centre(int i) const {
-    return scale == Scale::linear ? 0.5 * (edge(i) + edge(i + 1)) : std::sqrt(edge(i) * edge(i + 1));
+    return scale == Scale::linear ? 0.5 * (edge(i) + edge(i + 1))
+                                  : std::sqrt(edge(i) * edge(i + 1));
   }
   double width(int i) const { return edge(i + 1) - edge(i); }
 
@@ -60,12 +61,12 @@ struct Binning {
 
 /// one bin of a normalised histogram
 struct HistBin {
-  double lo = 0.0;       ///< lower edge, data units
-  double hi = 0.0;       ///< upper edge, data units
-  double x = 0.0;        ///< centre (geometric for log bins), data units
-  double count = 0.0;    ///< samples in the bin, X
-  double p = 0.0;        ///< probability density X/(N_s Δ), 1/data units
-  double p_err = 0.0;    ///< Poisson error √X/(N_s Δ), 1/data units
+  double lo = 0.0;     ///< lower edge, data units
+  double hi = 0.0;     ///< upper edge, data units
+  double x = 0.0;      ///< centre (geometric for log bins), data units
+  double count = 0.0;  ///< samples in the bin, X
+  double p = 0.0;      ///< probability density X/(N_s Δ), 1/data units
+  double p_err = 0.0;  ///< Poisson error √X/(N_s Δ), 1/data units
 };
 
 /// counts in bins with under/overflow, normalised by every sample added
@@ -77,9 +78,12 @@ class Histogram {
   void add(double x) {
     ++total_;
     const int i = bins_.index(x);
-    if (i >= 0) counts_[static_cast<std::size_t>(i)] += 1.0;
-    else if (x < bins_.lo) ++under_;
-    else ++over_;
+    if (i >= 0)
+      counts_[static_cast<std::size_t>(i)] += 1.0;
+    else if (x < bins_.lo)
+      ++under_;
+    else
+      ++over_;
   }
   /// merge another histogram with identical binning
   void merge(const Histogram& o) {
@@ -93,9 +97,9 @@ class Histogram {
 
   const Binning& binning() const { return bins_; }
   const std::vector<double>& counts() const { return counts_; }
-  double total() const { return total_; }       ///< N_s, every sample added
-  double underflow() const { return under_; }   ///< samples below lo
-  double overflow() const { return over_; }     ///< samples at or above hi
+  double total() const { return total_; }      ///< N_s, every sample added
+  double underflow() const { return under_; }  ///< samples below lo
+  double overflow() const { return over_; }    ///< samples at or above hi
 
   /// the bins with densities and Poisson errors scaled by s (T.A.5, s = 1 → 68 %)
   std::vector<HistBin> bins(double s = 1.0) const {

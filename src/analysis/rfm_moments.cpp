@@ -80,7 +80,8 @@ std::vector<double> MomentSeries::error() const {
       s2 += snap[k] * snap[k];
     }
     const double mu = s / static_cast<double>(n);
-    const double var = std::max(0.0, (s2 - static_cast<double>(n) * mu * mu) / static_cast<double>(n - 1));
+    const double var =
+        std::max(0.0, (s2 - static_cast<double>(n) * mu * mu) / static_cast<double>(n - 1));
     e[k] = std::sqrt(var / static_cast<double>(n));
   }
   return e;
@@ -148,8 +149,7 @@ BlockAverage block_average(std::span<const double> series, std::size_t block_len
   BlockAverage b;
   b.block_len = block_len;
   const std::size_t nb = series.size() / block_len;
-  if (nb < 1)
-    throw InputError("block_average", "block_len", "series shorter than one block");
+  if (nb < 1) throw InputError("block_average", "block_len", "series shorter than one block");
   // the complete blocks (T.2.20 per block)
   for (std::size_t i = 0; i < nb; ++i) {
     double s = 0.0;
@@ -164,8 +164,8 @@ BlockAverage block_average(std::span<const double> series, std::size_t block_len
   b.mean = s / static_cast<double>(nb);
   // the standard error treats the blocks as independent (blocks ≫ correlation time)
   if (nb > 1) {
-    const double var = std::max(0.0, (s2 - static_cast<double>(nb) * b.mean * b.mean) /
-                                         static_cast<double>(nb - 1));
+    const double var = std::max(
+        0.0, (s2 - static_cast<double>(nb) * b.mean * b.mean) / static_cast<double>(nb - 1));
     b.error = std::sqrt(var / static_cast<double>(nb));
   }
   return b;
@@ -177,8 +177,10 @@ void write_temperature_csv(const std::filesystem::path& path, std::span<const do
     throw InputError(path.string(), "", "time and temperature series differ in length");
   const double nan = std::numeric_limits<double>::quiet_NaN();
   CsvMeta meta;
-  if (blocks) meta = {{"T_mean", blocks->mean}, {"T_err", blocks->error},
-                      {"block_len", static_cast<double>(blocks->block_len)}};
+  if (blocks)
+    meta = {{"T_mean", blocks->mean},
+            {"T_err", blocks->error},
+            {"block_len", static_cast<double>(blocks->block_len)}};
   std::vector<std::string> cols = {"t", "T"};
   if (blocks) cols.push_back("T_block");
   CsvWriter w(path, cols, meta);

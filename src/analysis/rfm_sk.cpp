@@ -183,8 +183,7 @@ std::vector<SkMode> StructureFactor2D::modes() const {
 // ---- D_f ---------------------------------------------------------------------------------
 
 double mean_free_path(double box, double diameter, long n) {
-  if (!(diameter > 0.0) || n < 1)
-    throw InputError("mean_free_path", "", "need d > 0 and N ≥ 1");
+  if (!(diameter > 0.0) || n < 1) throw InputError("mean_free_path", "", "need d > 0 and N ≥ 1");
   return box * box / (2.0 * diameter * static_cast<double>(n));
 }
 
@@ -206,12 +205,12 @@ DfFit fit_df(std::span<const SkShell> shells, double k_lo, double k_hi) {
     all_err = all_err && sh.s_err > 0.0;
   }
   if (k.size() < 2)
-    throw InputError("fit_df", "k_hi", "fewer than two shells with S > 0 in [" +
-                                           std::to_string(k_lo) + ", " + std::to_string(k_hi) +
-                                           "]; enlarge the box or the window");
+    throw InputError("fit_df", "k_hi",
+                     "fewer than two shells with S > 0 in [" + std::to_string(k_lo) + ", " +
+                         std::to_string(k_hi) + "]; enlarge the box or the window");
   // S = A k^(−D_f) as a line on logarithms (T.4.4)
-  const PowerLawFit p = fit_power_law(k, s, all_err ? std::span<const double>(e)
-                                                    : std::span<const double>());
+  const PowerLawFit p =
+      fit_power_law(k, s, all_err ? std::span<const double>(e) : std::span<const double>());
   DfFit f;
   f.d_f = -p.exponent;
   f.d_f_err = p.exponent_err;
@@ -239,15 +238,13 @@ void write_sk_csv(const std::filesystem::path& path, std::span<const SkShell> sh
                   const DfFit* fit) {
   CsvMeta meta;
   if (fit) {
-    meta = {{"D_f", fit->d_f},   {"D_f_err", fit->d_f_err}, {"A", fit->amplitude},
-            {"k_lo", fit->k_lo}, {"k_hi", fit->k_hi},       {"k_D", fit->k_d},
+    meta = {{"D_f", fit->d_f},     {"D_f_err", fit->d_f_err}, {"A", fit->amplitude},
+            {"k_lo", fit->k_lo},   {"k_hi", fit->k_hi},       {"k_D", fit->k_d},
             {"L_eff", fit->l_eff}, {"chi2_r", fit->chi2_r}};
   }
   CsvWriter w(path, {"k", "n", "S", "S_err", "modes"}, meta);
-  for (const SkShell& s : shells)
-    w.row({s.k, s.n, s.s, s.s_err, static_cast<double>(s.modes)});
+  for (const SkShell& s : shells) w.row({s.k, s.n, s.s, s.s_err, static_cast<double>(s.modes)});
 }
-
 
 void ShellAccumulator::save(ByteWriter& out) const {
   out.vec(sum_);
@@ -265,7 +262,8 @@ void ShellAccumulator::load(ByteReader& in) {
   const std::size_t c = count_.size(), m = modes_.size();
   in.vec(count_, "S(k) shell counts");
   in.vec(modes_, "S(k) shell modes");
-  if (count_.size() != c || modes_.size() != m) in.fail(in.pos, "S(k) shells do not match the scene");
+  if (count_.size() != c || modes_.size() != m)
+    in.fail(in.pos, "S(k) shells do not match the scene");
 }
 
 void StructureFactor2D::save(ByteWriter& out) const {

@@ -37,9 +37,9 @@ struct SkShell {
 
 /// S of one k-vector averaged over snapshots
 struct SkMode {
-  int nx = 0;        ///< k_x L/2π
-  int ny = 0;        ///< k_y L/2π
-  double s = 0.0;    ///< mean S, dimensionless
+  int nx = 0;      ///< k_x L/2π
+  int ny = 0;      ///< k_y L/2π
+  double s = 0.0;  ///< mean S, dimensionless
 };
 
 /// the half-plane integer modes with 0 < n_x² + n_y² ≤ n_max², in row order (n_y, then n_x)
@@ -88,9 +88,9 @@ class StructureFactor2D {
  private:
   double box_;
   int n_max_;
-  std::vector<SkMode> modes_;       // layout of the mode arrays
-  std::vector<int> row_begin_;      // first mode index of each n_y row
-  std::vector<double> mode_sum_;    // Σ over snapshots of S per mode
+  std::vector<SkMode> modes_;     // layout of the mode arrays
+  std::vector<int> row_begin_;    // first mode index of each n_y row
+  std::vector<double> mode_sum_;  // Σ over snapshots of S per mode
   ShellAccumulator shells_;
   long snapshots_ = 0;
 };
@@ -106,11 +106,11 @@ double effective_box_size(double k_d);
 
 /// a 2D RFM system as far as the D_f fit needs it
 struct RfmSystem {
-  double box = 0.2;          ///< L, m
-  long n = 2000;             ///< N, particles
-  double diameter = 3e-3;    ///< d, m
-  double eps_n = 0.6;        ///< normal restitution, dimensionless
-  double eps_t = 0.6;        ///< tangential restitution, dimensionless
+  double box = 0.2;        ///< L, m
+  long n = 2000;           ///< N, particles
+  double diameter = 3e-3;  ///< d, m
+  double eps_n = 0.6;      ///< normal restitution, dimensionless
+  double eps_t = 0.6;      ///< tangential restitution, dimensionless
 };
 
 /// a power-law fit S = A k^(−D_f)

@@ -47,15 +47,16 @@ TailFit fit_tail(const Histogram& h, const TailFitOptions& opt) {
     sig.push_back(opt.error_scale / std::sqrt(b.count));  // σ_lnP = s√X/X (T.A.4)
   }
   if (av.size() < 3)
-    throw InputError("fit_tail", "count_lo", "only " + std::to_string(av.size()) +
-                                                 " bins have counts in the window");
+    throw InputError("fit_tail", "count_lo",
+                     "only " + std::to_string(av.size()) + " bins have counts in the window");
   TailFit f;
   f.points = static_cast<int>(av.size());
   f.v_lo = *std::min_element(av.begin(), av.end());
   f.v_hi = *std::max_element(av.begin(), av.end());
   f.best.chi2_r = std::numeric_limits<double>::infinity();
   // one weighted line of ln P against |v|^α per grid α
-  const int steps = static_cast<int>(std::floor((opt.alpha_hi - opt.alpha_lo) / opt.alpha_step + 0.5));
+  const int steps =
+      static_cast<int>(std::floor((opt.alpha_hi - opt.alpha_lo) / opt.alpha_step + 0.5));
   std::vector<double> x(av.size());
   int last_accepted = -2;
   for (int s = 0; s <= steps; ++s) {
@@ -72,8 +73,10 @@ TailFit fit_tail(const Histogram& h, const TailFitOptions& opt) {
     if (t.chi2_r < f.best.chi2_r) f.best = t;
     // the accepted range and whether it has holes
     if (t.chi2_r < opt.chi2_accept) {
-      if (!f.any_accepted) f.alpha_lo = alpha;
-      else if (last_accepted != s - 1) f.contiguous = false;
+      if (!f.any_accepted)
+        f.alpha_lo = alpha;
+      else if (last_accepted != s - 1)
+        f.contiguous = false;
       f.any_accepted = true;
       f.alpha_hi = alpha;
       last_accepted = s;
@@ -127,7 +130,8 @@ CrossoverFit fit_crossover(const Histogram& h, double alpha, bool fit_alpha, dou
     const double vr = std::abs(q[1]), vc = std::abs(q[2]);
     return (crossover_density(lo[i], q[0], vr, vc, a) +
             4.0 * crossover_density(0.5 * (lo[i] + hi[i]), q[0], vr, vc, a) +
-            crossover_density(hi[i], q[0], vr, vc, a)) / 6.0;
+            crossover_density(hi[i], q[0], vr, vc, a)) /
+           6.0;
   };
   std::vector<double> index(v.size());
   for (std::size_t i = 0; i < index.size(); ++i) index[i] = static_cast<double>(i);
@@ -162,8 +166,8 @@ std::vector<LnLnPoint> lnln_tail(const Histogram& h, double amplitude, double v_
 
 // ---- CSV ---------------------------------------------------------------------------------
 
-void write_velocity_csv(const std::filesystem::path& path, const Histogram& h,
-                        const TailFit* tail, const CrossoverFit* cross) {
+void write_velocity_csv(const std::filesystem::path& path, const Histogram& h, const TailFit* tail,
+                        const CrossoverFit* cross) {
   CsvMeta meta;
   if (tail) {
     meta.insert(meta.end(), {{"alpha_best", tail->best.alpha},
@@ -185,10 +189,10 @@ void write_velocity_csv(const std::filesystem::path& path, const Histogram& h,
   CsvWriter w(path, {"v", "count", "P", "P_err", "P_tail", "P_cross"}, meta);
   for (const HistBin& b : h.bins()) {
     const bool in_window = tail && std::abs(b.x) >= tail->v_lo && std::abs(b.x) <= tail->v_hi;
-    const double pt = in_window ? stretched_exponential(b.x, tail->best.a, tail->best.b, tail->best.alpha)
-                                : kNaN;
-    const double pc = cross ? crossover_density(b.x, cross->d, cross->v_r, cross->v_c, cross->alpha)
-                            : kNaN;
+    const double pt =
+        in_window ? stretched_exponential(b.x, tail->best.a, tail->best.b, tail->best.alpha) : kNaN;
+    const double pc =
+        cross ? crossover_density(b.x, cross->d, cross->v_r, cross->v_c, cross->alpha) : kNaN;
     w.row({b.x, b.count, b.p, b.p_err, pt, pc});
   }
 }

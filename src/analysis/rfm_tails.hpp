@@ -24,14 +24,14 @@ void add_values(Histogram& h, std::span<const double> v);
 
 /// options of the stretched-exponential scan (appendix A)
 struct TailFitOptions {
-  double count_lo = 50.0;      ///< smallest bin count used, samples
-  double count_hi = 5000.0;    ///< largest bin count used, samples
-  double v_abs_min = 0.0;      ///< ignore bins with |v| below this (keeps the core out), m/s
-  double alpha_lo = 0.3;       ///< first α of the grid
-  double alpha_hi = 3.0;       ///< last α of the grid
-  double alpha_step = 0.01;    ///< grid step of α
-  double chi2_accept = 1.2;    ///< accept α while χ²_r is below this
-  double error_scale = 1.0;    ///< s in σ = s√X (T.A.4); the thesis uses 2 for its † rows
+  double count_lo = 50.0;    ///< smallest bin count used, samples
+  double count_hi = 5000.0;  ///< largest bin count used, samples
+  double v_abs_min = 0.0;    ///< ignore bins with |v| below this (keeps the core out), m/s
+  double alpha_lo = 0.3;     ///< first α of the grid
+  double alpha_hi = 3.0;     ///< last α of the grid
+  double alpha_step = 0.01;  ///< grid step of α
+  double chi2_accept = 1.2;  ///< accept α while χ²_r is below this
+  double error_scale = 1.0;  ///< s in σ = s√X (T.A.4); the thesis uses 2 for its † rows
 };
 
 /// one trial α of the scan

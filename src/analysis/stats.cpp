@@ -4,9 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <complex>
 #include <limits>
+#include <numbers>
 #include <stdexcept>
 #include <string>
 
@@ -131,8 +131,8 @@ double beta_inc(double a, double b, double x) {
   if (x <= 0.0) return 0.0;
   if (x >= 1.0) return 1.0;
   // prefactor x^a (1−x)^b / (a B(a,b)); the fraction converges for x < (a+1)/(a+b+2)
-  const double lbt = std::lgamma(a + b) - std::lgamma(a) - std::lgamma(b) + a * std::log(x) +
-                     b * std::log1p(-x);
+  const double lbt =
+      std::lgamma(a + b) - std::lgamma(a) - std::lgamma(b) + a * std::log(x) + b * std::log1p(-x);
   if (x < (a + 1.0) / (a + b + 2.0)) return std::exp(lbt) * beta_fraction(a, b, x) / a;
   return 1.0 - std::exp(lbt) * beta_fraction(b, a, 1.0 - x) / b;
 }
@@ -190,16 +190,19 @@ double stddev(const std::vector<double>& x) { return std::sqrt(variance(x)); }
 Interval mean_ci(const std::vector<double>& x, double level, double tau_int) {
   require_size(x, 2, "mean_ci");
   // effective sample size of a correlated series: n/(2 τ_int); at least 2 samples
-  const double n_eff = std::max(2.0, static_cast<double>(x.size()) / (2.0 * std::max(tau_int, 0.5)));
+  const double n_eff =
+      std::max(2.0, static_cast<double>(x.size()) / (2.0 * std::max(tau_int, 0.5)));
   const double m = mean(x);
-  const double half = student_t_quantile(0.5 + 0.5 * level, n_eff - 1.0) * stddev(x) / std::sqrt(n_eff);
+  const double half =
+      student_t_quantile(0.5 + 0.5 * level, n_eff - 1.0) * stddev(x) / std::sqrt(n_eff);
   return {m - half, m + half};
 }
 
 Interval stddev_ci(const std::vector<double>& x, double level, double tau_int) {
   require_size(x, 2, "stddev_ci");
   // (ν s²/σ²) ~ χ²(ν): invert at both tails
-  const double n_eff = std::max(2.0, static_cast<double>(x.size()) / (2.0 * std::max(tau_int, 0.5)));
+  const double n_eff =
+      std::max(2.0, static_cast<double>(x.size()) / (2.0 * std::max(tau_int, 0.5)));
   const double nu = n_eff - 1.0;
   const double alpha = 1.0 - level;
   const double s2 = variance(x);
@@ -309,7 +312,8 @@ NormalityTest normality_chi2(const std::vector<double>& x, double alpha, int bin
   const double s = stddev(x);
   NormalityTest r;
   // the number of bins: ≈ 2 n^{2/5}, keeping every expected count n/k ≥ 5
-  int k = bins > 0 ? bins : static_cast<int>(std::lround(2.0 * std::pow(static_cast<double>(n), 0.4)));
+  int k =
+      bins > 0 ? bins : static_cast<int>(std::lround(2.0 * std::pow(static_cast<double>(n), 0.4)));
   k = std::clamp(k, 4, std::max(4, static_cast<int>(n / 5)));
   r.bins = k;
   r.dof = k - 3;

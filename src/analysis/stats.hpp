@@ -58,11 +58,11 @@ Interval stddev_ci(const std::vector<double>& x, double level = 0.95, double tau
 
 /// integrated autocorrelation time with Sokal's automatic window
 struct AutocorrTime {
-  double tau_int = 0.5;      ///< τ_int = 1/2 + Σ_{t=1..M} ρ(t), in samples (taps)
-  double tau_err = 0.0;      ///< statistical error of τ_int, σ² ≈ 2(2M+1)/n · τ² (Sokal)
-  int window = 0;            ///< the window M: the smallest M with M ≥ c τ_int(M)
-  bool converged = false;    ///< false when no such M < n/2 exists (series too short)
-  std::vector<double> rho;   ///< normalized autocorrelation ρ(t), t = 0..M
+  double tau_int = 0.5;     ///< τ_int = 1/2 + Σ_{t=1..M} ρ(t), in samples (taps)
+  double tau_err = 0.0;     ///< statistical error of τ_int, σ² ≈ 2(2M+1)/n · τ² (Sokal)
+  int window = 0;           ///< the window M: the smallest M with M ≥ c τ_int(M)
+  bool converged = false;   ///< false when no such M < n/2 exists (series too short)
+  std::vector<double> rho;  ///< normalized autocorrelation ρ(t), t = 0..M
 };
 
 /// integrated autocorrelation time of a series (Sokal 1997, window constant c, default 5).

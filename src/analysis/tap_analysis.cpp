@@ -116,8 +116,8 @@ TapAnalysisResult run_tap_analysis(const std::vector<TapRunInput>& runs,
     const auto [lo, hi] = std::minmax_element(phis.back().begin(), phis.back().end());
     if (*lo == *hi)
       throw InputError(run.series.source, "phi",
-                       "run '" + label + "': φ is the same (" + std::to_string(*lo) +
-                           ") at all " + std::to_string(phis.back().size()) +
+                       "run '" + label + "': φ is the same (" + std::to_string(*lo) + ") at all " +
+                           std::to_string(phis.back().size()) +
                            " taps after the transient; there is no distribution to analyse");
     r.runs.push_back(summarize(run, phis.back(), opts));
     if (!r.runs.back().tau.converged)
@@ -129,7 +129,8 @@ TapAnalysisResult run_tap_analysis(const std::vector<TapRunInput>& runs,
   for (std::size_t i = 0; i < runs.size(); ++i)
     for (std::size_t j = i + 1; j < runs.size(); ++j) {
       const TapRunSummary &a = r.runs[i], &b = r.runs[j];
-      if (a.protocol != b.protocol || std::abs(a.control - b.control) > 1e-9 * (1 + std::abs(a.control)))
+      if (a.protocol != b.protocol ||
+          std::abs(a.control - b.control) > 1e-9 * (1 + std::abs(a.control)))
         continue;
       r.pairs.push_back({static_cast<int>(i), static_cast<int>(j),
                          two_sample_test(phis[i], a.tau.tau_int, phis[j], b.tau.tau_int)});
@@ -140,8 +141,8 @@ TapAnalysisResult run_tap_analysis(const std::vector<TapRunInput>& runs,
   for (const auto& phi : phis) {
     r.kde_normal.push_back(kde_auto(phi, opts.kde_points, Kernel::Normal));
     const auto& c = r.kde_normal.back();
-    r.kde_epanechnikov.push_back(
-        kde(phi, c.x, equivalent_bandwidth(Kernel::Epanechnikov, c.bandwidth), Kernel::Epanechnikov));
+    r.kde_epanechnikov.push_back(kde(
+        phi, c.x, equivalent_bandwidth(Kernel::Epanechnikov, c.bandwidth), Kernel::Epanechnikov));
     r.kde_box.push_back(kde(phi, c.x, equivalent_bandwidth(Kernel::Box, c.bandwidth), Kernel::Box));
   }
 
@@ -197,8 +198,8 @@ TapAnalysisResult run_tap_analysis(const std::vector<TapRunInput>& runs,
     std::vector<std::pair<double, double>> d;
     for (std::size_t i = 0; i < r.beta.size(); ++i) {
       if (!r.beta[i].valid || !r.beta2[i].valid) continue;
-      const double e2 = r.beta[i].dbeta_err * r.beta[i].dbeta_err +
-                        r.beta2[i].dbeta_err * r.beta2[i].dbeta_err;
+      const double e2 =
+          r.beta[i].dbeta_err * r.beta[i].dbeta_err + r.beta2[i].dbeta_err * r.beta2[i].dbeta_err;
       if (!(e2 > 0.0)) continue;
       d.emplace_back(r.beta[i].dbeta - r.beta2[i].dbeta, e2);
       sw += 1.0 / e2;
@@ -207,7 +208,8 @@ TapAnalysisResult run_tap_analysis(const std::vector<TapRunInput>& runs,
     if (sw > 0.0) {
       r.ref_offset = swd / sw;
       r.ref_offset_err = 1.0 / std::sqrt(sw);
-      for (const auto& [v, e2] : d) r.ref_offset_chi2 += (v - r.ref_offset) * (v - r.ref_offset) / e2;
+      for (const auto& [v, e2] : d)
+        r.ref_offset_chi2 += (v - r.ref_offset) * (v - r.ref_offset) / e2;
       r.ref_offset_dof = static_cast<int>(d.size()) - 1;
     }
   }

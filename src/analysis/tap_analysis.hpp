@@ -19,12 +19,12 @@ namespace gs {
 
 /// the per-tap series of one run, read from taps.csv by column name
 struct TapSeries {
-  std::string source;            ///< where it came from (file path), for messages
-  std::vector<double> tap;       ///< tap number, dimensionless
-  std::vector<double> t;         ///< time of the measurement, s (empty when the column is absent)
-  std::vector<double> phi;       ///< volume fraction of the test rectangle, dimensionless
-  std::vector<double> phi_left;  ///< φ of its left half (empty when absent)
-  std::vector<double> phi_right; ///< φ of its right half (empty when absent)
+  std::string source;             ///< where it came from (file path), for messages
+  std::vector<double> tap;        ///< tap number, dimensionless
+  std::vector<double> t;          ///< time of the measurement, s (empty when the column is absent)
+  std::vector<double> phi;        ///< volume fraction of the test rectangle, dimensionless
+  std::vector<double> phi_left;   ///< φ of its left half (empty when absent)
+  std::vector<double> phi_right;  ///< φ of its right half (empty when absent)
 };
 
 /// parse taps.csv text: a header row naming the columns, then one row per tap. Required
@@ -49,41 +49,41 @@ TapRunInput load_tap_run(const std::string& path, const std::string& protocol, d
 
 /// choices of the analysis
 struct TapAnalysisOptions {
-  int discard = 10;            ///< transient taps dropped from the start of each run
-  double level = 0.95;         ///< confidence level of the intervals
-  double alpha = 0.05;         ///< significance of the normality test
-  double test_area = 0.16;     ///< area V_T of the test rectangle, m² (V_g = V_T φ̄_ref)
-  std::string reference;       ///< label of the reference run; empty: the paper's choice, the
-                               ///< negative_g run with g_p nearest 6, else the first run
-  std::string reference2;      ///< second reference; empty: the next run of the reference's
-                               ///< protocol (none if it has no other run)
-  OverlapOptions overlap;      ///< density method, bins, 5 % threshold
-  int kde_points = 200;        ///< grid points of each written KDE
-  QuadronParams quadron;       ///< φ_rlp, φ_rcp of (P.26)
-  int bootstrap = 100;         ///< bootstrap replicas of the multiple-histogram errors
+  int discard = 10;         ///< transient taps dropped from the start of each run
+  double level = 0.95;      ///< confidence level of the intervals
+  double alpha = 0.05;      ///< significance of the normality test
+  double test_area = 0.16;  ///< area V_T of the test rectangle, m² (V_g = V_T φ̄_ref)
+  std::string reference;    ///< label of the reference run; empty: the paper's choice, the
+                            ///< negative_g run with g_p nearest 6, else the first run
+  std::string reference2;   ///< second reference; empty: the next run of the reference's
+                            ///< protocol (none if it has no other run)
+  OverlapOptions overlap;   ///< density method, bins, 5 % threshold
+  int kde_points = 200;     ///< grid points of each written KDE
+  QuadronParams quadron;    ///< φ_rlp, φ_rcp of (P.26)
+  int bootstrap = 100;      ///< bootstrap replicas of the multiple-histogram errors
 };
 
 /// statistics of one run (after the transient)
 struct TapRunSummary {
-  std::string label;            ///< run label
-  std::string protocol;         ///< protocol name
-  double control = 0.0;         ///< control parameter (g_p or f, Hz)
-  int n_total = 0;              ///< taps in the file
-  int n_used = 0;               ///< taps after the transient
-  double phi_mean = 0.0;        ///< φ̄, dimensionless
-  double phi_err = 0.0;         ///< standard error of φ̄ with τ_int: s √(2τ_int/n)
-  Interval phi_mean_ci;         ///< CI of φ̄ treating taps as independent
-  Interval phi_mean_ci_tau;     ///< CI of φ̄ with n_eff = n/(2τ_int)
-  double sigma = 0.0;           ///< σ_φ (n − 1), dimensionless
-  Interval sigma_ci;            ///< chi-square CI of σ_φ, independent taps
-  Interval sigma_ci_tau;        ///< chi-square CI of σ_φ with n_eff
-  AutocorrTime tau;             ///< integrated autocorrelation time, taps
-  NormalityTest normality;      ///< chi-square test of normality
-  bool has_halves = false;      ///< φ_left and φ_right were present
-  double mean_left = 0.0;       ///< φ̄ of the left half
-  double mean_right = 0.0;      ///< φ̄ of the right half
-  double sigma_left = 0.0;      ///< σ_φ of the left half
-  double sigma_right = 0.0;     ///< σ_φ of the right half
+  std::string label;         ///< run label
+  std::string protocol;      ///< protocol name
+  double control = 0.0;      ///< control parameter (g_p or f, Hz)
+  int n_total = 0;           ///< taps in the file
+  int n_used = 0;            ///< taps after the transient
+  double phi_mean = 0.0;     ///< φ̄, dimensionless
+  double phi_err = 0.0;      ///< standard error of φ̄ with τ_int: s √(2τ_int/n)
+  Interval phi_mean_ci;      ///< CI of φ̄ treating taps as independent
+  Interval phi_mean_ci_tau;  ///< CI of φ̄ with n_eff = n/(2τ_int)
+  double sigma = 0.0;        ///< σ_φ (n − 1), dimensionless
+  Interval sigma_ci;         ///< chi-square CI of σ_φ, independent taps
+  Interval sigma_ci_tau;     ///< chi-square CI of σ_φ with n_eff
+  AutocorrTime tau;          ///< integrated autocorrelation time, taps
+  NormalityTest normality;   ///< chi-square test of normality
+  bool has_halves = false;   ///< φ_left and φ_right were present
+  double mean_left = 0.0;    ///< φ̄ of the left half
+  double mean_right = 0.0;   ///< φ̄ of the right half
+  double sigma_left = 0.0;   ///< σ_φ of the left half
+  double sigma_right = 0.0;  ///< σ_φ of the right half
 };
 
 /// two runs of one protocol at one control value (e.g. fixed-period against early-rest
@@ -95,26 +95,26 @@ struct TapPairTest {
 
 /// everything the analysis computes
 struct TapAnalysisResult {
-  std::vector<TapRunSummary> runs;          ///< per-run statistics, input order
-  std::vector<KdeCurve> kde_normal;         ///< per-run KDE, normal kernel (Silverman h)
+  std::vector<TapRunSummary> runs;                    ///< per-run statistics, input order
+  std::vector<KdeCurve> kde_normal;                   ///< per-run KDE, normal kernel (Silverman h)
   std::vector<std::vector<double>> kde_epanechnikov;  ///< same grid, Epanechnikov kernel with
                                                       ///< the equivalent bandwidth
   std::vector<std::vector<double>> kde_box;           ///< same grid, box kernel, equivalent h
-  int ref = 0;                              ///< index of the reference run
-  int ref2 = -1;                            ///< index of the second reference (−1: none)
-  double v_g = 0.0;                         ///< V_g = V_T φ̄_ref, m²
-  std::vector<BetaEstimate> beta;           ///< per run against the reference
-  std::vector<BetaEstimate> beta2;          ///< per run against the second reference
-  double ref_offset = 0.0;                  ///< weighted mean of β̂(ref) − β̂(ref2), 1/m²
-  double ref_offset_err = 0.0;              ///< its standard error, 1/m²
-  double ref_offset_chi2 = 0.0;             ///< χ² of "the difference is constant"
-  int ref_offset_dof = 0;                   ///< its degrees of freedom
-  MultiHistResult multi;                    ///< β̂ through neighbours: chain and joint fit
-                                            ///< (runs that do not overlap the reference too)
+  int ref = 0;                                        ///< index of the reference run
+  int ref2 = -1;                              ///< index of the second reference (−1: none)
+  double v_g = 0.0;                           ///< V_g = V_T φ̄_ref, m²
+  std::vector<BetaEstimate> beta;             ///< per run against the reference
+  std::vector<BetaEstimate> beta2;            ///< per run against the second reference
+  double ref_offset = 0.0;                    ///< weighted mean of β̂(ref) − β̂(ref2), 1/m²
+  double ref_offset_err = 0.0;                ///< its standard error, 1/m²
+  double ref_offset_chi2 = 0.0;               ///< χ² of "the difference is constant"
+  int ref_offset_dof = 0;                     ///< its degrees of freedom
+  MultiHistResult multi;                      ///< β̂ through neighbours: chain and joint fit
+                                              ///< (runs that do not overlap the reference too)
   std::map<std::string, QuadronFit> quadron;  ///< "all" and each protocol (direct β̂), and
                                               ///< "joint" (every run, β̂ of the joint fit)
-  std::vector<TapPairTest> pairs;           ///< every pair at the same protocol and control
-  std::vector<std::string> notes;           ///< what was skipped and why
+  std::vector<TapPairTest> pairs;             ///< every pair at the same protocol and control
+  std::vector<std::string> notes;             ///< what was skipped and why
 };
 
 /// compute the analysis (no files). Throws InputError for unusable input (no runs, too few

@@ -6,8 +6,8 @@
 #include <sstream>
 
 #include "analysis/tap_analysis.hpp"
-#include "core/input_file.hpp"
 #include "core/error.hpp"
+#include "core/input_file.hpp"
 
 namespace gs {
 
@@ -150,7 +150,8 @@ TapSeries parse_taps_csv(std::istream& in, const std::string& source) {
       if (cell.empty() || end != cell.c_str() + cell.size())
         throw InputError(where, header[c], col + ": not a number: '" + cell + "'");
       // NaN or inf would reach the statistics (a KDE of NaN) and fail far from the file
-      if (!std::isfinite(v)) throw InputError(where, header[c], col + ": not finite: '" + cell + "'");
+      if (!std::isfinite(v))
+        throw InputError(where, header[c], col + ": not finite: '" + cell + "'");
       return v;
     };
     const double tap = c_tap >= 0 ? value(c_tap) : static_cast<double>(s.tap.size() + 1);
@@ -163,8 +164,8 @@ TapSeries parse_taps_csv(std::istream& in, const std::string& source) {
     if (!s.tap.empty() && !(tap > s.tap.back()))
       throw InputError(source + ":" + std::to_string(lineno), "tap",
                        "tap numbers must increase (tap " + cells[static_cast<std::size_t>(c_tap)] +
-                           " follows tap " +
-                           std::to_string(static_cast<long long>(s.tap.back())) + ")");
+                           " follows tap " + std::to_string(static_cast<long long>(s.tap.back())) +
+                           ")");
     s.tap.push_back(tap);
     s.phi.push_back(value(c_phi));
     if (c_t >= 0) s.t.push_back(value(c_t));
@@ -206,7 +207,8 @@ void write_tap_analysis(const TapAnalysisResult& r, const std::vector<TapRunInpu
     f << "label_a,label_b,protocol,control,n_eff_a,n_eff_b,mean_diff,mean_diff_err,p_mean,"
          "sigma_ratio,p_sigma,ks_d,ks_p\n";
     for (const TapPairTest& p : r.pairs) {
-      const auto &a = r.runs[static_cast<std::size_t>(p.a)], &b = r.runs[static_cast<std::size_t>(p.b)];
+      const auto &a = r.runs[static_cast<std::size_t>(p.a)],
+                 &b = r.runs[static_cast<std::size_t>(p.b)];
       const TwoSampleTest& t = p.test;
       f << a.label << ',' << b.label << ',' << a.protocol << ',' << num(a.control) << ','
         << num(t.n_eff_a) << ',' << num(t.n_eff_b) << ',' << num(t.mean_diff) << ','
@@ -226,16 +228,15 @@ void write_tap_analysis(const TapAnalysisResult& r, const std::vector<TapRunInpu
       const double nan = std::nan("");
       f << s.label << ',' << s.protocol << ',' << num(s.control) << ',' << s.n_total << ','
         << s.n_used << ',' << num(s.phi_mean) << ',' << num(s.phi_err) << ','
-        << num(s.phi_mean_ci.lo) << ',' << num(s.phi_mean_ci.hi) << ','
-        << num(s.phi_mean_ci_tau.lo) << ',' << num(s.phi_mean_ci_tau.hi) << ',' << num(s.sigma)
-        << ',' << num(s.sigma_ci.lo) << ',' << num(s.sigma_ci.hi) << ','
-        << num(s.sigma_ci_tau.lo) << ',' << num(s.sigma_ci_tau.hi) << ',' << num(s.tau.tau_int)
-        << ',' << num(s.tau.tau_err) << ',' << s.tau.window << ',' << num(s.normality.statistic)
-        << ',' << s.normality.bins << ',' << s.normality.dof << ',' << num(s.normality.p_value)
-        << ',' << (s.normality.normal ? 1 : 0) << ','
-        << num(s.has_halves ? s.mean_left : nan) << ',' << num(s.has_halves ? s.mean_right : nan)
-        << ',' << num(s.has_halves ? s.sigma_left : nan) << ','
-        << num(s.has_halves ? s.sigma_right : nan) << ','
+        << num(s.phi_mean_ci.lo) << ',' << num(s.phi_mean_ci.hi) << ',' << num(s.phi_mean_ci_tau.lo)
+        << ',' << num(s.phi_mean_ci_tau.hi) << ',' << num(s.sigma) << ',' << num(s.sigma_ci.lo)
+        << ',' << num(s.sigma_ci.hi) << ',' << num(s.sigma_ci_tau.lo) << ','
+        << num(s.sigma_ci_tau.hi) << ',' << num(s.tau.tau_int) << ',' << num(s.tau.tau_err) << ','
+        << s.tau.window << ',' << num(s.normality.statistic) << ',' << s.normality.bins << ','
+        << s.normality.dof << ',' << num(s.normality.p_value) << ',' << (s.normality.normal ? 1 : 0)
+        << ',' << num(s.has_halves ? s.mean_left : nan) << ','
+        << num(s.has_halves ? s.mean_right : nan) << ',' << num(s.has_halves ? s.sigma_left : nan)
+        << ',' << num(s.has_halves ? s.sigma_right : nan) << ','
         << num(s.has_halves ? s.sigma_left / s.sigma : nan) << ','
         << num(s.has_halves ? s.sigma_right / s.sigma : nan) << '\n';
     }
@@ -298,12 +299,12 @@ void write_tap_analysis(const TapAnalysisResult& r, const std::vector<TapRunInpu
         }
         fb << rl << ',' << s.label << ',' << s.protocol << ',' << num(s.control) << ','
            << num(s.phi_mean) << ',' << num(s.phi_err) << ',' << num(s.sigma) << ','
-           << num(s.sigma_ci_tau.lo) << ',' << num(s.sigma_ci_tau.hi) << ',' << num(b.dbeta)
-           << ',' << num(b.dbeta_err) << ',' << num(b.dlnz) << ',' << num(b.dlnz_err) << ','
-           << num(b.cov) << ',' << num(b.fit.r2) << ',' << num(b.fit.quad) << ','
-           << num(b.fit.quad_err) << ',' << num(b.fit.chi2) << ',' << b.fit.dof << ','
-           << b.fit.points.size() << ',' << (b.valid ? 1 : 0) << ',' << num(beta) << ','
-           << num(phq) << ',' << num(sgq) << ',' << num(lzq) << '\n';
+           << num(s.sigma_ci_tau.lo) << ',' << num(s.sigma_ci_tau.hi) << ',' << num(b.dbeta) << ','
+           << num(b.dbeta_err) << ',' << num(b.dlnz) << ',' << num(b.dlnz_err) << ',' << num(b.cov)
+           << ',' << num(b.fit.r2) << ',' << num(b.fit.quad) << ',' << num(b.fit.quad_err) << ','
+           << num(b.fit.chi2) << ',' << b.fit.dof << ',' << b.fit.points.size() << ','
+           << (b.valid ? 1 : 0) << ',' << num(beta) << ',' << num(phq) << ',' << num(sgq) << ','
+           << num(lzq) << '\n';
       }
     };
     write(r.ref, r.beta);
@@ -325,10 +326,9 @@ void write_tap_analysis(const TapAnalysisResult& r, const std::vector<TapRunInpu
       f << s.label << ',' << s.protocol << ',' << num(s.control) << ',' << num(s.phi_mean) << ','
         << num(s.phi_err) << ',' << (d.valid ? 1 : 0) << ',' << num(d.dbeta) << ','
         << num(d.dbeta_err) << ',' << num(d.dlnz) << ',' << num(d.dlnz_err) << ','
-        << (c.valid ? 1 : 0) << ',' << num(c.dbeta) << ',' << num(c.dbeta_err) << ','
-        << num(c.dlnz) << ',' << num(c.dlnz_err) << ',' << (j.valid ? 1 : 0) << ','
-        << num(j.dbeta) << ',' << num(j.dbeta_err) << ',' << num(j.dlnz) << ','
-        << num(j.dlnz_err) << '\n';
+        << (c.valid ? 1 : 0) << ',' << num(c.dbeta) << ',' << num(c.dbeta_err) << ',' << num(c.dlnz)
+        << ',' << num(c.dlnz_err) << ',' << (j.valid ? 1 : 0) << ',' << num(j.dbeta) << ','
+        << num(j.dbeta_err) << ',' << num(j.dlnz) << ',' << num(j.dlnz_err) << '\n';
     }
   }
 
@@ -355,8 +355,8 @@ void write_tap_analysis(const TapAnalysisResult& r, const std::vector<TapRunInpu
       << jstr(opts.overlap.method == DensityMethod::Histogram ? "histogram" : "kde")
       << ",\n  \"kernel\": " << jstr(kernel_name(opts.overlap.kernel))
       << ",\n  \"min_fraction\": " << jnum(opts.overlap.min_fraction)
-      << ",\n  \"reference\": " << jstr(ref.label) << ",\n  \"reference2\": "
-      << (r.ref2 >= 0 ? jstr(r.runs[r.ref2].label) : "null")
+      << ",\n  \"reference\": " << jstr(ref.label)
+      << ",\n  \"reference2\": " << (r.ref2 >= 0 ? jstr(r.runs[r.ref2].label) : "null")
       << ",\n  \"reference_offset\": {\"dbeta\": " << jnum(r.ref_offset)
       << ", \"err\": " << jnum(r.ref_offset_err) << ", \"chi2\": " << jnum(r.ref_offset_chi2)
       << ", \"dof\": " << r.ref_offset_dof << "},\n  \"runs\": [";
@@ -370,8 +370,7 @@ void write_tap_analysis(const TapAnalysisResult& r, const std::vector<TapRunInpu
         << ", \"chi2_p\": " << jnum(s.normality.p_value) << ", \"sigma_ratio_halves\": "
         << jnum(s.has_halves ? 0.5 * (s.sigma_left + s.sigma_right) / s.sigma : std::nan(""))
         << ", \"dbeta\": " << jnum(r.beta[i].valid ? r.beta[i].dbeta : std::nan(""))
-        << ", \"dbeta_err\": " << jnum(r.beta[i].valid ? r.beta[i].dbeta_err : std::nan(""))
-        << "}";
+        << ", \"dbeta_err\": " << jnum(r.beta[i].valid ? r.beta[i].dbeta_err : std::nan("")) << "}";
     }
     f << "\n  ],\n  \"files\": [\"summary.csv\", \"series.csv\", \"kde.csv\", \"q_lines.csv\", "
          "\"beta.csv\", \"quadron.json\"],\n  \"notes\": [";

@@ -56,8 +56,8 @@ TwoSampleTest two_sample_test(const std::vector<double>& a, double tau_a,
   t.mean_diff = mean(b) - mean(a);
   t.mean_diff_err = std::sqrt(ea + eb);
   if (t.mean_diff_err > 0) {
-    const double nu = (ea + eb) * (ea + eb) /
-                      (ea * ea / (t.n_eff_a - 1.0) + eb * eb / (t.n_eff_b - 1.0));
+    const double nu =
+        (ea + eb) * (ea + eb) / (ea * ea / (t.n_eff_a - 1.0) + eb * eb / (t.n_eff_b - 1.0));
     t.p_mean = 2.0 * (1.0 - student_t_cdf(std::abs(t.mean_diff) / t.mean_diff_err, nu));
   }
   // spreads: F = s_b²/s_a² with (n_eff,b − 1, n_eff,a − 1) degrees of freedom

@@ -17,13 +17,13 @@ double ks_p_value(double d, double na, double nb);
 /// the comparison of two samples
 struct TwoSampleTest {
   double n_eff_a = 0.0, n_eff_b = 0.0;  ///< effective sizes n/(2 τ_int)
-  double mean_diff = 0.0;      ///< mean(b) − mean(a)
-  double mean_diff_err = 0.0;  ///< its standard error √(s_a²/n_eff,a + s_b²/n_eff,b)
-  double p_mean = 1.0;         ///< two-sided p of the difference (Welch, Satterthwaite dof)
-  double sigma_ratio = 1.0;    ///< s_b / s_a
-  double p_sigma = 1.0;        ///< two-sided F-test p of s_b² / s_a² (dof n_eff − 1)
-  double ks_d = 0.0;           ///< Kolmogorov–Smirnov D
-  double ks_p = 1.0;           ///< its p-value with the effective sizes
+  double mean_diff = 0.0;               ///< mean(b) − mean(a)
+  double mean_diff_err = 0.0;           ///< its standard error √(s_a²/n_eff,a + s_b²/n_eff,b)
+  double p_mean = 1.0;       ///< two-sided p of the difference (Welch, Satterthwaite dof)
+  double sigma_ratio = 1.0;  ///< s_b / s_a
+  double p_sigma = 1.0;      ///< two-sided F-test p of s_b² / s_a² (dof n_eff − 1)
+  double ks_d = 0.0;         ///< Kolmogorov–Smirnov D
+  double ks_p = 1.0;         ///< its p-value with the effective sizes
 };
 
 /// compare samples a and b with integrated autocorrelation times tau_a, tau_b (0.5:

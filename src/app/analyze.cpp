@@ -1,6 +1,5 @@
 #include "app/analyze.hpp"
 
-
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
@@ -118,11 +117,12 @@ int finish_analysis(const std::vector<TapRunInput>& runs, const std::vector<RunS
                   s.tau.tau_int);
     for (const auto& p : res.pairs) {
       const TwoSampleTest& t = p.test;
-      std::printf("same φ? %s vs %s: Δφ̄ = %.2e ± %.1e (p = %.3f), σ ratio %.3f (p = %.3f), "
-                  "KS D = %.3f (p = %.3f)\n",
-                  res.runs[static_cast<std::size_t>(p.a)].label.c_str(),
-                  res.runs[static_cast<std::size_t>(p.b)].label.c_str(), t.mean_diff,
-                  t.mean_diff_err, t.p_mean, t.sigma_ratio, t.p_sigma, t.ks_d, t.ks_p);
+      std::printf(
+          "same φ? %s vs %s: Δφ̄ = %.2e ± %.1e (p = %.3f), σ ratio %.3f (p = %.3f), "
+          "KS D = %.3f (p = %.3f)\n",
+          res.runs[static_cast<std::size_t>(p.a)].label.c_str(),
+          res.runs[static_cast<std::size_t>(p.b)].label.c_str(), t.mean_diff, t.mean_diff_err,
+          t.p_mean, t.sigma_ratio, t.p_sigma, t.ks_d, t.ks_p);
     }
     for (const auto& n : res.notes) std::printf("note: %s\n", n.c_str());
     std::fflush(stdout);  // before the chart scripts write to the same terminal
@@ -144,7 +144,8 @@ int finish_analysis(const std::vector<TapRunInput>& runs, const std::vector<RunS
     if (!fs::exists(path)) continue;
     const std::string err = run_python_script(path, {out});
     if (!err.empty()) {
-      std::fprintf(stderr, "gransim analyze: charts skipped: %s. The CSV and JSON files are in %s\n",
+      std::fprintf(stderr,
+                   "gransim analyze: charts skipped: %s. The CSV and JSON files are in %s\n",
                    err.c_str(), out.c_str());
       break;
     }
@@ -188,19 +189,20 @@ int analyze_plain(const AnalyzeOptions& opt, const std::string& out) {
 int analyze_command(const AnalyzeOptions& opt) {
   const bool plain = !opt.series.empty() || !opt.manifest.empty();
   if (plain && !opt.dirs.empty())
-    throw InputError("", "DIR", "give run directories or plain series (--series, --manifest), not both");
+    throw InputError("", "DIR",
+                     "give run directories or plain series (--series, --manifest), not both");
   if (!plain && opt.dirs.empty())
-    throw InputError("", "DIR", "give at least one run or sweep directory (or --series, --manifest)");
+    throw InputError("", "DIR",
+                     "give at least one run or sweep directory (or --series, --manifest)");
   if (opt.dirs.size() > 1 && opt.out.empty())
     throw InputError("", "--out",
                      "several directories are analysed together into one folder: "
                      "give it with --out");
   if (plain && opt.manifest.empty() && opt.out.empty())
     throw InputError("", "--out", "plain series need an analysis folder: give it with --out");
-  const std::string out =
-      !opt.out.empty() ? opt.out
-      : plain          ? (fs::path(opt.manifest).parent_path() / "analysis").string()
-                       : (fs::path(opt.dirs[0]) / "analysis").string();
+  const std::string out = !opt.out.empty() ? opt.out
+                          : plain ? (fs::path(opt.manifest).parent_path() / "analysis").string()
+                                  : (fs::path(opt.dirs[0]) / "analysis").string();
   // the analysis never writes over a run or an input: its files (series.csv, …) would
   // replace the run's own
   {
@@ -284,8 +286,9 @@ int analyze_command(const AnalyzeOptions& opt) {
 
   std::vector<RunSource> sources;
   for (const FoundTapRun* r : used)
-    sources.push_back({fs::absolute(r->dir).string(), fs::absolute(fs::path(r->dir) / "taps.csv").string(),
-                       r->protocol, r->control, r->status});
+    sources.push_back({fs::absolute(r->dir).string(),
+                       fs::absolute(fs::path(r->dir) / "taps.csv").string(), r->protocol,
+                       r->control, r->status});
   return finish_analysis(runs, sources, ao, opt, out);
 }
 

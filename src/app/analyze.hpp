@@ -18,16 +18,16 @@ struct AnalyzeOptions {
   bool quiet = false;      ///< no summary table
   // plain φ series from anywhere (experiments, other simulators): no run directory needed
   std::vector<std::string> series;  ///< "PROTOCOL:CONTROL:FILE" (a CSV with a phi column)
-  std::string manifest;    ///< a CSV: file,protocol,control[,label][,test_area]
-  double test_area = -1.0; ///< area of the test region, m² (V_g = test_area·φ̄_ref)
+  std::string manifest;             ///< a CSV: file,protocol,control[,label][,test_area]
+  double test_area = -1.0;          ///< area of the test region, m² (V_g = test_area·φ̄_ref)
 };
 
 /// a plain series with where it came from
 struct PlainSeries {
-  std::string file;        ///< the CSV
-  std::string protocol;    ///< protocol or label of the experiment
-  double control = 0.0;    ///< its control value
-  std::string label;       ///< "" = <protocol>_<control>
+  std::string file;      ///< the CSV
+  std::string protocol;  ///< protocol or label of the experiment
+  double control = 0.0;  ///< its control value
+  std::string label;     ///< "" = <protocol>_<control>
 };
 
 /// the series given by --series and --manifest, checked (files exist, controls are numbers,

@@ -71,8 +71,7 @@ std::vector<PlainSeries> plain_series(const AnalyzeOptions& opt, double& test_ar
   if (!opt.manifest.empty()) {
     check_input_file(opt.manifest, "manifest");
     std::ifstream in(opt.manifest);
-    if (!in)
-      throw InputError(opt.manifest, "--manifest", "cannot be read (not a regular file)");
+    if (!in) throw InputError(opt.manifest, "--manifest", "cannot be read (not a regular file)");
     const fs::path base = fs::path(opt.manifest).parent_path();
     std::string line;
     std::vector<std::string> head;

@@ -3,11 +3,11 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cstdio>
-#include <string>
-#include <vector>
 #include <exception>
 #include <filesystem>
 #include <new>
+#include <string>
+#include <vector>
 
 #include "app/analyze.hpp"
 #include "app/render_cmd.hpp"
@@ -66,19 +66,23 @@ int run_cli(int argc, char** argv) {
 
   // sweep: one run directory per value of the swept keys, as child processes
   SweepOptions so;
-  auto* sweep = app.add_subcommand("sweep", "run a scene at several values of scene keys, in parallel");
+  auto* sweep =
+      app.add_subcommand("sweep", "run a scene at several values of scene keys, in parallel");
   sweep->add_option("scene", so.scene, "scene file (TOML)")->required();
-  sweep->add_option("--param", so.params,
-                    "swept key and values, e.g. --param drive.g_p=4,6,8 (repeat for a grid)")
+  sweep
+      ->add_option("--param", so.params,
+                   "swept key and values, e.g. --param drive.g_p=4,6,8 (repeat for a grid)")
       ->required();
   sweep->add_option("-o,--out", so.out, "sweep directory (default runs/<name>-sweep-<keys>)");
   sweep->add_option("--set", so.sets, "override a scene key in every run (repeatable)");
-  sweep->add_option("-j,--jobs", so.jobs,
-                    "runs at a time (default: the number of cores; under mpirun: 1 per rank)")
+  sweep
+      ->add_option("-j,--jobs", so.jobs,
+                   "runs at a time (default: the number of cores; under mpirun: 1 per rank)")
       ->check(CLI::NonNegativeNumber);
-  sweep->add_option("--replicas", so.replicas,
-                    "runs per value; replica r > 0 gets a seed hashed from the scene's and r, "
-                    "in <name>_rep=<r> (default 1)")
+  sweep
+      ->add_option("--replicas", so.replicas,
+                   "runs per value; replica r > 0 gets a seed hashed from the scene's and r, "
+                   "in <name>_rep=<r> (default 1)")
       ->check(CLI::PositiveNumber);
   sweep->add_flag("--force", so.force, "redo unfinished runs (completed runs are always kept)");
   sweep->add_flag("-q,--quiet", so.quiet, "no progress display");
@@ -94,16 +98,20 @@ int run_cli(int argc, char** argv) {
                       "repeatable), e.g. negative_g:6:g6.csv");
   analyze->add_option("--manifest", ao.manifest,
                       "a CSV listing plain series: file,protocol,control[,label][,test_area]");
-  analyze->add_option("--test-area", ao.test_area,
-                      "area of the test region of plain series, m² (V_g = area·φ̄_ref)")
+  analyze
+      ->add_option("--test-area", ao.test_area,
+                   "area of the test region of plain series, m² (V_g = area·φ̄_ref)")
       ->check(CLI::PositiveNumber);
-  analyze->add_option("-o,--out", ao.out, "analysis folder (default DIR/analysis; needed for several DIRs)");
-  analyze->add_option("--discard", ao.discard, "transient taps to drop (default: output.discard_taps)")
+  analyze->add_option("-o,--out", ao.out,
+                      "analysis folder (default DIR/analysis; needed for several DIRs)");
+  analyze
+      ->add_option("--discard", ao.discard, "transient taps to drop (default: output.discard_taps)")
       ->check(CLI::NonNegativeNumber);
   analyze->add_option("--reference", ao.reference,
                       "reference run label, e.g. negative_g_6 (default: g_p nearest 6)");
   analyze->add_option("--reference2", ao.reference2, "second reference run label");
-  analyze->add_flag("--no-charts", [&](std::int64_t) { ao.charts = false; }, "write CSV/JSON only");
+  analyze->add_flag(
+      "--no-charts", [&](std::int64_t) { ao.charts = false; }, "write CSV/JSON only");
   analyze->add_flag("-q,--quiet", ao.quiet, "no summary table");
 
   // study: speed against accuracy and the stability map (app/study.cpp)
@@ -166,7 +174,8 @@ int run_cli(int argc, char** argv) {
     std::fprintf(stderr, "gransim: file system error: %s\n", e.what());
     return kExitOutput;
   } catch (const std::bad_alloc&) {
-    std::fprintf(stderr, "gransim: out of memory (the input asks for more than this machine has)\n");
+    std::fprintf(stderr,
+                 "gransim: out of memory (the input asks for more than this machine has)\n");
     return kExitFailure;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "gransim: internal error: %s\n", e.what());

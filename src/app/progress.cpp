@@ -23,9 +23,13 @@ std::string format_duration(double s) {
 }
 
 Progress::Progress(std::string label, double total, std::string unit, bool quiet)
-    : label_(std::move(label)), unit_(std::move(unit)), total_(total),
-      tty_(::isatty(2) != 0), quiet_(quiet),
-      start_(std::chrono::steady_clock::now()), last_(start_) {}
+    : label_(std::move(label)),
+      unit_(std::move(unit)),
+      total_(total),
+      tty_(::isatty(2) != 0),
+      quiet_(quiet),
+      start_(std::chrono::steady_clock::now()),
+      last_(start_) {}
 
 double Progress::elapsed() const {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();

@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <optional>
 
@@ -73,15 +73,18 @@ std::vector<double> checked_numbers(const std::string& flag, std::string v, std:
 }
 
 void apply_flags(const RenderFlags& f, RenderSpec& r) {
-  if (!f.color_by.empty()) r.color_by = checked_name("--color-by", f.color_by, render_color_by_names());
-  if (!f.colormap.empty()) r.colormap = checked_name("--colormap", f.colormap, render_colormap_names());
-  if (!f.renderer.empty()) r.renderer = checked_name("--renderer", f.renderer, render_renderer_names());
+  if (!f.color_by.empty())
+    r.color_by = checked_name("--color-by", f.color_by, render_color_by_names());
+  if (!f.colormap.empty())
+    r.colormap = checked_name("--colormap", f.colormap, render_colormap_names());
+  if (!f.renderer.empty())
+    r.renderer = checked_name("--renderer", f.renderer, render_renderer_names());
   if (!f.size.empty()) {
     const auto wh = checked_numbers("--size", f.size, 2, "WIDTHxHEIGHT in px, e.g. 1280x720");
     for (double v : wh)
       if (v != std::floor(v) || v < 16 || v > 8192)
-        throw InputError("--size", "", "width and height must be integers in 16…8192 px (got '" +
-                                           f.size + "')");
+        throw InputError("--size", "",
+                         "width and height must be integers in 16…8192 px (got '" + f.size + "')");
     r.width = static_cast<int>(wh[0]);
     r.height = static_cast<int>(wh[1]);
   }
@@ -171,10 +174,10 @@ Image draw(FrameMaker& maker, const Snapshot& s) {
     };
     const long a = number(out[k - 1]), b = number(out[k]);
     if (a < 0 || b < 0 || b != a + 1)
-      throw InputError((dir / "frames").string(), "",
-                       "the recorded frames are not numbered consecutively: " +
-                           out[k].filename().string() + " follows " +
-                           out[k - 1].filename().string() + " (a frame is missing or misnamed)");
+      throw InputError(
+          (dir / "frames").string(), "",
+          "the recorded frames are not numbered consecutively: " + out[k].filename().string() +
+              " follows " + out[k - 1].filename().string() + " (a frame is missing or misnamed)");
   }
   return out;
 }
@@ -183,7 +186,8 @@ Image draw(FrameMaker& maker, const Snapshot& s) {
 [[maybe_unused]] double trajectory_frames(const fs::path& p) {
   std::ifstream in(p);
   double n = 0;
-  for (std::string line; std::getline(in, line);) n += line.find("Properties=") != std::string::npos;
+  for (std::string line; std::getline(in, line);)
+    n += line.find("Properties=") != std::string::npos;
   return n;
 }
 
@@ -192,7 +196,7 @@ Image draw(FrameMaker& maker, const Snapshot& s) {
 int render_command(const RenderCommandOptions& o) {
   // default output: DIR/frame.png for a run directory, else beside the input
   const fs::path in(o.input);
-  const std::string out = !o.out.empty()       ? o.out
+  const std::string out = !o.out.empty()         ? o.out
                           : fs::is_directory(in) ? (in / "frame.png").string()
                                                  : fs::path(in).replace_extension(".png").string();
   // the output is checked before anything is drawn: a PNG, not an input, not a run's own file
@@ -215,8 +219,8 @@ int render_command(const RenderCommandOptions& o) {
   if (!run.empty()) lock.emplace(run, "render");
   write_png(out, img);
   std::printf("wrote %s: %dx%d, %zu particles at t = %.6g s from the %s %s (%s)\n", out.c_str(),
-              img.width, img.height, s.world.size(), s.world.s.t, s.kind.c_str(),
-              s.source.c_str(), maker.describe().c_str());
+              img.width, img.height, s.world.size(), s.world.s.t, s.kind.c_str(), s.source.c_str(),
+              maker.describe().c_str());
   return kExitOk;
 }
 
@@ -236,8 +240,9 @@ int movie_command(const MovieCommandOptions& o) {
     throw InputError("--from", "", "must be frames, trajectory or auto (got '" + from + "')");
   if (from == "auto") from = !frames.empty() ? "frames" : "trajectory";
   if (from == "frames" && frames.empty())
-    throw InputError(o.input, "", "no recorded frames (frames/frame_*.png); record them with "
-                                  "render.frames = true, or use --from trajectory");
+    throw InputError(o.input, "",
+                     "no recorded frames (frames/frame_*.png); record them with "
+                     "render.frames = true, or use --from trajectory");
   if (from == "trajectory" && !(fs::is_regular_file(traj) && traj.extension() == ".xyz"))
     throw InputError(o.input, "",
                      is_dir ? "neither recorded frames nor trajectory.xyz (set render.frames = "
@@ -257,12 +262,13 @@ int movie_command(const MovieCommandOptions& o) {
   MovieOptions mo;
   mo.fps = o.fps > 0 ? o.fps : r.fps;
   mo.crf = o.crf >= 0 ? o.crf : r.crf;
-  mo.preset = o.preset.empty() ? r.preset : checked_name("--preset", o.preset, render_preset_names());
+  mo.preset =
+      o.preset.empty() ? r.preset : checked_name("--preset", o.preset, render_preset_names());
   if (mo.crf > 51) throw InputError("--crf", "", "must be in 0…51");
-  const std::string out =
-      !o.out.empty() ? o.out
-                     : (is_dir ? (in / "movie.mp4").string()
-                               : fs::path(in).replace_extension(".mp4").string());
+  const std::string out = !o.out.empty()
+                              ? o.out
+                              : (is_dir ? (in / "movie.mp4").string()
+                                        : fs::path(in).replace_extension(".mp4").string());
   if (fs::exists(out) && !o.force)
     throw InputError(out, "", "exists; choose another -o or pass --force to replace it");
   if (fs::path(out).extension() != ".mp4")
@@ -282,9 +288,10 @@ int movie_command(const MovieCommandOptions& o) {
       enc.open(out, w, h, mo);
     }
     if (img.width != w || img.height != h)
-      throw InputError(what, "", "frame size " + std::to_string(img.width) + "x" +
-                                     std::to_string(img.height) + " differs from the first (" +
-                                     std::to_string(w) + "x" + std::to_string(h) + ")");
+      throw InputError(what, "",
+                       "frame size " + std::to_string(img.width) + "x" +
+                           std::to_string(img.height) + " differs from the first (" +
+                           std::to_string(w) + "x" + std::to_string(h) + ")");
     enc.add_frame(img);
   };
   if (from == "frames") {
@@ -314,8 +321,8 @@ int movie_command(const MovieCommandOptions& o) {
   const std::string codec = enc.codec_name();
   enc.close();
   std::printf("wrote %s: %d frames, %dx%d, %.2f s at %d fps (%s, from %s)\n", out.c_str(),
-              enc.frames(), w, h, enc.frames() / static_cast<double>(mo.fps), mo.fps,
-              codec.c_str(), from.c_str());
+              enc.frames(), w, h, enc.frames() / static_cast<double>(mo.fps), mo.fps, codec.c_str(),
+              from.c_str());
   return kExitOk;
 #endif
 }
@@ -333,8 +340,9 @@ struct RenderCommands {
 std::shared_ptr<RenderCommands> add_render_commands(CLI::App& app) {
   auto rc = std::make_shared<RenderCommands>();
   // render: one saved state → PNG
-  CLI::App* r = app.add_subcommand("render", "draw a saved state (run directory, state file, "
-                                             "trajectory frame) as a PNG");
+  CLI::App* r = app.add_subcommand("render",
+                                   "draw a saved state (run directory, state file, "
+                                   "trajectory frame) as a PNG");
   r->add_option("input", rc->ro.input, "run directory, state file (.csv) or trajectory (.xyz)")
       ->required();
   r->add_option("-o,--out", rc->ro.out, "PNG file (default DIR/frame.png or INPUT.png)");
@@ -342,8 +350,9 @@ std::shared_ptr<RenderCommands> add_render_commands(CLI::App& app) {
   add_render_flags(r, rc->ro.flags);
   rc->render = r;
   // movie: a run's frames or trajectory → MP4
-  CLI::App* m = app.add_subcommand("movie", "encode a run's recorded frames, or draw its "
-                                            "trajectory, into an MP4");
+  CLI::App* m = app.add_subcommand("movie",
+                                   "encode a run's recorded frames, or draw its "
+                                   "trajectory, into an MP4");
   m->add_option("input", rc->mo.input, "run directory or trajectory (.xyz)")->required();
   m->add_option("-o,--out", rc->mo.out, "MP4 file (default DIR/movie.mp4)");
   m->add_option("--from", rc->mo.from, "frames, trajectory or auto (frames when recorded)");

@@ -18,7 +18,7 @@ struct RenderFlags {
   std::string scene;              ///< scene file (default: scene.toml beside the input)
   std::vector<std::string> sets;  ///< --set overrides of the scene
   std::string color_by, colormap, size, range, camera, renderer, title;
-  int msaa = 0;                   ///< 0 = the scene's
+  int msaa = 0;  ///< 0 = the scene's
   bool no_colorbar = false, chains = false, no_clock = false;
 };
 
@@ -30,12 +30,12 @@ struct RenderCommandOptions {
 };
 
 struct MovieCommandOptions {
-  std::string input;        ///< run directory or trajectory file
-  std::string out;          ///< MP4 (default: DIR/movie.mp4)
-  std::string from = "auto";///< "frames", "trajectory" or "auto" (frames when there are any)
-  int fps = 0, crf = -1;    ///< 0 / −1 = the scene's
-  std::string preset;       ///< "" = the scene's
-  bool force = false;       ///< replace an existing output file
+  std::string input;          ///< run directory or trajectory file
+  std::string out;            ///< MP4 (default: DIR/movie.mp4)
+  std::string from = "auto";  ///< "frames", "trajectory" or "auto" (frames when there are any)
+  int fps = 0, crf = -1;      ///< 0 / −1 = the scene's
+  std::string preset;         ///< "" = the scene's
+  bool force = false;         ///< replace an existing output file
   bool quiet = false;
   RenderFlags flags;
 };

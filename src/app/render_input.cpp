@@ -53,8 +53,8 @@ Snapshot read_trajectory(const fs::path& file, const SnapshotRequest& req) {
   if (req.frame >= 0 && in.frames() != req.frame + 1)
     throw InputError(file.string(), "--frame",
                      "asked for frame " + std::to_string(req.frame) + " but the trajectory has " +
-                         std::to_string(in.frames()) + " (0 … " +
-                         std::to_string(in.frames() - 1) + ")");
+                         std::to_string(in.frames()) + " (0 … " + std::to_string(in.frames() - 1) +
+                         ")");
   load_trajectory_frame(s.world, last, file.string());
   s.gravity = last.gravity;
   s.tap = last.tap;

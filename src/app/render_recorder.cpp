@@ -131,7 +131,8 @@ class FrameRecorder final : public Observer {
         if (t + half < at(next_k_)) return false;
         // the first frame time after this step: jump near it, then settle with the same
         // comparison (a slow-motion schedule may pass many frame times in one step)
-        long k = std::max(next_k_, static_cast<long>(std::floor((t + half - spec_.start) / interval)));
+        long k =
+            std::max(next_k_, static_cast<long>(std::floor((t + half - spec_.start) / interval)));
         while (k > next_k_ && at(k - 1) > t + half) --k;
         while (at(k) <= t + half) ++k;
         next_k_ = k;
@@ -155,7 +156,8 @@ class FrameRecorder final : public Observer {
     const World& w = sim.world();
     const FrameInfo info = frame_info(w, sim.gravity());
     const Image img = maker_->render(w, &sim.contacts(), info);
-    if (!frames_dir_.empty()) write_png((fs::path(frames_dir_) / frame_file_name(count_)).string(), img);
+    if (!frames_dir_.empty())
+      write_png((fs::path(frames_dir_) / frame_file_name(count_)).string(), img);
 #if defined(GS_HAVE_FFMPEG)
     if (movie_) movie_->add_frame(img);
 #endif
@@ -173,9 +175,9 @@ class FrameRecorder final : public Observer {
   std::unique_ptr<MovieEncoder> movie_;
 #endif
   CsvWriter index_;
-  int count_ = 0;     ///< frames recorded
-  long next_k_ = 0;   ///< time schedule: index of the next frame time
-  DrivePhase prev_;   ///< tap schedules: the phase after the previous step
+  int count_ = 0;    ///< frames recorded
+  long next_k_ = 0;  ///< time schedule: index of the next frame time
+  DrivePhase prev_;  ///< tap schedules: the phase after the previous step
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -209,7 +211,8 @@ class TrajectoryWriter final : public Observer {
  private:
   void write(const Simulation& sim) {
     const World& w = sim.world();
-    write_trajectory_frame(out_, w, &sim.contacts(), sim.gravity(), frame_info(w, sim.gravity()).tap);
+    write_trajectory_frame(out_, w, &sim.contacts(), sim.gravity(),
+                           frame_info(w, sim.gravity()).tap);
     out_.flush();  // a frame on disk is a frame kept, whatever happens next
     if (!out_) throw OutputError(path_ + ": write failed (disk full or removed?)");
   }

@@ -1,7 +1,6 @@
 // `gransim analyze` for RFM runs: per-run fits, exponents across sizes, summary, charts
 #include "app/rfm_analyze.hpp"
 
-
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
@@ -248,8 +247,7 @@ void write_gh_bisection(const RfmRun& r, const fs::path& out) {
                    {{"levels", static_cast<double>(levels)}, {"N", n}});
   const auto& R = t.col("R");
   for (std::size_t i = 0; i < R.size(); ++i)
-    w.row({R[i], t.col("G1")[i], t.col("G1_err")[i],
-           models::bisection_density(R[i], levels),
+    w.row({R[i], t.col("G1")[i], t.col("G1_err")[i], models::bisection_density(R[i], levels),
            R[i] < 1.0 ? (n - 1.0) * std::pow(1.0 - R[i], n - 2.0) : 0.0});
 }
 

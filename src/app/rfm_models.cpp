@@ -206,7 +206,8 @@ void run_walk(const Common& c, WalkOpt o) {
 void run_interval(const Common& c, IntervalOpt o) {
   const fs::path out(c.out);
   o.p.seed = c.seed;
-  if (!(o.length > 0) || !std::isfinite(o.length)) throw InputError("gransim model interval", "--length", "must be positive");
+  if (!(o.length > 0) || !std::isfinite(o.length))
+    throw InputError("gransim model interval", "--length", "must be positive");
   if (o.p.v_max == 0) o.p.v_max = 5.0 * models::walk_velocity_scale(o.p, o.length);
   o.p.validate();
   models::IntervalStart st;
@@ -313,7 +314,8 @@ void common_options(CLI::App* s, Common& c) {
   s->add_flag(
       "--no-charts", [&c](std::int64_t) { c.charts = false; }, "write CSV/JSON only");
   s->add_flag("-q,--quiet", c.quiet, "no summary lines");
-  s->add_flag("--force", c.force, "write into a folder that already holds files (they are overwritten)");
+  s->add_flag("--force", c.force,
+              "write into a folder that already holds files (they are overwritten)");
 }
 
 }  // namespace

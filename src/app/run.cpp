@@ -45,18 +45,17 @@ void print_banner(const SceneSpec& scene, const Simulation& sim, const ProtocolC
   const auto nsteps = static_cast<long long>(std::llround(clock.nominal_duration() / dt));
   const std::string sorted =
       sim.sort_every() > 0 ? ", sorted every " + std::to_string(sim.sort_every()) + " steps" : "";
-  std::fprintf(stderr,
-               "gransim %s: %s, %zu particles, %lld steps of %g s (%s, %s%s), contact time %.3g s\n",
-               program_version().data(), scene.name.c_str(), sim.world().size(), nsteps, dt,
-               std::string(to_string(scene.integrator.kind)).c_str(), sim.broadphase().name(),
-               sorted.c_str(), sim.model().min_contact_time());
+  std::fprintf(
+      stderr, "gransim %s: %s, %zu particles, %lld steps of %g s (%s, %s%s), contact time %.3g s\n",
+      program_version().data(), scene.name.c_str(), sim.world().size(), nsteps, dt,
+      std::string(to_string(scene.integrator.kind)).c_str(), sim.broadphase().name(),
+      sorted.c_str(), sim.model().min_contact_time());
   if (is_tapping(scene.drive))
-    std::fprintf(stderr,
-                 "gransim: %s, settle %g s, then %d taps of T = %g s (excitation %g s)%s%s\n",
-                 std::string(scene_name(scene.drive.kind)).c_str(), scene.prep.settle_time,
-                 scene.drive.taps, drive_period(scene.drive), excitation_length(scene.drive),
-                 scene.drive.early_rest ? ", early rest on" : "",
-                 scene.drive.quench ? ", quench on" : "");
+    std::fprintf(
+        stderr, "gransim: %s, settle %g s, then %d taps of T = %g s (excitation %g s)%s%s\n",
+        std::string(scene_name(scene.drive.kind)).c_str(), scene.prep.settle_time, scene.drive.taps,
+        drive_period(scene.drive), excitation_length(scene.drive),
+        scene.drive.early_rest ? ", early rest on" : "", scene.drive.quench ? ", quench on" : "");
 }
 
 constexpr const char* kResumeAdvice =
@@ -66,8 +65,8 @@ constexpr const char* kResumeAdvice =
 ByteReader extra(const Checkpoint& c, const std::string& key) {
   const auto it = c.extras.entries.find(key);
   if (it == c.extras.entries.end())
-    throw InputError(c.path, "", "checkpoint has no '" + key +
-                                     "' entry: it was not written by `gransim run`");
+    throw InputError(c.path, "",
+                     "checkpoint has no '" + key + "' entry: it was not written by `gransim run`");
   return ByteReader{it->second, 0, c.path + " [" + key + "]"};
 }
 
@@ -82,8 +81,10 @@ void check_scene_unchanged(const std::string& dir, const Checkpoint& c) {
   try {
     now = scene_to_toml(parse_scene_string(*text, path));
   } catch (const InputError& e) {
-    throw InputError(path, "", std::string("edited since the run started, and no longer a valid "
-                                           "scene (") + e.what() + "); " + kResumeAdvice);
+    throw InputError(path, "",
+                     std::string("edited since the run started, and no longer a valid "
+                                 "scene (") +
+                         e.what() + "); " + kResumeAdvice);
   }
   if (now == recorded) return;
   std::istringstream a(recorded), b(now);
@@ -144,8 +145,9 @@ int run_command(const RunOptions& opt) {
   if (saved && !opt.quiet)
     std::fprintf(stderr, "gransim: %zu grains from %s%s\n", saved->size(), saved->path.c_str(),
                  history ? " (with its integrator history and contact springs)"
-                 : saved->checkpoint ? " (another integrator, time step or model: positions and velocities only)"
-                                     : "");
+                 : saved->checkpoint
+                     ? " (another integrator, time step or model: positions and velocities only)"
+                     : "");
   rs.observers = make_observers(scene);
   for (auto& o : rs.observers) o->start(sim, out);
   write_series_row(rs);  // the prepared state is the first row
@@ -182,8 +184,8 @@ int resume_command(const ResumeOptions& opt) {
   const double ref = run.f64("energy reference"), slack = run.f64("energy slack");
   sim.set_energy_yardstick(ref, slack);
   rs.scene = scene;
-  rs.scene_file = c.extras.entries.count("run/scene_file") ? c.extras.entries.at("run/scene_file")
-                                                           : c.path;
+  rs.scene_file =
+      c.extras.entries.count("run/scene_file") ? c.extras.entries.at("run/scene_file") : c.path;
   rs.out = opt.dir;
   rs.quiet = opt.quiet;
   rs.sim = &sim;

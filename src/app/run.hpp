@@ -6,12 +6,12 @@
 namespace gs {
 
 struct RunOptions {
-  std::string scene;               ///< scene file
-  std::string out;                 ///< run directory (default runs/<name>-<time>)
-  std::vector<std::string> sets;   ///< --set key=value overrides
-  bool force = false;              ///< allow reusing a non-empty run directory
-  bool quiet = false;              ///< no progress display
-  bool allow_unstable = false;     ///< skip the up-front Δt check
+  std::string scene;              ///< scene file
+  std::string out;                ///< run directory (default runs/<name>-<time>)
+  std::vector<std::string> sets;  ///< --set key=value overrides
+  bool force = false;             ///< allow reusing a non-empty run directory
+  bool quiet = false;             ///< no progress display
+  bool allow_unstable = false;    ///< skip the up-front Δt check
 };
 
 /// returns the process exit code (ExitCode)

@@ -20,7 +20,7 @@ namespace {
 // pair (the force law's pair table and its caches): an estimate, to refuse the impossible
 constexpr double kBytesPerParticle = 1024.0;
 constexpr double kBytesPerSpeciesPair = 256.0;
-constexpr double kMaxFrames = 1e6;           // hours of drawing at hundreds of frames a second
+constexpr double kMaxFrames = 1e6;            // hours of drawing at hundreds of frames a second
 constexpr double kMaxTrajectoryBytes = 1e12;  // 1 TB
 
 std::string gib(double bytes) {
@@ -41,16 +41,17 @@ void check_step_count(const SceneSpec& scene, double nominal, double particles) 
   const double dt = scene.integrator.dt;
   const double steps = nominal / dt;
   const double particle_steps = steps * std::max(particles, 1.0);
-  constexpr double kMaxSteps = 1e15;          // far beyond any run; well inside int64 and exact doubles
+  constexpr double kMaxSteps = 1e15;  // far beyond any run; well inside int64 and exact doubles
   constexpr double kMaxParticleSteps = 1e15;  // ≈ 3 years at 10⁷ particle-steps per second
-  if (std::isfinite(steps) && steps >= 0.0 && steps <= kMaxSteps && particle_steps <= kMaxParticleSteps)
+  if (std::isfinite(steps) && steps >= 0.0 && steps <= kMaxSteps &&
+      particle_steps <= kMaxParticleSteps)
     return;
   const std::string keys = is_tapping(scene.drive)
                                ? "drive.taps × the period, preparation.settle_time"
                                : "scene.duration, preparation.settle_time";
   std::ostringstream m;
-  m << "the run would take " << steps << " steps (" << nominal << " s of simulated time at dt = "
-    << dt << " s";
+  m << "the run would take " << steps << " steps (" << nominal
+    << " s of simulated time at dt = " << dt << " s";
   if (std::isfinite(particle_steps))
     m << ", ≈ " << particle_steps / 1e7 / 3.15e7 << " years on one core at 10⁷ particle-steps/s";
   m << "); lower " << keys << " or raise integrator.dt";
@@ -111,8 +112,8 @@ void check_frames(const SceneSpec& scene, double nominal, double particles) {
     }
     if (!(frames <= kMaxFrames)) {
       std::ostringstream m;
-      m << "the [render] schedule asks for " << frames << " frames (≈ "
-        << frames / 100.0 / 3600.0 << " h at 100 frames/s); at most " << kMaxFrames
+      m << "the [render] schedule asks for " << frames << " frames (≈ " << frames / 100.0 / 3600.0
+        << " h at 100 frames/s); at most " << kMaxFrames
         << " per run: raise render.every, lower render.fps or " << key << ", or record fewer taps";
       throw InputError(scene.path, key, m.str());
     }
@@ -121,8 +122,9 @@ void check_frames(const SceneSpec& scene, double nominal, double particles) {
     const double bytes = steps / r.trajectory_every * particles * 100.0;
     if (!(bytes <= kMaxTrajectoryBytes)) {
       std::ostringstream m;
-      m << "trajectory.xyz would grow to ≈ " << bytes / 1e12 << " TB (" << steps / r.trajectory_every
-        << " frames of " << particles << " particles); raise render.trajectory_every";
+      m << "trajectory.xyz would grow to ≈ " << bytes / 1e12 << " TB ("
+        << steps / r.trajectory_every << " frames of " << particles
+        << " particles); raise render.trajectory_every";
       throw InputError(scene.path, "render.trajectory_every", m.str());
     }
   }

@@ -17,13 +17,13 @@ constexpr const char* kPrefix = "checkpoint-";
 constexpr const char* kSuffix = ".gsck";
 
 bool is_checkpoint_name(const std::string& n) {
-  return n.rfind(kPrefix, 0) == 0 && n.size() > 16 &&
-         n.compare(n.size() - 5, 5, kSuffix) == 0;
+  return n.rfind(kPrefix, 0) == 0 && n.size() > 16 && n.compare(n.size() - 5, 5, kSuffix) == 0;
 }
 
 // files that are not appended to: rewritten whole (run.json and every JSON sidecar, state.csv,
-// scene.toml, the final picture), the writer's lock (it holds the PID), checkpoints and temporaries. Their sizes say
-// nothing about lost rows, and a resume must neither check nor truncate them.
+// scene.toml, the final picture), the writer's lock (it holds the PID), checkpoints and
+// temporaries. Their sizes say nothing about lost rows, and a resume must neither check nor
+// truncate them.
 bool not_appended(const std::string& n) {
   return is_checkpoint_name(n) || n == "run.json" || n == "state.csv" || n == "scene.toml" ||
          n == "final.png" || n == ".lock" ||

@@ -1,5 +1,6 @@
 #include "app/run_info.hpp"
 
+#include <toml++/toml.h>
 #include <unistd.h>
 
 #include <cstdlib>
@@ -7,7 +8,6 @@
 #include <fstream>
 #include <limits>
 #include <sstream>
-#include <toml++/toml.h>
 
 namespace gs {
 
@@ -130,8 +130,8 @@ std::string self_executable() {
 std::string find_data_dir(const std::string& folder, const std::string& file) {
   std::error_code ec;
   const fs::path exe_dir = fs::path(self_executable()).parent_path();
-  for (const fs::path& d : {exe_dir / ".." / folder, exe_dir / folder,
-                            exe_dir / ".." / "share" / "gransim" / folder})
+  for (const fs::path& d :
+       {exe_dir / ".." / folder, exe_dir / folder, exe_dir / ".." / "share" / "gransim" / folder})
     if (fs::exists(d / file, ec)) return fs::weakly_canonical(d, ec).string();
 #ifdef GS_SOURCE_DIR_OF_BUILD
   // a build tree outside the sources (cmake -S . -B ../build) has nothing beside it

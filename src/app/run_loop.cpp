@@ -4,9 +4,8 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <sstream>
-
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "app/progress.hpp"
 #include "app/run.hpp"
@@ -50,9 +49,7 @@ void write_run_json(const RunSession& rs, int code, const std::string& failure, 
   j["program"] = "gransim";
   j["version"] = std::string(program_version());
   j["scene_file"] = rs.scene_file;
-  j["status"] = code == kExitOk         ? "completed"
-                : code == kExitUnstable ? "unstable"
-                                        : "interrupted";
+  j["status"] = code == kExitOk ? "completed" : code == kExitUnstable ? "unstable" : "interrupted";
   j["particles"] = sim.world().size();
   j["steps"] = sim.world().s.step;
   j["simulated_time_s"] = sim.world().s.t;
@@ -86,14 +83,15 @@ void write_run_json(const RunSession& rs, int code, const std::string& failure, 
   if (!failure.empty()) j["failure"] = failure;
   // the resolved scene, one typed value per dotted key (docs/python.md)
   j["scene"] = scene_json(scene.resolved);
-  write_file_atomic(rs.out + "/run.json", j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
+  write_file_atomic(rs.out + "/run.json",
+                    j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
 }
 
 }  // namespace
 
 std::vector<std::string> series_columns() {
-  return {"t",           "step",      "kinetic_energy", "contacts", "max_overlap",
-          "max_overlap_rel", "max_speed", "gx",          "gy",       "degenerate"};
+  return {"t",  "step", "kinetic_energy", "contacts", "max_overlap", "max_overlap_rel", "max_speed",
+          "gx", "gy",   "degenerate"};
 }
 
 int run_session(RunSession& rs) {
@@ -111,7 +109,9 @@ int run_session(RunSession& rs) {
     if (by_taps) return clock.done(sim.world());
     return sim.world().s.step + std::llround(clock.time_saved() / dt) >= nsteps;
   };
-  auto settling = [&] { return drive_phase(sim.world().scene.drive, sim.world().s.t + dt).settling; };
+  auto settling = [&] {
+    return drive_phase(sim.world().scene.drive, sim.world().s.t + dt).settling;
+  };
   auto taps_done = [&]() -> long {
     const DrivePhase p = drive_phase(sim.world().scene.drive, sim.world().s.t + dt);
     return is_tapping(scene.drive) && !p.settling ? p.tap : 0;
@@ -136,8 +136,8 @@ int run_session(RunSession& rs) {
   auto batch = [&]() -> std::int64_t {
     if (clock.watches_steps() || rs.wall_settled < 0) return 1;
     const std::int64_t step = sim.world().s.step;
-    std::int64_t m = std::min<std::int64_t>(
-        kProgressEvery, nsteps - step - std::llround(clock.time_saved() / dt));
+    std::int64_t m = std::min<std::int64_t>(kProgressEvery,
+                                            nsteps - step - std::llround(clock.time_saved() / dt));
     auto to_next = [&](std::int64_t every) {
       if (every > 0) m = std::min(m, every - step % every);
     };

@@ -23,11 +23,11 @@ struct RunSession {
   bool quiet = false;
   Simulation* sim = nullptr;
   ProtocolClock* clock = nullptr;
-  Observers observers;      ///< started or resumed
-  CsvWriter series;         ///< series.csv, open
-  double wall_before = 0.0;       ///< wall time of earlier sessions of this run, s
-  double wall_settled = -1.0;     ///< wall time when settling ended (−1: not yet), s
-  int sessions = 1;               ///< 1 + number of resumes
+  Observers observers;              ///< started or resumed
+  CsvWriter series;                 ///< series.csv, open
+  double wall_before = 0.0;         ///< wall time of earlier sessions of this run, s
+  double wall_settled = -1.0;       ///< wall time when settling ended (−1: not yet), s
+  int sessions = 1;                 ///< 1 + number of resumes
   OpenMpTeam team = openmp_team();  ///< the threads and CPUs this session runs on
 };
 

@@ -5,10 +5,10 @@
 #include <cstdio>
 #include <ostream>
 
-#include "view/render_world.hpp"
 #include "broadphase/broadphase.hpp"
 #include "core/error.hpp"
 #include "geometry/polygon.hpp"
+#include "view/render_world.hpp"
 
 namespace gs {
 
@@ -27,8 +27,8 @@ double wrap(double x, double L) { return x - L * std::floor(x / L); }
 template <class F>
 void cell_array(std::ostream& out, const char* type, const char* name, int comps,
                 const std::vector<std::size_t>& order, F&& f) {
-  out << "        <DataArray type=\"" << type << "\" Name=\"" << name
-      << "\" NumberOfComponents=\"" << comps << "\" format=\"ascii\">\n         ";
+  out << "        <DataArray type=\"" << type << "\" Name=\"" << name << "\" NumberOfComponents=\""
+      << comps << "\" format=\"ascii\">\n         ";
   for (std::size_t i : order) out << ' ' << f(i);
   out << "\n        </DataArray>\n";
 }
@@ -40,7 +40,8 @@ void write_vtp(const std::string& path, const World& w, const ContactSet& c, lon
   // cells in label order, as the XYZ and the contact CSV number the grains
   std::vector<std::size_t> order(n);
   const std::vector<std::uint32_t> slot = w.slots_by_id();
-  for (std::size_t label = 0; label < n; ++label) order[label] = slot.size() == n ? slot[label] : label;
+  for (std::size_t label = 0; label < n; ++label)
+    order[label] = slot.size() == n ? slot[label] : label;
   const bool px = w.box == BoxKind::Periodic || w.box == BoxKind::Ring1D;
   const bool py = w.box == BoxKind::Periodic;
   // each grain's outline: the contact model's polygon placed at (x, θ), or a disk's many-gon
@@ -64,7 +65,8 @@ void write_vtp(const std::string& path, const World& w, const ContactSet& c, lon
       << "<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" "
          "header_type=\"UInt64\">\n  <PolyData>\n    <FieldData>\n"
       << "      <DataArray type=\"Float64\" Name=\"TimeValue\" NumberOfTuples=\"1\" "
-         "format=\"ascii\">" << w.s.t << "</DataArray>\n"
+         "format=\"ascii\">"
+      << w.s.t << "</DataArray>\n"
       << "      <DataArray type=\"Int64\" Name=\"Step\" NumberOfTuples=\"1\" format=\"ascii\">"
       << w.s.step << "</DataArray>\n"
       << "      <DataArray type=\"Int64\" Name=\"Tap\" NumberOfTuples=\"1\" format=\"ascii\">"
@@ -137,8 +139,7 @@ void write_contacts_csv(std::ostream& out, const World& w, const ContactSet& c) 
     const Vec2 f = r.n * r.fn + perp(r.n) * r.ft;  // on j (or the wall), N
     // sliding: the tangential force sits on the Coulomb cap μ F_n (μ the pair's mean)
     const double mu_i = w.materials[w.species[w.sp[i]].material].mu;
-    const double mu_j =
-        w.materials[wall ? w.wall_material : w.species[w.sp[j]].material].mu;
+    const double mu_j = w.materials[wall ? w.wall_material : w.species[w.sp[j]].material].mu;
     const double cap = 0.5 * (mu_i + mu_j) * std::max(r.fn, 0.0);
     const bool sliding = cap > 0.0 && std::abs(r.ft) >= cap * (1.0 - 1e-12);
     std::snprintf(buf, sizeof buf,
@@ -174,7 +175,8 @@ void PvdFile::open(const std::string& path, const std::vector<SnapshotEntry>& en
   {
     std::ofstream out(path, std::ios::trunc);
     out << kPvdHead;
-    for (std::size_t k = 0; k < entries.size(); ++k) out << pvd_line(entries[k], static_cast<long>(k));
+    for (std::size_t k = 0; k < entries.size(); ++k)
+      out << pvd_line(entries[k], static_cast<long>(k));
     out << kPvdTail;
     if (!out) throw OutputError(path + ": cannot write the snapshot collection");
   }

@@ -18,11 +18,11 @@ inline constexpr int kDiskOutlineVertices = 32;
 
 /// one snapshot of a run, as listed by the collection and the index
 struct SnapshotEntry {
-  double t = 0.0;           ///< s
+  double t = 0.0;  ///< s
   std::int64_t step = 0;
-  long tap = -1;            ///< the taps.csv tap of a measurement snapshot, −1 otherwise
-  bool at_tap = false;      ///< taken at a tap's measurement
-  bool at_time = false;     ///< taken at a scheduled time
+  long tap = -1;         ///< the taps.csv tap of a measurement snapshot, −1 otherwise
+  bool at_tap = false;   ///< taken at a tap's measurement
+  bool at_time = false;  ///< taken at a scheduled time
 };
 
 /// DIR/snapshots file name of snapshot k: snap_000012.vtp, contacts_000012.csv

@@ -6,13 +6,13 @@
 #include <filesystem>
 #include <fstream>
 
-#include "view/render_world.hpp"
 #include "app/snapshot_files.hpp"
 #include "app/trajectory.hpp"
 #include "core/error.hpp"
 #include "drive/schedule.hpp"
 #include "output/csv.hpp"
 #include "sim/simulation.hpp"
+#include "view/render_world.hpp"
 
 namespace gs {
 
@@ -159,10 +159,12 @@ class SnapshotWriter final : public Observer {
     if (at_tap_) e.tap = drive_phase(w.scene.drive, w.s.t + sim.dt()).tap;
     const std::optional<long> tap = at_tap_ ? std::optional<long>(e.tap) : running;
     const fs::path dir(dir_);
-    if (spec_.vtp) write_vtp((dir / snapshot_file("snap", k, "vtp")).string(), w, c, tap.value_or(-1));
-    if (spec_.xyz) write_file(dir / snapshot_file("snap", k, "xyz"), [&](std::ostream& out) {
-      write_trajectory_frame(out, w, &c, sim.gravity(), tap);
-    });
+    if (spec_.vtp)
+      write_vtp((dir / snapshot_file("snap", k, "vtp")).string(), w, c, tap.value_or(-1));
+    if (spec_.xyz)
+      write_file(dir / snapshot_file("snap", k, "xyz"), [&](std::ostream& out) {
+        write_trajectory_frame(out, w, &c, sim.gravity(), tap);
+      });
     if (spec_.contacts)
       write_file(dir / snapshot_file("contacts", k, "csv"),
                  [&](std::ostream& out) { write_contacts_csv(out, w, c); });
@@ -186,10 +188,10 @@ class SnapshotWriter final : public Observer {
   }
 
   SnapshotSpec spec_;
-  std::string dir_;                    ///< DIR/snapshots
-  std::vector<SnapshotEntry> taken_;   ///< every snapshot so far, in order
-  std::int64_t next_k_ = 0;            ///< every_time: index of the next grid time
-  std::size_t next_i_ = 0;             ///< times: index of the next listed time
+  std::string dir_;                        ///< DIR/snapshots
+  std::vector<SnapshotEntry> taken_;       ///< every snapshot so far, in order
+  std::int64_t next_k_ = 0;                ///< every_time: index of the next grid time
+  std::size_t next_i_ = 0;                 ///< times: index of the next listed time
   bool at_time_ = false, at_tap_ = false;  ///< why the snapshot now due is taken
   CsvWriter index_;
   PvdFile pvd_;

@@ -1,6 +1,5 @@
 #include "app/study.hpp"
 
-
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
@@ -47,8 +46,8 @@ struct StabilityRow {
   StudyProblem problem;
   IntegratorKind integrator;
   std::string switches;
-  double max_stable = 0.0;       ///< largest stable Δt/t_c found (0: none)
-  double first_unstable = 0.0;   ///< first unstable Δt/t_c (0: none up to stability_max)
+  double max_stable = 0.0;      ///< largest stable Δt/t_c found (0: none)
+  double first_unstable = 0.0;  ///< first unstable Δt/t_c (0: none up to stability_max)
   std::string message;
 };
 
@@ -96,13 +95,17 @@ std::vector<StudySwitches> switch_sets(const StudySpec& s, StudyProblem p) {
       for (bool h : s.hdot_fd)
         for (bool r : s.rocking) out.push_back({h, r, false});
       break;
-    case StudyProblem::GasEnergy: out.push_back({}); break;
+    case StudyProblem::GasEnergy:
+      out.push_back({});
+      break;
     // the statistical problems are costly: only their own switch varies, the others take the
     // matrix's first value
     case StudyProblem::Tapping:
       for (bool e : s.early_rest) out.push_back({s.hdot_fd.front(), s.rocking.front(), false, e});
       break;
-    case StudyProblem::RfmTemperature: out.push_back({false, true, s.clip.front(), false}); break;
+    case StudyProblem::RfmTemperature:
+      out.push_back({false, true, s.clip.front(), false});
+      break;
   }
   return out;
 }
@@ -110,13 +113,20 @@ std::vector<StudySwitches> switch_sets(const StudySpec& s, StudyProblem p) {
 // what the error measures, per problem
 std::string_view error_kind(StudyProblem p) {
   switch (p) {
-    case StudyProblem::TwoDisk: return "restitution_rel_error_vs_exact";
-    case StudyProblem::TwoDecagon: return "restitution_rel_error_vs_reference";
-    case StudyProblem::GasEnergy: return "energy_drift_per_s";
-    case StudyProblem::Haff: return "haff_slope_rel_error_vs_enskog";
-    case StudyProblem::Pile: return "phi_abs_error_vs_reference";
-    case StudyProblem::Tapping: return "phi_mean_abs_error_vs_reference";
-    case StudyProblem::RfmTemperature: return "temperature_rel_error_vs_reference";
+    case StudyProblem::TwoDisk:
+      return "restitution_rel_error_vs_exact";
+    case StudyProblem::TwoDecagon:
+      return "restitution_rel_error_vs_reference";
+    case StudyProblem::GasEnergy:
+      return "energy_drift_per_s";
+    case StudyProblem::Haff:
+      return "haff_slope_rel_error_vs_enskog";
+    case StudyProblem::Pile:
+      return "phi_abs_error_vs_reference";
+    case StudyProblem::Tapping:
+      return "phi_mean_abs_error_vs_reference";
+    case StudyProblem::RfmTemperature:
+      return "temperature_rel_error_vs_reference";
   }
   return "";
 }
@@ -142,8 +152,7 @@ StudySwitches reference_switches(StudyProblem p, StudySwitches sw) {
 // the reference Δt/t_c of a problem: tapping at an absolute Δt (paper check step 1e-5 s),
 // rfm at its own value when given, the others at the study's
 double reference_dt_over_tc(const StudySpec& s, StudyProblem p, double study_ref) {
-  if (p == StudyProblem::Tapping)
-    return s.sizes.tap_reference_dt / study_contact_time(s.sizes, p);
+  if (p == StudyProblem::Tapping) return s.sizes.tap_reference_dt / study_contact_time(s.sizes, p);
   if (p == StudyProblem::RfmTemperature && s.sizes.rfm_reference_dt_over_tc > 0)
     return s.sizes.rfm_reference_dt_over_tc;
   return study_ref;
@@ -164,13 +173,19 @@ void set_error(const StudySpec& s, StudyRow& r, const StudyOutcome& ref) {
       r.reference = s.sizes.disk_eps;
       r.error = std::abs(v - r.reference) / r.reference;
       break;
-    case StudyProblem::TwoDecagon: r.error = std::abs(v - r.reference) / r.reference; break;
-    case StudyProblem::GasEnergy: r.error = v; break;
+    case StudyProblem::TwoDecagon:
+      r.error = std::abs(v - r.reference) / r.reference;
+      break;
+    case StudyProblem::GasEnergy:
+      r.error = v;
+      break;
     case StudyProblem::Haff:
       r.reference = 1.0;
       r.error = std::abs(v - 1.0);
       break;
-    case StudyProblem::Pile: r.error = std::abs(v - r.reference); break;
+    case StudyProblem::Pile:
+      r.error = std::abs(v - r.reference);
+      break;
     case StudyProblem::Tapping:
     case StudyProblem::RfmTemperature: {
       // relative for T, absolute for φ̄; the band: both 95% half-widths in quadrature
@@ -202,10 +217,10 @@ std::string csv_row(const StudyRow& r) {
     << study_switches_text(r.c.problem, r.c.switches) << ',' << num(o.wall_s) << ',' << num(ps)
     << ',' << num(r.error) << ',' << r.error_kind << ',' << (o.stable ? "true" : "false") << ','
     << csv_text(o.note) << ',' << num(per_sim) << ',' << num(o.sim_time) << ',' << o.particles
-    << ',' << o.steps << ',' << num(o.tc) << ',' << num(o.value) << ',' << num(r.reference)
-    << ',' << num(o.stat_error) << ',' << num(o.final_ke) << ',' << num(o.wall_per_tap) << ','
-    << num(o.sd) << ',' << num(r.sd_reference) << ',' << num(r.sd_error) << ','
-    << num(r.sd_stat_error) << ',' << num(o.tau_int) << ',' << o.samples << '\n';
+    << ',' << o.steps << ',' << num(o.tc) << ',' << num(o.value) << ',' << num(r.reference) << ','
+    << num(o.stat_error) << ',' << num(o.final_ke) << ',' << num(o.wall_per_tap) << ',' << num(o.sd)
+    << ',' << num(r.sd_reference) << ',' << num(r.sd_error) << ',' << num(r.sd_stat_error) << ','
+    << num(o.tau_int) << ',' << o.samples << '\n';
   return l.str();
 }
 
@@ -226,7 +241,8 @@ std::string study_json(const StudySpec& s, const std::vector<StudyRow>& rows,
 #ifdef _OPENMP
   threads = omp_get_max_threads();
 #endif
-  j << "{\n  \"program\": \"gransim\",\n  \"version\": " << json_text(std::string(program_version()))
+  j << "{\n  \"program\": \"gransim\",\n  \"version\": "
+    << json_text(std::string(program_version()))
     << ",\n  \"kind\": \"study\",\n  \"name\": " << json_text(s.name)
     << ",\n  \"study_file\": " << json_text(s.file) << ",\n  \"threads\": " << threads
     << ",\n  \"wall_time_s\": " << json_num(wall) << ",\n  \"rows\": [";
@@ -236,8 +252,8 @@ std::string study_json(const StudySpec& s, const std::vector<StudyRow>& rows,
     j << (k ? ",\n" : "\n") << "    {\"problem\": \"" << to_string(r.c.problem)
       << "\", \"integrator\": \"" << to_string(r.c.integrator) << "\", \"dt\": " << json_num(o.dt)
       << ", \"dt_over_tc\": " << json_num(r.c.dt_over_tc) << ", \"broad_phase\": \""
-      << bp_name(r.c.broad_phase) << "\", \"switches\": "
-      << json_text(study_switches_text(r.c.problem, r.c.switches))
+      << bp_name(r.c.broad_phase)
+      << "\", \"switches\": " << json_text(study_switches_text(r.c.problem, r.c.switches))
       << ", \"wall_s\": " << json_num(o.wall_s) << ", \"sim_time_s\": " << json_num(o.sim_time)
       << ", \"particles\": " << o.particles << ", \"steps\": " << o.steps
       << ", \"value\": " << json_num(o.value) << ", \"reference\": " << json_num(r.reference)
@@ -256,8 +272,9 @@ std::string study_json(const StudySpec& s, const std::vector<StudyRow>& rows,
   for (std::size_t k = 0; k < stab.size(); ++k) {
     const StabilityRow& r = stab[k];
     j << (k ? ",\n" : "\n") << "    {\"problem\": \"" << to_string(r.problem)
-      << "\", \"integrator\": \"" << to_string(r.integrator) << "\", \"switches\": "
-      << json_text(r.switches) << ", \"max_stable_dt_over_tc\": " << json_num(r.max_stable)
+      << "\", \"integrator\": \"" << to_string(r.integrator)
+      << "\", \"switches\": " << json_text(r.switches)
+      << ", \"max_stable_dt_over_tc\": " << json_num(r.max_stable)
       << ", \"first_unstable_dt_over_tc\": " << json_num(r.first_unstable)
       << ", \"message\": " << json_text(r.message) << "}";
   }
@@ -329,17 +346,18 @@ int study_command(const StudyOptions& opt) {
           refs[key] = o;
           if (!opt.quiet)
             std::fprintf(stderr, "study: reference %s %s (gear6, dt/tc = %s): %s%s%s\n",
-                         std::string(to_string(p)).c_str(),
-                         study_switches_text(p, rsw).c_str(), num(rdt).c_str(),
-                         num(o.value).c_str(), statistical(p) ? " +- " : "",
+                         std::string(to_string(p)).c_str(), study_switches_text(p, rsw).c_str(),
+                         num(rdt).c_str(), num(o.value).c_str(), statistical(p) ? " +- " : "",
                          statistical(p) ? num(o.stat_error).c_str() : "");
         }
         ref = refs[key];
       }
       // the broad phase varies only on the pile; tapping takes the first one
       std::vector<BroadPhaseKind> bps{BroadPhaseKind::CellGrid};
-      if (p == StudyProblem::Pile) bps = s.broad_phases;
-      else if (study_problem_walled(p)) bps = {s.broad_phases.front()};
+      if (p == StudyProblem::Pile)
+        bps = s.broad_phases;
+      else if (study_problem_walled(p))
+        bps = {s.broad_phases.front()};
       for (BroadPhaseKind bp : bps)
         for (IntegratorKind integ : s.integrators)
           for (double x : dt_list(s, p)) {
@@ -351,9 +369,8 @@ int study_command(const StudyOptions& opt) {
             csv << csv_row(r) << std::flush;
             if (!opt.quiet)
               std::fprintf(stderr, "study: %-11s %-19s dt/tc %-7s %-10s %-34s error %-10s %s\n",
-                           std::string(to_string(p)).c_str(),
-                           std::string(to_string(integ)).c_str(), num(x).c_str(),
-                           std::string(bp_name(bp)).c_str(), sw_text.c_str(),
+                           std::string(to_string(p)).c_str(), std::string(to_string(integ)).c_str(),
+                           num(x).c_str(), std::string(bp_name(bp)).c_str(), sw_text.c_str(),
                            num(r.error).c_str(), r.o.stable ? "" : "UNSTABLE");
             rows.push_back(std::move(r));
           }

@@ -18,8 +18,8 @@ namespace gs {
 namespace {
 
 constexpr double kDiskR = 0.5, kDiskM = 1.0, kDiskKs = 5e5;  // thesis Table 2.1 (M = 1 kg)
-constexpr double kDecR = 0.009;                               // big paper grain, m
-constexpr double kDiskGap = 1e-3, kDecGap = 1e-4;             // start separation, m
+constexpr double kDecR = 0.009;                              // big paper grain, m
+constexpr double kDiskGap = 1e-3, kDecGap = 1e-4;            // start separation, m
 
 // the scene of a problem with the combination's integrator and switches; dt set later
 SceneSpec problem_scene(const StudySizes& z, const StudyCase& c) {
@@ -120,8 +120,10 @@ void run_two_body(Simulation& sim, double speed, double flight, StudyOutcome& o)
   }
   const World& w = sim.world();
   o.value = -(w.s.vx[0] - w.s.vx[1]) / speed;
-  if (!touched) o.note = "the bodies never touched (Δt skips the contact)";
-  else if (!separated) o.note = "the bodies did not separate within 20 contact times";
+  if (!touched)
+    o.note = "the bodies never touched (Δt skips the contact)";
+  else if (!separated)
+    o.note = "the bodies did not separate within 20 contact times";
   if (!touched || !separated) o.stable = false;
 }
 
@@ -220,7 +222,9 @@ StudyOutcome run_study_case(const StudySizes& z, const StudyCase& c) {
     const double t0 = sim->world().s.t;
     const auto w0 = std::chrono::steady_clock::now();
     switch (c.problem) {
-      case StudyProblem::TwoDisk: run_two_body(*sim, z.disk_speed, kDiskGap / z.disk_speed, o); break;
+      case StudyProblem::TwoDisk:
+        run_two_body(*sim, z.disk_speed, kDiskGap / z.disk_speed, o);
+        break;
       case StudyProblem::TwoDecagon:
         run_two_body(*sim, z.decagon_speed, kDecGap / z.decagon_speed, o);
         break;
@@ -232,10 +236,15 @@ StudyOutcome run_study_case(const StudySizes& z, const StudyCase& c) {
         o.value = std::abs(gas_energy(*sim) - e0) / (e0 * t);
         break;
       }
-      case StudyProblem::Haff: run_haff(*sim, z, o); break;
-      case StudyProblem::Pile: run_pile(*sim, z, o); break;
+      case StudyProblem::Haff:
+        run_haff(*sim, z, o);
+        break;
+      case StudyProblem::Pile:
+        run_pile(*sim, z, o);
+        break;
       case StudyProblem::Tapping:
-      case StudyProblem::RfmTemperature: break;  // run_stat_problem above
+      case StudyProblem::RfmTemperature:
+        break;  // run_stat_problem above
     }
     o.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count();
     o.sim_time = sim->world().s.t - t0;

@@ -20,26 +20,26 @@ struct StudyCase {
 
 /// what one run measured
 struct StudyOutcome {
-  double tc = 0.0;              ///< contact time of the stiffest binary contact, s
-  double dt = 0.0;              ///< time step, s
+  double tc = 0.0;  ///< contact time of the stiffest binary contact, s
+  double dt = 0.0;  ///< time step, s
   int particles = 0;
   std::int64_t steps = 0;
-  double sim_time = 0.0;        ///< simulated time, s
-  double wall_s = 0.0;          ///< wall time of the stepping (setup excluded), s
+  double sim_time = 0.0;  ///< simulated time, s
+  double wall_s = 0.0;    ///< wall time of the stepping (setup excluded), s
   /// the measured quantity: realised restitution (two-body), relative energy drift per
   /// simulated second (gas_energy), measured/predicted Haff slope (haff), φ (pile)
   double value = 0.0;
-  double final_ke = 0.0;        ///< kinetic energy at the end, J
-  double stat_error = 0.0;      ///< statistical error of the value where one exists (haff;
-                                ///< tapping, rfm: 95% half-width of the mean)
+  double final_ke = 0.0;    ///< kinetic energy at the end, J
+  double stat_error = 0.0;  ///< statistical error of the value where one exists (haff;
+                            ///< tapping, rfm: 95% half-width of the mean)
   // the statistical problems (tapping, rfm_temperature)
-  double sd = NAN;              ///< spread of the samples: σ_φ (tapping), σ_T (rfm)
-  double sd_stat = NAN;         ///< 95% half-width of sd (chi-square, τ_int-corrected)
-  double tau_int = NAN;         ///< integrated autocorrelation time of the samples, samples
-  int samples = 0;              ///< samples in the mean (taps after the discarded ones)
-  double wall_per_tap = NAN;    ///< tapping: wall time per tap after settling, s
+  double sd = NAN;            ///< spread of the samples: σ_φ (tapping), σ_T (rfm)
+  double sd_stat = NAN;       ///< 95% half-width of sd (chi-square, τ_int-corrected)
+  double tau_int = NAN;       ///< integrated autocorrelation time of the samples, samples
+  int samples = 0;            ///< samples in the mean (taps after the discarded ones)
+  double wall_per_tap = NAN;  ///< tapping: wall time per tap after settling, s
   bool stable = true;
-  std::string note;             ///< health message, or what else is worth knowing
+  std::string note;  ///< health message, or what else is worth knowing
 };
 
 /// contact time (s) of a problem's stiffest binary contact (independent of Δt)

@@ -16,9 +16,12 @@ namespace {
 
 // the problem names as written in study files
 constexpr std::pair<std::string_view, StudyProblem> kProblems[] = {
-    {"two_disk", StudyProblem::TwoDisk}, {"two_decagon", StudyProblem::TwoDecagon},
-    {"gas_energy", StudyProblem::GasEnergy}, {"haff", StudyProblem::Haff},
-    {"pile", StudyProblem::Pile}, {"tapping", StudyProblem::Tapping},
+    {"two_disk", StudyProblem::TwoDisk},
+    {"two_decagon", StudyProblem::TwoDecagon},
+    {"gas_energy", StudyProblem::GasEnergy},
+    {"haff", StudyProblem::Haff},
+    {"pile", StudyProblem::Pile},
+    {"tapping", StudyProblem::Tapping},
     {"rfm_temperature", StudyProblem::RfmTemperature}};
 
 // the array at key k (nullptr when absent); any other type fails at the key
@@ -125,8 +128,7 @@ void read_stat_sizes(const TableReader& top, StudySpec& s) {
     if (z.rfm_duration < 2 * z.rfm_blocks * z.rfm_sample)
       r.fail("duration", "must hold at least two samples per block (blocks × sample × 2)");
     z.rfm_seed = static_cast<std::uint64_t>(r.integer("seed", 1, 0, INT64_MAX));
-    z.rfm_reference_dt_over_tc =
-        r.number("reference_dt_over_tc", 0.0, Range::non_negative());
+    z.rfm_reference_dt_over_tc = r.number("reference_dt_over_tc", 0.0, Range::non_negative());
     s.rfm_dt_over_tc = dt_list(r, "dt_over_tc");
   }
 }
@@ -173,7 +175,8 @@ std::string_view to_string(StudyProblem p) {
 std::string study_switches_text(StudyProblem p, const StudySwitches& s) {
   switch (p) {
     case StudyProblem::TwoDisk:
-    case StudyProblem::Haff: return std::string("clip=") + (s.clip ? "on" : "off");
+    case StudyProblem::Haff:
+      return std::string("clip=") + (s.clip ? "on" : "off");
     case StudyProblem::TwoDecagon:
     case StudyProblem::Pile:
       return std::string("hdot=") + (s.hdot_fd ? "finite_difference" : "analytic") +
@@ -182,8 +185,10 @@ std::string study_switches_text(StudyProblem p, const StudySwitches& s) {
       return std::string("hdot=") + (s.hdot_fd ? "finite_difference" : "analytic") +
              " rocking=" + (s.rocking ? "on" : "off") +
              " early_rest=" + (s.early_rest ? "on" : "off");
-    case StudyProblem::RfmTemperature: return std::string("clip=") + (s.clip ? "on" : "off");
-    case StudyProblem::GasEnergy: break;
+    case StudyProblem::RfmTemperature:
+      return std::string("clip=") + (s.clip ? "on" : "off");
+    case StudyProblem::GasEnergy:
+      break;
   }
   return "-";
 }
@@ -204,11 +209,11 @@ StudySpec parse_study_file(const std::string& path) {
   Ctx ctx{path};
   StudySpec s;
   s.file = path;
-  TableReader top(ctx, root, "",
-                  {"name", "problems", "matrix", "reference_dt_over_tc", "stability",
-                   "stability_problems", "stability_start", "stability_factor", "stability_max",
-                   "seed", "two_disk", "two_decagon", "gas_energy", "haff", "pile", "tapping",
-                   "rfm_temperature"});
+  TableReader top(
+      ctx, root, "",
+      {"name", "problems", "matrix", "reference_dt_over_tc", "stability", "stability_problems",
+       "stability_start", "stability_factor", "stability_max", "seed", "two_disk", "two_decagon",
+       "gas_energy", "haff", "pile", "tapping", "rfm_temperature"});
   s.name = top.string("name", s.name, true);
   s.problems = problem_list(top, "problems", {});
   if (s.problems.empty()) top.fail("problems", "is required: a list of reference problems");
@@ -259,8 +264,8 @@ StudySpec parse_study_file(const std::string& path) {
 
   // the stability map
   s.stability = top.boolean("stability", false);
-  s.stability_problems = problem_list(top, "stability_problems",
-                                      {StudyProblem::TwoDisk, StudyProblem::Pile});
+  s.stability_problems =
+      problem_list(top, "stability_problems", {StudyProblem::TwoDisk, StudyProblem::Pile});
   s.stability_start = top.number("stability_start", s.stability_start, {0.0, 10.0, true, false});
   s.stability_factor = top.number("stability_factor", s.stability_factor, {1.0, 4.0, true, false});
   s.stability_max = top.number("stability_max", s.stability_max, {0.0, 100.0, true, false});

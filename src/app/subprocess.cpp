@@ -59,7 +59,8 @@ std::pair<bool, int> spawn_and_wait(const std::vector<std::string>& args, bool q
 }  // namespace
 
 bool python_has_charts(const std::string& python) {
-  const auto [started, status] = spawn_and_wait({python, "-c", "import numpy, matplotlib"}, true, true);
+  const auto [started, status] =
+      spawn_and_wait({python, "-c", "import numpy, matplotlib"}, true, true);
   return started && WIFEXITED(status) && WEXITSTATUS(status) == 0;
 }
 
@@ -94,7 +95,8 @@ std::string run_python_script(const std::string& script, const std::vector<std::
   const std::string err = run_process(argv, quiet_stdout);
   if (err.empty()) return "";
   const std::string name = std::filesystem::path(script).filename().string();
-  if (err.find("cannot be started") != std::string::npos || err.find("not found") != std::string::npos)
+  if (err.find("cannot be started") != std::string::npos ||
+      err.find("not found") != std::string::npos)
     return err + " (set GS_PYTHON to a python3 with numpy and matplotlib)";
   if (!python_has_charts(py))
     return name + " failed: " + py +

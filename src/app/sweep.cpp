@@ -152,8 +152,7 @@ SweepPlan plan_sweep(const SweepOptions& opt, bool check_dirs) {
                      "the sweep would hold " + std::to_string(static_cast<long long>(runs)) +
                          " runs (" + std::to_string(values.size()) + " values × " +
                          std::to_string(opt.replicas) + " replicas); at most " +
-                         std::to_string(static_cast<long long>(kMaxSweepRuns)) +
-                         " runs per sweep");
+                         std::to_string(static_cast<long long>(kMaxSweepRuns)) + " runs per sweep");
   // two values that name the same directory would write one run over the other
   std::map<std::string, std::string> names;
   for (const SweepRun& v : values) {
@@ -181,8 +180,7 @@ SweepPlan plan_sweep(const SweepOptions& opt, bool check_dirs) {
       }
       if (opt.allow_unstable) s.health.allow_unstable = true;  // as run_command writes it
       const double T = drive_period(s.drive);
-      j.nominal =
-          s.prep.settle_time + (s.drive.taps > 0 && T > 0 ? s.drive.taps * T : s.duration);
+      j.nominal = s.prep.settle_time + (s.drive.taps > 0 && T > 0 ? s.drive.taps * T : s.duration);
       j.expected = scene_to_toml(s);  // compared with an existing run's scene.toml below
       plan.jobs.push_back(std::move(j));
     }

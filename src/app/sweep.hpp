@@ -12,11 +12,11 @@ struct SweepOptions {
   std::vector<std::string> params;  ///< "drive.g_p=4,6,8" (several: every combination)
   std::vector<std::string> sets;    ///< --set overrides shared by every run
   std::string out;                  ///< sweep directory (default runs/<scene name>-<keys>)
-  int jobs = 0;                     ///< runs at a time (0: the number of cores; under MPI: 1 per rank)
-  int replicas = 1;                 ///< runs per value; replica r > 0 has a seed derived from r
-  bool force = false;               ///< redo unfinished run directories
-  bool quiet = false;               ///< no progress display
-  bool allow_unstable = false;      ///< passed on to every run
+  int jobs = 0;                 ///< runs at a time (0: the number of cores; under MPI: 1 per rank)
+  int replicas = 1;             ///< runs per value; replica r > 0 has a seed derived from r
+  bool force = false;           ///< redo unfinished run directories
+  bool quiet = false;           ///< no progress display
+  bool allow_unstable = false;  ///< passed on to every run
 };
 
 /// one swept key and its values, parsed from "key=v1,v2,…"

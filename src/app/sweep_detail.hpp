@@ -25,8 +25,8 @@ struct Job {
   std::string state = "pending";  ///< pending, skipped, running, completed, failed
   bool resume = false;            ///< an interrupted run with a checkpoint: `gransim resume` it
   int exit_code = -1;
-  pid_t pid = -1;                 ///< a child of this process (-1: none, or on another rank)
-  int rank = 0;                   ///< MPI rank that runs it
+  pid_t pid = -1;  ///< a child of this process (-1: none, or on another rank)
+  int rank = 0;    ///< MPI rank that runs it
   std::chrono::steady_clock::time_point started;
   std::filesystem::file_time_type spawned;  ///< for telling its own series.csv from an older one
   double wall = 0.0;                        ///< s

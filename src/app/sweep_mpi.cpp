@@ -147,9 +147,9 @@ void worker_loop(const SweepPlan& plan, int width, int threads) {
         ++k;
         continue;
       }
-      const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() -
-                                                        running[k].started)
-                              .count();
+      const double wall =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - running[k].started)
+              .count();
       request(running[k].index, child_exit_code(status), wall);
       running.erase(running.begin() + static_cast<long>(k));
       busy = true;

@@ -9,9 +9,9 @@
 #include <map>
 #include <sstream>
 
+#include "core/error.hpp"
 #include "core/input_file.hpp"
 #include "view/render_world.hpp"
-#include "core/error.hpp"
 
 namespace gs {
 
@@ -66,12 +66,13 @@ void write_trajectory_frame(std::ostream& out, const World& w, const ContactSet*
     const Species& k = w.species[sp];
     const double vx = w.s.vx[i], vy = w.s.vy[i], th = w.s.th[i];
     // orientation: the unit quaternion (x, y, z, w) of the turn by θ about z
-    std::snprintf(buf, sizeof buf,
-                  " %.10g %.10g 0 %s %zu %zu %.10g %.10g 0 %.10g %.10g 0 0 %.10g %.10g 0 0 %.10g %.10g "
-                  "%d %d\n",
-                  w.s.x[i], w.s.y[i], names[sp].c_str(), sp, label, vx, vy, w.radius[i], th,
-                  std::sin(0.5 * th), std::cos(0.5 * th), w.s.w[i], std::hypot(vx, vy),
-                  k.shape == ShapeKind::Polygon ? k.sides : 0, static_cast<int>(z[i]));
+    std::snprintf(
+        buf, sizeof buf,
+        " %.10g %.10g 0 %s %zu %zu %.10g %.10g 0 %.10g %.10g 0 0 %.10g %.10g 0 0 %.10g %.10g "
+        "%d %d\n",
+        w.s.x[i], w.s.y[i], names[sp].c_str(), sp, label, vx, vy, w.radius[i], th,
+        std::sin(0.5 * th), std::cos(0.5 * th), w.s.w[i], std::hypot(vx, vy),
+        k.shape == ShapeKind::Polygon ? k.sides : 0, static_cast<int>(z[i]));
     out << species_symbol(sp) << buf;
   }
 }
@@ -194,7 +195,8 @@ bool TrajectoryReader::next(TrajectoryFrame& f) {
     const std::string& s = tok[it->second.first + k];
     char* end = nullptr;
     const double v = std::strtod(s.c_str(), &end);
-    if (end == s.c_str() || *end != '\0') fail(std::string("column '") + name + "': not a number: '" + s + "'");
+    if (end == s.c_str() || *end != '\0')
+      fail(std::string("column '") + name + "': not a number: '" + s + "'");
     return v;
   };
   int ncol = 0;

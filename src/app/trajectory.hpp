@@ -37,10 +37,10 @@ void write_trajectory_frame(std::ostream& out, const World& w, const ContactSet*
 
 /// one frame read back
 struct TrajectoryFrame {
-  double time = 0.0;              ///< s
+  double time = 0.0;  ///< s
   std::int64_t step = 0;
-  std::optional<Vec2> gravity;    ///< m/s², when recorded
-  std::optional<long> tap;        ///< when recorded
+  std::optional<Vec2> gravity;      ///< m/s², when recorded
+  std::optional<long> tap;          ///< when recorded
   std::array<double, 2> lattice{};  ///< box lengths from Lattice=, m
   std::vector<std::string> species;
   std::vector<double> x, y, vx, vy, radius, theta, omega, speed;  ///< SI

@@ -29,8 +29,8 @@ std::string version_text() {
 #ifdef GS_HAVE_FREETYPE
   add(true, "FreeType");
 #endif
-  return std::string("gransim ") + GS_VERSION + " (commit " + GS_GIT_COMMIT + ")\nfeatures: " +
-         (features.empty() ? std::string("none") : features) +
+  return std::string("gransim ") + GS_VERSION + " (commit " + GS_GIT_COMMIT +
+         ")\nfeatures: " + (features.empty() ? std::string("none") : features) +
          "\nlicense: GPL-3.0-or-later (LICENSE)";
 }
 

@@ -23,7 +23,8 @@ class Box2DTree final : public BroadPhase {
 
     // move every particle's proxy (Box2D skips those still inside their fat AABB)
     for (std::size_t i = 0; i < n; ++i) {
-      const b2Vec2 c(static_cast<float>(w.s.x[i] * inv_scale_), static_cast<float>(w.s.y[i] * inv_scale_));
+      const b2Vec2 c(static_cast<float>(w.s.x[i] * inv_scale_),
+                     static_cast<float>(w.s.y[i] * inv_scale_));
       const b2Vec2 disp = c - last_pos_[i];
       last_pos_[i] = c;
       bp_->MoveProxy(proxy_[i], aabb_of(w, i), disp);
@@ -93,7 +94,8 @@ class Box2DTree final : public BroadPhase {
     last_pos_.resize(n_);
     for (std::size_t i = 0; i < n_; ++i) {
       proxy_[i] = bp_->CreateProxy(aabb_of(w, i), reinterpret_cast<void*>(i + 1));
-      last_pos_[i].Set(static_cast<float>(w.s.x[i] * inv_scale_), static_cast<float>(w.s.y[i] * inv_scale_));
+      last_pos_[i].Set(static_cast<float>(w.s.x[i] * inv_scale_),
+                       static_cast<float>(w.s.y[i] * inv_scale_));
     }
     wall_proxy_.clear();
     for (std::size_t k = 0; k < w.walls.size(); ++k) {

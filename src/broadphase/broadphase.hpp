@@ -25,7 +25,9 @@ constexpr PairKey make_key(std::uint32_t i, std::uint32_t j, std::uint32_t image
   return (static_cast<PairKey>(i) << 40) | (static_cast<PairKey>(j) << 16) | image;
 }
 constexpr std::uint32_t key_i(PairKey k) { return static_cast<std::uint32_t>(k >> 40); }
-constexpr std::uint32_t key_j(PairKey k) { return static_cast<std::uint32_t>((k >> 16) & 0xffffffu); }
+constexpr std::uint32_t key_j(PairKey k) {
+  return static_cast<std::uint32_t>((k >> 16) & 0xffffffu);
+}
 constexpr std::uint32_t key_image(PairKey k) { return static_cast<std::uint32_t>(k & 0xffffu); }
 /// the shift (in box lengths) that an image code applies to j
 constexpr int image_sx(std::uint32_t image) { return static_cast<int>(image >> 8) - 128; }

@@ -20,8 +20,8 @@ class CellGrid final : public BroadPhase {
   const std::vector<PairKey>& update(const World& w) override {
     // the caller's own test of these positions (set_moved), or ours
     const Told told = take_told();
-    const bool rebuild = w.size() != bx_.size() ||
-                         (told == Told::Nothing ? needs_rebuild(w) : told == Told::Moved);
+    const bool rebuild =
+        w.size() != bx_.size() || (told == Told::Nothing ? needs_rebuild(w) : told == Told::Moved);
     if (rebuild) {
       build(w);
       new_generation();
@@ -78,10 +78,15 @@ class CellGrid final : public BroadPhase {
     if (!periodic) {
       double xmin = w.s.x[0], xmax = xmin, ymin = w.s.y[0], ymax = ymin;
       for (std::size_t i = 1; i < n; ++i) {
-        xmin = std::min(xmin, w.s.x[i]); xmax = std::max(xmax, w.s.x[i]);
-        ymin = std::min(ymin, w.s.y[i]); ymax = std::max(ymax, w.s.y[i]);
+        xmin = std::min(xmin, w.s.x[i]);
+        xmax = std::max(xmax, w.s.x[i]);
+        ymin = std::min(ymin, w.s.y[i]);
+        ymax = std::max(ymax, w.s.y[i]);
       }
-      x0 = xmin; y0 = ymin; wx = xmax - xmin; wy = ymax - ymin;
+      x0 = xmin;
+      y0 = ymin;
+      wx = xmax - xmin;
+      wy = ymax - ymin;
     }
     double cell = 2.0 * w.max_radius + skin_;
     // never many more cells than grains (a far grain, a huge dilute box)
@@ -127,8 +132,8 @@ class CellGrid final : public BroadPhase {
     fill_ = start_;
     for (std::size_t i = 0; i < n; ++i) order_[fill_[cell_of_[i]]++] = static_cast<int>(i);
 
-    // each grain's partners above it, sorted: in parallel into per-thread lists over
-    // contiguous ranges of i, joined in range order (the same list for any thread count)
+      // each grain's partners above it, sorted: in parallel into per-thread lists over
+      // contiguous ranges of i, joined in range order (the same list for any thread count)
 #pragma omp parallel if (run_parallel(n, kParallelMin))
     {
       const int t = team_thread(), nt = team_size();
@@ -197,15 +202,15 @@ class CellGrid final : public BroadPhase {
     // walls: circle against the wall's box
     for (std::size_t k = 0; k < w.walls.size(); ++k)
       if (circle_box_overlap(pi, w.radius[i] + skin_, w.walls[k].lo, w.walls[k].hi))
-        out.push_back(make_key(static_cast<std::uint32_t>(i), N + static_cast<std::uint32_t>(k),
-                               kNoImage));
+        out.push_back(
+            make_key(static_cast<std::uint32_t>(i), N + static_cast<std::uint32_t>(k), kNoImage));
     std::sort(out.begin() + static_cast<std::ptrdiff_t>(first), out.end());
   }
 
   int nx_ = 1, ny_ = 1;
-  double skin_ = 0.0;                ///< extra reach of the pair list, m
-  std::vector<double> bx_, by_;      ///< positions at the last build, m
-  std::vector<PairKey> pairs_;       ///< the pair list of the last build, sorted
+  double skin_ = 0.0;            ///< extra reach of the pair list, m
+  std::vector<double> bx_, by_;  ///< positions at the last build, m
+  std::vector<PairKey> pairs_;   ///< the pair list of the last build, sorted
   std::vector<int> cell_of_, start_, fill_, order_;
   std::vector<std::vector<PairKey>> part_;  ///< per-thread partner lists of a build
 };

@@ -55,9 +55,9 @@ class RingNeighbours final : public BroadPhase {
       for (; k + 3 <= n; k += 2) {
         const __m128d dij = _mm_add_pd(_mm_loadu_pd(r + k), _mm_loadu_pd(r + k + 1));
         const __m128i s2 = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(sh + k));
-        const __m128d gap = _mm_sub_pd(
-            _mm_add_pd(_mm_loadu_pd(x + k + 1), _mm_mul_pd(_mm_cvtepi32_pd(s2), vl)),
-            _mm_loadu_pd(x + k));
+        const __m128d gap =
+            _mm_sub_pd(_mm_add_pd(_mm_loadu_pd(x + k + 1), _mm_mul_pd(_mm_cvtepi32_pd(s2), vl)),
+                       _mm_loadu_pd(x + k));
         any = _mm_or_pd(any, _mm_or_pd(_mm_cmplt_pd(gap, _mm_xor_pd(dij, sign)),
                                        _mm_cmpge_pd(gap, _mm_sub_pd(vl, dij))));
       }

@@ -14,10 +14,10 @@ namespace gs {
 /// what the force laws need to know about one touching pair
 struct ContactGeom {
   bool touching = false;
-  Vec2 n;              ///< unit normal from i towards j (or into the wall)
-  Vec2 s;              ///< contact point, m
-  double overlap = 0;  ///< polygons: overlap area A (m²); disks: penetration δ (m)
-  double chord = 0;    ///< polygons: contact-line length |c2 − c1| (m)
+  Vec2 n;                   ///< unit normal from i towards j (or into the wall)
+  Vec2 s;                   ///< contact point, m
+  double overlap = 0;       ///< polygons: overlap area A (m²); disks: penetration δ (m)
+  double chord = 0;         ///< polygons: contact-line length |c2 − c1| (m)
   bool degenerate = false;  ///< polygons: one inside the other, no boundary crossings
 };
 

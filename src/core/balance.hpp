@@ -109,10 +109,11 @@ class RangeBalancer {
   static constexpr std::size_t kPad = 8;  // one 64-byte line per thread's timing
   static constexpr std::size_t kAll = static_cast<std::size_t>(-1);  // done: the whole range
   std::size_t n_ = 0;
-  std::vector<double> cut_;        ///< split points as reals (the smoothing's state)
-  std::vector<std::size_t> bound_; ///< split points rounded: thread t runs [bound_[t], bound_[t+1])
+  std::vector<double> cut_;  ///< split points as reals (the smoothing's state)
+  std::vector<std::size_t>
+      bound_;  ///< split points rounded: thread t runs [bound_[t], bound_[t+1])
   std::vector<double> time_;
-  std::vector<std::size_t> done_;  ///< items each range ran itself (kAll: all of them)
+  std::vector<std::size_t> done_;     ///< items each range ran itself (kAll: all of them)
   std::vector<double> dens_, ideal_;  ///< update()'s scratch, kept (it runs every step)
 };
 

@@ -7,13 +7,13 @@
 // MADV_HUGEPAGE; smaller ones are plain malloc. Where the kernel has no huge pages the mark is
 // ignored and nothing changes. Every block is freed by free(), whichever way it came.
 // The sanitizer builds keep their own operator new (it checks new/delete pairs).
+#include "core/big_pages.hpp"
+
 #include <sys/mman.h>
 
 #include <cstddef>
 #include <cstdlib>
 #include <new>
-
-#include "core/big_pages.hpp"
 
 #if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
 #define GS_BIG_PAGES 0

@@ -4,7 +4,7 @@
 
 namespace gs {
 
-inline constexpr std::size_t kHugePage = std::size_t{2} << 20;     ///< x86-64's 2 MB page
+inline constexpr std::size_t kHugePage = std::size_t{2} << 20;      ///< x86-64's 2 MB page
 inline constexpr std::size_t kBigBlockFrom = std::size_t{1} << 20;  ///< 1 MB and more
 
 /// does this build's operator new put large blocks on huge pages? (not under the sanitizers)

@@ -8,9 +8,9 @@ namespace gs {
 /// exit codes of the gransim command
 enum ExitCode : int {
   kExitOk = 0,
-  kExitFailure = 1,     ///< unexpected internal failure
-  kExitBadInput = 2,    ///< bad scene, checkpoint, argument or path
-  kExitUnstable = 3,    ///< a run-time health check failed
+  kExitFailure = 1,      ///< unexpected internal failure
+  kExitBadInput = 2,     ///< bad scene, checkpoint, argument or path
+  kExitUnstable = 3,     ///< a run-time health check failed
   kExitInterrupted = 4,  ///< stopped by a signal after writing a checkpoint
   kExitOutput = 5        ///< an output could not be written (disk full, unwritable)
 };
@@ -20,7 +20,8 @@ class InputError : public std::runtime_error {
  public:
   InputError(std::string where, std::string key, std::string what)
       : std::runtime_error(format(where, key, what)),
-        where_(std::move(where)), key_(std::move(key)) {}
+        where_(std::move(where)),
+        key_(std::move(key)) {}
   const std::string& where() const { return where_; }
   const std::string& key() const { return key_; }
 

@@ -13,8 +13,9 @@ void check_input_file(const std::string& path, const std::string& what, std::uin
   struct stat st {};
   if (::stat(path.c_str(), &st) != 0) {
     const int e = errno;
-    throw InputError(path, "", e == ENOENT ? "no such file" : "cannot read the " + what + ": " +
-                                                                 std::strerror(e));
+    throw InputError(
+        path, "",
+        e == ENOENT ? "no such file" : "cannot read the " + what + ": " + std::strerror(e));
   }
   if (S_ISDIR(st.st_mode)) throw InputError(path, "", "is a directory, not a " + what);
   if (!S_ISREG(st.st_mode)) {
@@ -23,13 +24,14 @@ void check_input_file(const std::string& path, const std::string& what, std::uin
                        : S_ISBLK(st.st_mode)  ? "a block device"
                        : S_ISSOCK(st.st_mode) ? "a socket"
                                               : "not a regular file";
-    throw InputError(path, "", std::string("is ") + kind + ", not a " + what +
-                                   " (gransim reads inputs only from regular files)");
+    throw InputError(path, "",
+                     std::string("is ") + kind + ", not a " + what +
+                         " (gransim reads inputs only from regular files)");
   }
   if (static_cast<std::uintmax_t>(st.st_size) > max_bytes)
-    throw InputError(path, "", "is " + std::to_string(st.st_size >> 20) + " MiB, larger than the " +
-                                   std::to_string(max_bytes >> 20) + " MiB a " + what +
-                                   " may have");
+    throw InputError(path, "",
+                     "is " + std::to_string(st.st_size >> 20) + " MiB, larger than the " +
+                         std::to_string(max_bytes >> 20) + " MiB a " + what + " may have");
 }
 
 }  // namespace gs

@@ -123,8 +123,8 @@ class ThreadSpeeds {
   }
 
  private:
-  std::vector<double> w_, cum_;         ///< weights; the applied cumulative fractions (nt + 1)
-  std::vector<double> rate_, next_;     ///< scratch
+  std::vector<double> w_, cum_;      ///< weights; the applied cumulative fractions (nt + 1)
+  std::vector<double> rate_, next_;  ///< scratch
 };
 
 /// thread t of nt's contiguous share of n items: [n·t/nt, n·(t+1)/nt), or by the measured
@@ -145,8 +145,7 @@ inline double wall_seconds() {
 #ifdef _OPENMP
   return omp_get_wtime();
 #else
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
-      .count();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 #endif
 }
 

@@ -10,8 +10,7 @@ namespace gs {
 /// v[k] ← v[perm[k]] for every slot k, through tmp, which keeps v's old buffer for the next
 /// call (an empty v stays empty)
 template <class T>
-void gather_permuted(std::vector<T>& v, std::span<const std::uint32_t> perm,
-                     std::vector<T>& tmp) {
+void gather_permuted(std::vector<T>& v, std::span<const std::uint32_t> perm, std::vector<T>& tmp) {
   if (v.empty()) return;
   tmp.resize(perm.size());
   for (std::size_t k = 0; k < perm.size(); ++k) tmp[k] = v[perm[k]];

@@ -96,7 +96,7 @@ struct RngStream {
       if (ziggurat_try(t, u, x)) return x;  // inside the layer's rectangle
       const auto hz = static_cast<std::int32_t>(static_cast<std::uint32_t>(u >> 32));
       const int iz = static_cast<int>(u & 127u);
-      if (iz == 0) {                 // the tail beyond r (Marsaglia's method)
+      if (iz == 0) {  // the tail beyond r (Marsaglia's method)
         constexpr double r = 3.442619855899;
         double xt, yt;
         do {

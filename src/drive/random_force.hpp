@@ -20,8 +20,8 @@ std::vector<std::uint64_t> random_force_keys(std::uint64_t seed, std::size_t n);
 /// the standard normals of one particle's kick at step `step`, from its stream key: stream
 /// (seed, particle), counter a function of the step alone; the ring draws z0 only.
 /// t = ZigguratTables::get(), fetched once by the caller
-inline void noise_normals(const ZigguratTables& t, std::uint64_t key, std::int64_t step,
-                          bool ring, double& z0, double& z1) {
+inline void noise_normals(const ZigguratTables& t, std::uint64_t key, std::int64_t step, bool ring,
+                          double& z0, double& z1) {
   RngStream r;
   r.key = key;
   r.counter = static_cast<std::uint64_t>(step) << 8;  // 256 values per step: ample for 2 normals
@@ -37,9 +37,9 @@ inline void noise_normals(const ZigguratTables& t, std::uint64_t key, std::int64
 inline void noise_normals_block(const ZigguratTables& t, const std::uint64_t* keys,
                                 std::int64_t step, bool ring, std::size_t m, double* z0,
                                 double* z1) {
-  assert(m <= 64);  // one bit of `redo` per particle
+  assert(m <= 64);                                       // one bit of `redo` per particle
   const auto c = static_cast<std::uint64_t>(step) << 8;  // noise_normals' counter
-  std::uint64_t redo = 0;  // bit q: particle q drawn again in full
+  std::uint64_t redo = 0;                                // bit q: particle q drawn again in full
   for (std::size_t q = 0; q < m; ++q) {
     double a, b = 0.0;
     bool ok = ziggurat_try(t, RngStream::value(keys[q], c + 1), a);

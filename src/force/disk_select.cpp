@@ -11,8 +11,7 @@ namespace gs {
 
 void ContactModel::find_common_radius(const World& w, std::uint64_t generation) {
   const std::size_t n = w.size();
-  if (generation != 0 && generation == common_radius_generation_ && n == common_radius_n_)
-    return;
+  if (generation != 0 && generation == common_radius_generation_ && n == common_radius_n_) return;
   common_radius_generation_ = generation;  // an unknown list (0) is looked at every time
   common_radius_n_ = n;
   common_radius_ = n > 0 ? w.radius[0] : 0.0;
@@ -59,15 +58,17 @@ std::size_t ContactModel::select_disk_pairs(const World& w, const std::vector<Pa
       const bool wall = j >= N;
       const std::uint32_t jj = wall ? i : j;  // a wall's index is no particle: read i instead
       const std::uint32_t image = key_image(key);
-      const Vec2 d = Vec2{x[jj] + image_sx(image) * w.Lx, y[jj] + image_sy(image) * w.Ly} -
-                     Vec2{x[i], y[i]};
+      const Vec2 d =
+          Vec2{x[jj] + image_sx(image) * w.Lx, y[jj] + image_sy(image) * w.Ly} - Vec2{x[i], y[i]};
       const double dist2 = norm2(d), rr = reach(i, jj);
       sel[m] = static_cast<std::uint32_t>(k);
       m += static_cast<std::size_t>(wall | !((dist2 >= rr * rr) | (dist2 == 0.0)));
     }
   };
-  if (rc == rc) select(std::true_type{});  // not NaN: one radius
-  else select(std::false_type{});
+  if (rc == rc)
+    select(std::true_type{});  // not NaN: one radius
+  else
+    select(std::false_type{});
   return m;
 }
 

@@ -32,8 +32,7 @@ std::size_t history_index(const std::vector<PairKey>& keys, PairKey key, std::si
     return static_cast<std::size_t>(std::lower_bound(keys.begin() + hint, keys.end(), key) -
                                     keys.begin());
   }
-  return static_cast<std::size_t>(std::lower_bound(keys.begin(), keys.end(), key) -
-                                  keys.begin());
+  return static_cast<std::size_t>(std::lower_bound(keys.begin(), keys.end(), key) - keys.begin());
 }
 
 }  // namespace
@@ -122,8 +121,7 @@ ContactModel::PolyPairConst ContactModel::poly_pair_const(const World& w, std::s
 
 // Model P (docs/physics.md §2.2): overlap-area normal force with Cundall–Strack friction
 bool ContactModel::polygon_pair(const World& w, PairKey key, const ContactSet& cs,
-                                std::size_t& hint, double dt, PairForce& pf,
-                                PairResult& pr) const {
+                                std::size_t& hint, double dt, PairForce& pf, PairResult& pr) const {
   const std::uint32_t N = static_cast<std::uint32_t>(w.size());
   const std::size_t stride = nsp_ + 1;
   const std::uint32_t i = key_i(key), j = key_j(key);
@@ -191,15 +189,15 @@ bool ContactModel::polygon_pair(const World& w, PairKey key, const ContactSet& c
 
 // Model S (docs/physics.md §3): linear spring, normal and tangential dashpots, optional friction
 [[gnu::always_inline]] inline bool ContactModel::disk_pair(const World& w, PairKey key,
-                                                            PairForce& pf, PairResult& pr) const {
+                                                           PairForce& pf, PairResult& pr) const {
   const std::uint32_t N = static_cast<std::uint32_t>(w.size());
   const std::uint32_t i = key_i(key), j = key_j(key);
   const bool wall = j >= N;
   const Vec2 xi{w.s.x[i], w.s.y[i]};
   const BodyView bi{xi, w.radius[i], nullptr};
-  const ContactGeom g = wall ? disk_wall(bi, w.walls[j - N])
-                             : disk_disk(bi, BodyView{image_pos(w, j, key_image(key)),
-                                                      w.radius[j], nullptr});
+  const ContactGeom g =
+      wall ? disk_wall(bi, w.walls[j - N])
+           : disk_disk(bi, BodyView{image_pos(w, j, key_image(key)), w.radius[j], nullptr});
   if (!g.touching) return false;
   Vec2 vrel{w.s.vx[i], w.s.vy[i]};
   if (!wall) vrel -= Vec2{w.s.vx[j], w.s.vy[j]};
@@ -231,9 +229,9 @@ std::size_t ContactModel::parallel_pairs_from(bool polygons, std::size_t n) {
 // compacted into the contact set in fixed blocks → each particle's forces summed over its own
 // pairs in candidate order, from zero. Each particle's terms are the same in the same order
 // either way, so the forces are bitwise the same on any number of threads, serial or parallel.
-ForceStats ContactModel::evaluate(const World& w, const std::vector<PairKey>& cand,
-                                  ContactSet& cs, ForceBuffer& f, double dt,
-                                  std::uint64_t generation, RangeFn after) {
+ForceStats ContactModel::evaluate(const World& w, const std::vector<PairKey>& cand, ContactSet& cs,
+                                  ForceBuffer& f, double dt, std::uint64_t generation,
+                                  RangeFn after) {
   const std::size_t n = w.size();
   const std::size_t ncand = cand.size();
   const bool poly = w.polygons();
@@ -341,7 +339,8 @@ ForceStats ContactModel::evaluate_serial(const World& w, const std::vector<PairK
   };
   std::size_t hint = 0;
   if (poly) {
-    run(cand.size(), [&](std::size_t q) { return cand[q]; },
+    run(
+        cand.size(), [&](std::size_t q) { return cand[q]; },
         [&](PairKey key) { return polygon_pair(w, key, cs, hint, dt, pf, r); });
   } else {
     // disks: where few candidates touched last step (a gas, the 1D ring: 6 %), a branch-free
@@ -356,11 +355,13 @@ ForceStats ContactModel::evaluate_serial(const World& w, const std::vector<PairK
         const std::size_t k1 = std::min(cand.size(), k0 + kSelectBlock);
         const std::size_t m = select_disk_pairs(w, cand, k0, k1);
         prefetch_disk_pairs(w, cand, m, f);
-        run(m, [&](std::size_t q) { return cand[sel_[q]]; },
+        run(
+            m, [&](std::size_t q) { return cand[sel_[q]]; },
             [&](PairKey key) { return disk_pair(w, key, pf, r); });
       }
     } else {
-      run(cand.size(), [&](std::size_t q) { return cand[q]; },
+      run(
+          cand.size(), [&](std::size_t q) { return cand[q]; },
           [&](PairKey key) { return disk_pair(w, key, pf, r); });
     }
   }

@@ -4,12 +4,12 @@
 #include <cstdint>
 #include <vector>
 
+#include "contact/contact_set.hpp"
 #include "core/balance.hpp"
 #include "core/parallel.hpp"
-#include "contact/contact_set.hpp"
-#include "geometry/prepared.hpp"
 #include "force/laws/disk_law.hpp"
 #include "force/laws/polygon_law.hpp"
+#include "geometry/prepared.hpp"
 #include "world/world.hpp"
 
 namespace gs {
@@ -35,11 +35,11 @@ struct ForceBuffer {
 
 /// summary of one force evaluation, for health checks and series
 struct ForceStats {
-  std::size_t contacts = 0;       ///< touching pairs (including walls)
-  std::size_t candidates = 0;     ///< the broad phase's candidate pairs
-  std::size_t degenerate = 0;     ///< polygon contacts without boundary crossings this step
-  double max_overlap = 0.0;       ///< largest h_eff (polygons) or δ (disks), m
-  double max_overlap_rel = 0.0;   ///< the same over the smaller grain's radius
+  std::size_t contacts = 0;      ///< touching pairs (including walls)
+  std::size_t candidates = 0;    ///< the broad phase's candidate pairs
+  std::size_t degenerate = 0;    ///< polygon contacts without boundary crossings this step
+  double max_overlap = 0.0;      ///< largest h_eff (polygons) or δ (disks), m
+  double max_overlap_rel = 0.0;  ///< the same over the smaller grain's radius
 };
 
 /// the constant law parameters of a world, tabulated per (species, species) and (species, wall)
@@ -56,8 +56,7 @@ class ContactModel {
   /// the particles, as the integrators' loops): what depends on a particle's force alone, such
   /// as its acceleration, is then computed where the force and the integrator's data are.
   ForceStats evaluate(const World& w, const std::vector<PairKey>& candidates, ContactSet& cs,
-                      ForceBuffer& f, double dt, std::uint64_t generation = 0,
-                      RangeFn after = {});
+                      ForceBuffer& f, double dt, std::uint64_t generation = 0, RangeFn after = {});
   /// polygons: place particles [b, e) at their current state for the next evaluate(), from
   /// inside this evaluate()'s `after` (the pairs are done by then), once the caller has
   /// predicted the next step there (Simulation::run); every particle once, then
@@ -74,8 +73,8 @@ class ContactModel {
   struct PairForce;
   struct PairResult;
   // one candidate: narrow phase and law; false when the pair does not touch
-  bool polygon_pair(const World& w, PairKey key, const ContactSet& cs, std::size_t& hint,
-                    double dt, PairForce& pf, PairResult& pr) const;
+  bool polygon_pair(const World& w, PairKey key, const ContactSet& cs, std::size_t& hint, double dt,
+                    PairForce& pf, PairResult& pr) const;
   bool disk_pair(const World& w, PairKey key, PairForce& pf, PairResult& pr) const;
   void place_walls(const World& w);
   void place_shapes(const World& w, std::size_t b, std::size_t e);
@@ -84,8 +83,8 @@ class ContactModel {
                                 const law::PolyLawParams& p) const;
   static void clear_forces(ForceBuffer& f, std::size_t n);
   void note_touched(ForceBuffer& f, std::size_t n);
-  ForceStats evaluate_serial(const World& w, const std::vector<PairKey>& cand,
-                             const ContactSet& cs, ForceBuffer& f, double dt);
+  ForceStats evaluate_serial(const World& w, const std::vector<PairKey>& cand, const ContactSet& cs,
+                             ForceBuffer& f, double dt);
   ForceStats evaluate_parallel(const World& w, const std::vector<PairKey>& cand,
                                const ContactSet& cs, ForceBuffer& f, double dt, bool reindex,
                                bool from_touching, bool placed, RangeFn after);
@@ -100,7 +99,7 @@ class ContactModel {
   // the per-particle index of the candidates (CSR, ascending candidate order per particle)
   void index_candidates(const std::vector<PairKey>& cand, std::size_t n);
   std::size_t nsp_ = 0;
-  std::vector<law::PolyLawParams> poly_;   ///< [si * (nsp+1) + sj], sj = nsp for walls
+  std::vector<law::PolyLawParams> poly_;  ///< [si * (nsp+1) + sj], sj = nsp for walls
   /// Model P constants of a (species, species) or (species, wall) pair: the quantities of
   /// P.29–P.36 that depend on masses and radii only (every grain of a species has its values)
   struct PolyPairConst {
@@ -108,15 +107,15 @@ class ContactModel {
     double damp_n = 0;                    ///< γ·√(E·m⊥), kg/s
     double damp_t = 0;                    ///< √((2/7)·E·m∥), kg/s
   };
-  std::vector<PolyPairConst> poly_pc_;     ///< same layout as poly_
-  std::vector<law::DiskLawParams> disk_;   ///< same layout
+  std::vector<PolyPairConst> poly_pc_;    ///< same layout as poly_
+  std::vector<law::DiskLawParams> disk_;  ///< same layout
   bool hdot_fd_ = false;
   bool rocking_ = true;
   double min_contact_time_ = 0.0;
-  PolyStore shapes_;       ///< world-frame polygons of this step, prepared for the overlap
-  bool placed_ahead_ = false;  ///< shapes_ already holds the next evaluate()'s polygons
-  PolyStore wall_shapes_;  ///< the walls' polygons, prepared once
-  int max_sides_ = 0;      ///< most vertices of any species' polygon
+  PolyStore shapes_;                ///< world-frame polygons of this step, prepared for the overlap
+  bool placed_ahead_ = false;       ///< shapes_ already holds the next evaluate()'s polygons
+  PolyStore wall_shapes_;           ///< the walls' polygons, prepared once
+  int max_sides_ = 0;               ///< most vertices of any species' polygon
   std::vector<BodyExtent> extent_;  ///< per species: its body's extent, for the placement
   /// one touching pair's force on j (i gets the opposite) and the torques about each centre
   struct PairForce {
@@ -125,14 +124,14 @@ class ContactModel {
   /// what a touching pair leaves for the contact set and the step's statistics
   struct PairResult {
     bool degenerate = false;
-    Vec2 s, n;            ///< contact point, normal
+    Vec2 s, n;                                  ///< contact point, normal
     double fn = 0, ft = 0, overlap = 0, h = 0;  ///< h: h_eff (polygons) or δ (disks), m
     ContactState state;
   };
   std::vector<std::uint8_t> touch_;  ///< per candidate: does the pair touch this step?
   /// per touching pair of the contact set being made: its candidate index (sums_from_touching)
   std::vector<std::uint32_t> touching_k_;
-  std::vector<std::uint32_t> sel_;   ///< serial disk loop: the candidates that may touch
+  std::vector<std::uint32_t> sel_;  ///< serial disk loop: the candidates that may touch
   std::size_t select_disk_pairs(const World& w, const std::vector<PairKey>& cand, std::size_t k0,
                                 std::size_t k1);
   /// the radius every disk has, or NaN where they differ: then the selection reads no radii
@@ -151,8 +150,8 @@ class ContactModel {
   std::size_t common_radius_n_ = 0;
   void prefetch_disk_pairs(const World& w, const std::vector<PairKey>& cand, std::size_t m,
                            const ForceBuffer& f) const;
-  std::vector<PairForce> pair_f_;    ///< per candidate (touching ones only written)
-  std::vector<PairResult> pair_r_;   ///< per candidate (touching ones only written)
+  std::vector<PairForce> pair_f_;   ///< per candidate (touching ones only written)
+  std::vector<PairResult> pair_r_;  ///< per candidate (touching ones only written)
   // per-particle index: entries (k << 1 | side) of the candidates naming each particle, side 0
   // as i, 1 as j, in ascending k; rebuilt when the candidate list's generation changes
   std::vector<std::uint32_t> cand_start_, cand_entry_, fill_;
@@ -161,8 +160,8 @@ class ContactModel {
   // the compaction of touching pairs into the contact set, in fixed blocks of candidates
   std::vector<std::size_t> chunk_first_;  ///< parallel loop: first contact-set slot of each chunk
   std::vector<ForceStats> chunk_stats_;
-  RangeBalancer balance_;  ///< parallel loop: each thread's range of chunks
-  StealRanges steal_;      ///< parallel loop: the chunks still to run, per thread
+  RangeBalancer balance_;        ///< parallel loop: each thread's range of chunks
+  StealRanges steal_;            ///< parallel loop: the chunks still to run, per thread
   RangeBalancer place_balance_;  ///< parallel loop, polygons: each thread's grains to place
   std::vector<PairKey> new_keys_;
   std::vector<ContactState> new_state_;

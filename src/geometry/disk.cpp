@@ -51,8 +51,8 @@ double disk_area_in_rect(Vec2 c, double r, double x0, double y0, double x1, doub
   // unit-disk coordinates of the rectangle, then inclusion–exclusion of the quadrants
   const double u0 = (x0 - c.x) / r, u1 = (x1 - c.x) / r;
   const double v0 = (y0 - c.y) / r, v1 = (y1 - c.y) / r;
-  const double q = quadrant_area(u0, v0) - quadrant_area(u1, v0) - quadrant_area(u0, v1) +
-                   quadrant_area(u1, v1);
+  const double q =
+      quadrant_area(u0, v0) - quadrant_area(u1, v0) - quadrant_area(u0, v1) + quadrant_area(u1, v1);
   return std::max(0.0, q) * r * r;
 }
 

@@ -43,8 +43,8 @@ struct TaggedRing : detail::Ring<kRingCap> {
 // when the line cuts nothing off (the common case once a has been cut down to a small cap).
 // a's vertices are read in place, with no copy into a ring.
 template <bool kFresh>
-bool clip_tagged(int n, const double* x, const double* y, const std::uint8_t* f,
-                 TaggedRing& out, Vec2 o, Vec2 e) {
+bool clip_tagged(int n, const double* x, const double* y, const std::uint8_t* f, TaggedRing& out,
+                 Vec2 o, Vec2 e) {
   if (n == 0) return false;
   // side of vertex i (> 0 outside; NaN counts as neither inside nor outside)
   auto side = [&](int i) { return (x[i] - o.x) * e.y - (y[i] - o.y) * e.x; };
@@ -295,7 +295,7 @@ Overlap overlap(const PolyRef& a, const PolyRef& b) {
     cut = may_cut(k1) | may_cut(k0 == 0 ? b.n - 1 : k0 - 1) << (b.n - 2);
   } else {
     for (int k = 0; k < b.n; ++k) cut |= may_cut(k) << k;
-    cut = (cut >> k1) | (cut << (b.n - k1));  // b.n <= kMaxPolyVerts < 64
+    cut = (cut >> k1) | (cut << (b.n - k1));     // b.n <= kMaxPolyVerts < 64
     cut &= (std::uint64_t{1} << (b.n - 1)) - 1;  // the n − 1 edges after k0
   }
   while (cut != 0 && cur->n > 0) {

@@ -18,8 +18,8 @@ namespace {
 void check_ngon(int n, const char* who, int max_n = 1 << 30) {
   if (n < 3 || n > max_n)
     throw InputError(who, "n",
-                     "a regular polygon needs 3.." + std::to_string(max_n) +
-                         " vertices, got " + std::to_string(n));
+                     "a regular polygon needs 3.." + std::to_string(max_n) + " vertices, got " +
+                         std::to_string(n));
 }
 
 // a working ring large enough for any clip of a Poly by a few lines

@@ -57,10 +57,10 @@ double polar_moment(const Poly& p, Vec2 o);
 
 /// result of the overlap of two convex polygons (docs/physics.md §2.1)
 struct Overlap {
-  double area = 0.0;   ///< area of the intersection polygon, m²
-  int crossings = 0;   ///< number of boundary crossing points found (2 for a normal contact)
-  Vec2 c1, c2;         ///< the two boundary crossings (contact line c1→c2) when crossings >= 2
-  Vec2 centroid;       ///< centroid of the intersection polygon (when area > 0)
+  double area = 0.0;  ///< area of the intersection polygon, m²
+  int crossings = 0;  ///< number of boundary crossing points found (2 for a normal contact)
+  Vec2 c1, c2;        ///< the two boundary crossings (contact line c1→c2) when crossings >= 2
+  Vec2 centroid;      ///< centroid of the intersection polygon (when area > 0)
 };
 /// exact overlap of convex polygons a and b: area, boundary crossings, centroid.
 /// With more than two crossings (deep or near-degenerate overlaps) c1, c2 are the pair farthest

@@ -117,8 +117,8 @@ void PolyStore::set_placed(std::size_t i, const Poly& body, const BodyExtent& ex
   y[n] = y0;
   const Vec2 m{mx / static_cast<double>(n), my / static_cast<double>(n)};
   const double c1 = std::abs(c.x) + std::abs(c.y);
-  const double r = (ext.reach + std::abs(m.x - c.x) + std::abs(m.y - c.y)) * (1.0 + 1e-12) +
-                   1e-15 * c1;
+  const double r =
+      (ext.reach + std::abs(m.x - c.x) + std::abs(m.y - c.y)) * (1.0 + 1e-12) + 1e-15 * c1;
   const double len = (ext.len + 1e-15 * (c1 + 2.0 * ext.reach)) * (1.0 + 1e-12);
   // near: less the placement's rounding, ~1e-16 of |c|₁ + reach (bodies placed over 10⁶ of
   // their sizes from the origin get no bound)

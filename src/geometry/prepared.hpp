@@ -19,9 +19,9 @@ struct PolyRef {
   const double* y = nullptr;
   double ex(int k) const { return x[k + 1] - x[k]; }  ///< edge k, x component, m
   double ey(int k) const { return y[k + 1] - y[k]; }  ///< edge k, y component, m
-  Vec2 mean;                   ///< vertex mean (the interior point overlap() uses), m
-  double radius = 0.0;         ///< a circle about `mean` holding every vertex (rounded up), m
-  double len = 0.0;            ///< the longest edge (rounded up), m
+  Vec2 mean;            ///< vertex mean (the interior point overlap() uses), m
+  double radius = 0.0;  ///< a circle about `mean` holding every vertex (rounded up), m
+  double len = 0.0;     ///< the longest edge (rounded up), m
   /// regular polygons from 5 sides (equal edges and exterior angles, to 1e-9): every point
   /// within this L1 distance of an edge's midpoint lies strictly inside every edge line but
   /// those of that edge and its two neighbours (0: no such bound), m
@@ -71,14 +71,14 @@ class PolyStore {
   std::size_t size() const { return n_.size(); }
 
  private:
-  void finish(std::size_t i);  // edges, mean, radius, longest edge from the vertices
+  void finish(std::size_t i);             // edges, mean, radius, longest edge from the vertices
   Vec2 edges(std::size_t i, double& l2);  // vertex 0 repeated; returns the vertex mean
   struct Meta {
     Vec2 mean;
     double radius = 0.0, len = 0.0;
     double near = 0.0;
   };
-  std::size_t stride_ = 0;     ///< the most vertices, plus one (the repeated vertex 0)
+  std::size_t stride_ = 0;    ///< the most vertices, plus one (the repeated vertex 0)
   std::vector<double> data_;  ///< per polygon: x, y, each `stride_` long
   std::vector<int> n_;
   std::vector<Meta> meta_;

@@ -33,8 +33,7 @@ void SemiImplicitEuler::correct(std::span<const Channel> ch, double dt) {
   correct_range(ch, 0, static_cast<std::size_t>(-1));
 }
 
-void SemiImplicitEuler::correct_range(std::span<const Channel> ch, std::size_t b,
-                                      std::size_t e) {
+void SemiImplicitEuler::correct_range(std::span<const Channel> ch, std::size_t b, std::size_t e) {
   const double dt = dt_;
   for (const auto& k : ch) {
     for (std::size_t i = b; i < std::min(e, k.q.size()); ++i) {

@@ -144,9 +144,8 @@ void Gear6::check_correct(std::span<const Channel> ch, double dt) const {
 
 void Gear6::correct(std::span<const Channel> ch, double dt) {
   check_correct(ch, dt);
-  for_channels(ch, kParallelMinGear, [&](std::size_t c, std::size_t b, std::size_t e) {
-    correct_dofs(ch[c], c, b, e);
-  });
+  for_channels(ch, kParallelMinGear,
+               [&](std::size_t c, std::size_t b, std::size_t e) { correct_dofs(ch[c], c, b, e); });
 }
 
 void Gear6::correct_range(std::span<const Channel> ch, std::size_t b, std::size_t e) {

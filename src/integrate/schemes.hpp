@@ -70,7 +70,7 @@ class Gear6 final : public Integrator {
   void note_velocities();  // vw_ := r1/Δt, after the history changed outside predict/correct
   ChannelLayout layout_;
   std::vector<double> perm_tmp_;  ///< permute()'s buffer, kept between sorts
-  double dt_ = 0.0;  ///< the Δt the derivatives are scaled with, s
+  double dt_ = 0.0;               ///< the Δt the derivatives are scaled with, s
   /// per channel, the 6 scaled derivatives r_k = Δt^k/k!·q⁽ᵏ⁾, DOF-major (r_k of DOF i at
   /// 6·i + k): a thread's DOFs are one block, so two threads meet at one place per channel
   /// (docs/threads.md), units
@@ -117,7 +117,7 @@ class VelocityVerlet final : public Integrator {
   bool fused_ = false;  ///< the caller kicks (fuse_kick): no v_{n+½} kept
   ChannelLayout layout_;
   std::vector<double> perm_tmp_;  ///< permute()'s buffer, kept between sorts
-  double dt_ = 0.0;                      ///< Δt of the last step, s
+  double dt_ = 0.0;               ///< Δt of the last step, s
   /// per channel, v_{n+½} during a step, unless the caller kicks (a_n is the channels' own
   /// acceleration: the last force evaluation's, which the caller keeps between steps)
   std::vector<std::vector<double>> vh_;

@@ -43,8 +43,10 @@ void vv_predict(std::size_t b, std::size_t e, double dt, const double* __restric
 template <bool kKeep>
 void vv_predict(std::size_t b, std::size_t e, double dt, bool half, const double* __restrict a,
                 double* __restrict vh, double* __restrict q, double* __restrict v) {
-  if (half) vv_predict<kKeep, true>(b, e, dt, a, vh, q, v);
-  else vv_predict<kKeep, false>(b, e, dt, a, vh, q, v);
+  if (half)
+    vv_predict<kKeep, true>(b, e, dt, a, vh, q, v);
+  else
+    vv_predict<kKeep, false>(b, e, dt, a, vh, q, v);
 }
 void vv_correct(std::size_t b, std::size_t e, double dt, const double* __restrict vh,
                 double* __restrict v, const double* __restrict an) {
@@ -86,8 +88,10 @@ void VelocityVerlet::predict(std::span<const Channel> ch, double dt) {
   const bool half = fv_ == VerletForceVelocity::HalfStep;
   for_channels(ch, kParallelMinCheap, [&](std::size_t c, std::size_t b, std::size_t e) {
     const double* a = ch[c].a.data();
-    if (fused_) vv_predict<false>(b, e, dt, half, a, nullptr, ch[c].q.data(), ch[c].v.data());
-    else vv_predict<true>(b, e, dt, half, a, vh_[c].data(), ch[c].q.data(), ch[c].v.data());
+    if (fused_)
+      vv_predict<false>(b, e, dt, half, a, nullptr, ch[c].q.data(), ch[c].v.data());
+    else
+      vv_predict<true>(b, e, dt, half, a, vh_[c].data(), ch[c].q.data(), ch[c].v.data());
   });
 }
 
@@ -109,8 +113,7 @@ void VelocityVerlet::correct_range(std::span<const Channel> ch, std::size_t b, s
   if (fused_) throw std::logic_error("VelocityVerlet::correct_range: the caller kicks (fuse_kick)");
   for (std::size_t c = 0; c < ch.size(); ++c) {
     const std::size_t n = ch[c].q.size();
-    vv_correct(std::min(b, n), std::min(e, n), dt_, vh_[c].data(), ch[c].v.data(),
-               ch[c].a.data());
+    vv_correct(std::min(b, n), std::min(e, n), dt_, vh_[c].data(), ch[c].v.data(), ch[c].a.data());
   }
 }
 
@@ -238,8 +241,7 @@ void PositionVerlet::zero_velocities(std::span<const Channel> ch) {
 
 void PositionVerlet::permute(std::span<const std::uint32_t> perm) {
   for (std::size_t c = 0; c < layout_.channels(); ++c)
-    for (auto* v : {&qp_[c], &qn_[c], &vn_[c], &a_[c]})
-      layout_.permute(*v, c, perm, 1, perm_tmp_);
+    for (auto* v : {&qp_[c], &qn_[c], &vn_[c], &a_[c]}) layout_.permute(*v, c, perm, 1, perm_tmp_);
 }
 
 // history: header, then q_{n−1}, q_n, v_n, a_n per channel

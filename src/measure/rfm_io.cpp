@@ -28,7 +28,9 @@ Histogram read_histogram_raw(const std::filesystem::path& path) {
   auto meta = [&](const char* k) {
     auto it = t.meta.find(k);
     if (it == t.meta.end())
-      throw InputError(where, k, "missing from the metadata (" + meta_path(path).filename().string() + " beside it): not a raw histogram");
+      throw InputError(where, k,
+                       "missing from the metadata (" + meta_path(path).filename().string() +
+                           " beside it): not a raw histogram");
     return it->second;
   };
   const int n = static_cast<int>(meta("n"));

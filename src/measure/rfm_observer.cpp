@@ -5,8 +5,8 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
-#include <stdexcept>
 #include <sstream>
+#include <stdexcept>
 
 #include "analysis/rfm_csv.hpp"
 #include "analysis/rfm_freepath.hpp"

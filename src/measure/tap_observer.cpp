@@ -42,7 +42,8 @@ void TapObserver::resume(const Simulation& sim, const std::string& run_dir, Byte
   const World& w = sim.world();
   grid_ = height_grid(w.Ly, dh_);
   taps_ = CsvWriter::append(run_dir + "/taps.csv", columns(scene_).size());
-  seg_ = CsvWriter::append(run_dir + "/segregation.csv", 2 + cumulative_count_names(w, grid_).size());
+  seg_ =
+      CsvWriter::append(run_dir + "/segregation.csv", 2 + cumulative_count_names(w, grid_).size());
   origin_seen_ = in.f64("taps: clock origin");
   early_ = in.u8("taps: early flag") != 0;
   relax_end_ = in.f64("taps: relaxation end");

@@ -22,8 +22,8 @@ void BisectionParams::validate() const {
   const double segments = static_cast<double>(realisations) * std::ldexp(1.0, levels);
   if (segments > kMaxBisectionSegments)
     throw InputError("bisection", "realisations",
-                     "realisations × 2^levels = " + std::to_string(segments) +
-                         " segments (about " + std::to_string(static_cast<long long>(segments / 1e8)) +
+                     "realisations × 2^levels = " + std::to_string(segments) + " segments (about " +
+                         std::to_string(static_cast<long long>(segments / 1e8)) +
                          " s at 10^8 segments per second); the limit is 10^11");
   if (bins < 1) throw InputError("bisection", "bins", "need at least 1");
   if (!(x_min > 0.0 && x_min < 1.0)) throw InputError("bisection", "x_min", "need 0 < x_min < 1");
@@ -108,7 +108,8 @@ BisectionResult run_bisection(const BisectionParams& p) {
     }
     // the boundaries as point-particles on a ring of length 1 (reduced coordinates, d = 0)
     boundaries.assign(1, 0.0);
-    for (std::size_t i = 0; i + 1 < seg.size(); ++i) boundaries.push_back(boundaries.back() + seg[i]);
+    for (std::size_t i = 0; i + 1 < seg.size(); ++i)
+      boundaries.push_back(boundaries.back() + seg[i]);
     gaps.add_snapshot(boundaries, 1.0);
   }
 
@@ -128,10 +129,12 @@ BisectionResult run_bisection(const BisectionParams& p) {
     bb.x = bins.centre(static_cast<int>(b));
     bb.p = d_sum[b] / nr;
     bb.p_err = stderr_of(d_sum[b], d_sum2[b]);
-    bb.p_exact = (bisection_cdf(bb.hi, p.levels) - bisection_cdf(bb.lo, p.levels)) / (bb.hi - bb.lo);
-    bb.p_exact_prev = p.levels > 1 ? (bisection_cdf(bb.hi, p.levels - 1) - bisection_cdf(bb.lo, p.levels - 1)) /
-                                         (bb.hi - bb.lo)
-                                   : 0.0;
+    bb.p_exact =
+        (bisection_cdf(bb.hi, p.levels) - bisection_cdf(bb.lo, p.levels)) / (bb.hi - bb.lo);
+    bb.p_exact_prev =
+        p.levels > 1 ? (bisection_cdf(bb.hi, p.levels - 1) - bisection_cdf(bb.lo, p.levels - 1)) /
+                           (bb.hi - bb.lo)
+                     : 0.0;
     bb.g1 = g1[b].p;
     bb.g2 = g2[b].p;
     out.bins.push_back(bb);

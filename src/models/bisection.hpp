@@ -21,13 +21,13 @@ namespace gs::models {
 
 /// settings of a bisection run
 struct BisectionParams {
-  int levels = 9;             ///< n: 2^n segments (the thesis uses 9)
-  long realisations = 2000;   ///< independent intervals
-  std::uint64_t seed = 1;     ///< random seed
-  int bins = 60;              ///< logarithmic bins of x
-  double x_min = 1e-9;        ///< lower edge of the bins (upper edge is 1)
-  int m_max = 6;              ///< highest moment ⟨x^m⟩
-  void validate() const;      ///< throws gs::InputError on bad values
+  int levels = 9;            ///< n: 2^n segments (the thesis uses 9)
+  long realisations = 2000;  ///< independent intervals
+  std::uint64_t seed = 1;    ///< random seed
+  int bins = 60;             ///< logarithmic bins of x
+  double x_min = 1e-9;       ///< lower edge of the bins (upper edge is 1)
+  int m_max = 6;             ///< highest moment ⟨x^m⟩
+  void validate() const;     ///< throws gs::InputError on bad values
 };
 
 /// segment lengths after `levels` bisections, in their order along [0, 1] (sum 1)
@@ -50,16 +50,16 @@ struct BisectionBin {
   double p_exact = 0.0;                ///< exact bin average of P_n
   double g1 = 0.0;                     ///< G₁ of the boundaries as particles (T.3.21)
   double g2 = 0.0;                     ///< G₂ of the same particles (T.3.24)
-  double p_exact_prev = 0.0;           ///< exact bin average of P_(n−1), the T.3.25 partner of G₂
+  double p_exact_prev = 0.0;  ///< exact bin average of P_(n−1), the T.3.25 partner of G₂
 };
 
 /// the measured and exact statistics of a run
 struct BisectionResult {
   int levels = 0;
   std::vector<BisectionBin> bins;
-  std::vector<double> moments;        ///< ⟨x^m⟩, m = 1…m_max
-  std::vector<double> moment_err;     ///< errors from the scatter between realisations
-  std::vector<double> moment_exact;   ///< (1+m)^(−n)
+  std::vector<double> moments;       ///< ⟨x^m⟩, m = 1…m_max
+  std::vector<double> moment_err;    ///< errors from the scatter between realisations
+  std::vector<double> moment_exact;  ///< (1+m)^(−n)
 };
 
 /// runs the process; realisation i uses the stream (seed, i)

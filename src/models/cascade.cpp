@@ -4,8 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
-#include <mutex>
 #include <limits>
+#include <mutex>
 #include <numbers>
 #include <string>
 
@@ -27,7 +27,8 @@ constexpr std::array<std::array<double, 4>, 4> kMeakin = {{{0.001, 0.15, 0.32, 0
                                                            {0.07, 0.26, 0.32, 0.36}}};
 
 std::array<double, 4> meakin_p(CascadeKind k) {
-  std::array<double, 4> p = kMeakin[static_cast<std::size_t>(k) - static_cast<std::size_t>(CascadeKind::meakin1)];
+  std::array<double, 4> p =
+      kMeakin[static_cast<std::size_t>(k) - static_cast<std::size_t>(CascadeKind::meakin1)];
   const double s = p[0] + p[1] + p[2] + p[3];
   for (double& v : p) v /= s;  // Meakin 3 and 4 do not sum to 1 as printed
   return p;
@@ -60,13 +61,20 @@ double ucp_sum_w2() {
 
 std::string_view cascade_name(CascadeKind k) {
   switch (k) {
-    case CascadeKind::ucp: return "ucp";
-    case CascadeKind::unoncp: return "unoncp";
-    case CascadeKind::symmetrised: return "symmetrised";
-    case CascadeKind::meakin1: return "meakin1";
-    case CascadeKind::meakin2: return "meakin2";
-    case CascadeKind::meakin3: return "meakin3";
-    case CascadeKind::meakin4: return "meakin4";
+    case CascadeKind::ucp:
+      return "ucp";
+    case CascadeKind::unoncp:
+      return "unoncp";
+    case CascadeKind::symmetrised:
+      return "symmetrised";
+    case CascadeKind::meakin1:
+      return "meakin1";
+    case CascadeKind::meakin2:
+      return "meakin2";
+    case CascadeKind::meakin3:
+      return "meakin3";
+    case CascadeKind::meakin4:
+      return "meakin4";
   }
   return "?";
 }
@@ -74,8 +82,9 @@ std::string_view cascade_name(CascadeKind k) {
 CascadeKind cascade_from_name(std::string_view name) {
   for (int i = 0; i <= static_cast<int>(CascadeKind::meakin4); ++i)
     if (cascade_name(static_cast<CascadeKind>(i)) == name) return static_cast<CascadeKind>(i);
-  throw InputError("cascade", "kind", "unknown cascade '" + std::string(name) +
-                                          "' (ucp, unoncp, symmetrised, meakin1…meakin4)");
+  throw InputError(
+      "cascade", "kind",
+      "unknown cascade '" + std::string(name) + "' (ucp, unoncp, symmetrised, meakin1…meakin4)");
 }
 
 std::array<double, 4> cascade_weights(CascadeKind kind, RngStream& rng) {
@@ -129,7 +138,8 @@ WeightMoments cascade_weight_moments(CascadeKind kind) {
     for (std::size_t q = 0; q < 4; ++q) {
       m.mean[q] = 0.5 * (diag[q] ? 0.25 : 0.75);
       for (std::size_t p = 0; p < 4; ++p) {
-        const double e = diag[q] && diag[p] ? 1.0 / 12.0 : (!diag[q] && !diag[p] ? 7.0 / 12.0 : 1.0 / 6.0);
+        const double e =
+            diag[q] && diag[p] ? 1.0 / 12.0 : (!diag[q] && !diag[p] ? 7.0 / 12.0 : 1.0 / 6.0);
         m.second[q][p] = 0.25 * e;
       }
     }
@@ -167,7 +177,8 @@ std::vector<double> cascade_field(CascadeKind kind, int levels, RngStream& rng) 
         const auto w = cascade_weights(kind, rng);
         const double mass = m[j * n + i];
         for (std::size_t h = 0; h < 2; ++h)
-          for (std::size_t g = 0; g < 2; ++g) next[(2 * j + h) * n2 + 2 * i + g] = mass * w[g + 2 * h];
+          for (std::size_t g = 0; g < 2; ++g)
+            next[(2 * j + h) * n2 + 2 * i + g] = mass * w[g + 2 * h];
       }
     m.swap(next);
   }
@@ -225,9 +236,13 @@ class FieldTransform {
     const int nh = n_ / 2 + 1;
     for (std::size_t i = 0; i < modes_.size(); ++i) {
       int kx = modes_[i].nx, ky = modes_[i].ny;
-      if (kx < 0) { kx = -kx; ky = -ky; }
+      if (kx < 0) {
+        kx = -kx;
+        ky = -ky;
+      }
       const int row = (ky % n_ + n_) % n_;
-      const fftw_complex& c = out_[static_cast<std::size_t>(row) * static_cast<std::size_t>(nh) + static_cast<std::size_t>(kx)];
+      const fftw_complex& c = out_[static_cast<std::size_t>(row) * static_cast<std::size_t>(nh) +
+                                   static_cast<std::size_t>(kx)];
       s[i] = c[0] * c[0] + c[1] * c[1];
     }
 #else
@@ -235,17 +250,19 @@ class FieldTransform {
     const double w = 2.0 * std::numbers::pi / n_;
     int nm = 0;
     for (const auto& md : modes_) nm = std::max(nm, std::abs(md.nx));
-    std::vector<std::complex<double>> rows(static_cast<std::size_t>(n_) * (2 * nm + 1));
+    std::vector<std::complex<double> > rows(static_cast<std::size_t>(n_) * (2 * nm + 1));
     for (int y = 0; y < n_; ++y)
       for (int kx = -nm; kx <= nm; ++kx) {
         std::complex<double> acc = 0.0;
-        for (int x = 0; x < n_; ++x) acc += m[static_cast<std::size_t>(y * n_ + x)] * std::polar(1.0, -w * kx * x);
+        for (int x = 0; x < n_; ++x)
+          acc += m[static_cast<std::size_t>(y * n_ + x)] * std::polar(1.0, -w * kx * x);
         rows[static_cast<std::size_t>(y * (2 * nm + 1) + kx + nm)] = acc;
       }
     for (std::size_t i = 0; i < modes_.size(); ++i) {
       std::complex<double> acc = 0.0;
       for (int y = 0; y < n_; ++y)
-        acc += rows[static_cast<std::size_t>(y * (2 * nm + 1) + modes_[i].nx + nm)] * std::polar(1.0, -w * modes_[i].ny * y);
+        acc += rows[static_cast<std::size_t>(y * (2 * nm + 1) + modes_[i].nx + nm)] *
+               std::polar(1.0, -w * modes_[i].ny * y);
       s[i] = std::norm(acc);
     }
 #endif
@@ -319,14 +336,16 @@ std::vector<rfm::SkShell> cascade_expected_sk(CascadeKind kind, int levels, int 
   // E|F|² by recursion from the finest cells up: F_c = Σ_q W_q e^(i k·δ_q) F_q with independent
   // children of mean μ and mean square s; δ_q the child's offset from its parent's centre
   for (const rfm::SkMode& md : rfm::half_plane_modes(n_max)) {
-    const double kx = 2.0 * std::numbers::pi * md.nx / box, ky = 2.0 * std::numbers::pi * md.ny / box;
+    const double kx = 2.0 * std::numbers::pi * md.nx / box,
+                 ky = 2.0 * std::numbers::pi * md.ny / box;
     double s = 1.0;
     std::complex<double> mu = 1.0;
     for (int lev = levels; lev >= 1; --lev) {
       const double h = box / std::ldexp(1.0, lev);
       std::array<std::complex<double>, 4> ph;
       for (int q = 0; q < 4; ++q)
-        ph[static_cast<std::size_t>(q)] = std::polar(1.0, kx * ((q % 2) - 0.5) * h + ky * ((q / 2) - 0.5) * h);
+        ph[static_cast<std::size_t>(q)] =
+            std::polar(1.0, kx * ((q % 2) - 0.5) * h + ky * ((q / 2) - 0.5) * h);
       double sn = 0.0;
       std::complex<double> mn = 0.0;
       for (std::size_t q = 0; q < 4; ++q) {
@@ -350,8 +369,12 @@ void write_cascade_csv(const std::filesystem::path& path, const CascadeResult& r
                        const rfm::DfFit* fit) {
   rfm::CsvMeta meta = {{"D2", correlation_dimension(kind)}, {"mass_mean", r.mass_mean}};
   if (fit) {
-    meta.insert(meta.end(), {{"D_f", fit->d_f}, {"D_f_err", fit->d_f_err}, {"A", fit->amplitude},
-                             {"k_lo", fit->k_lo}, {"k_hi", fit->k_hi}, {"chi2_r", fit->chi2_r}});
+    meta.insert(meta.end(), {{"D_f", fit->d_f},
+                             {"D_f_err", fit->d_f_err},
+                             {"A", fit->amplitude},
+                             {"k_lo", fit->k_lo},
+                             {"k_hi", fit->k_hi},
+                             {"chi2_r", fit->chi2_r}});
   }
   rfm::CsvWriter w(path, {"k", "n", "S", "S_err", "S_exact"}, meta);
   for (std::size_t i = 0; i < r.shells.size(); ++i) {

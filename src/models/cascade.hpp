@@ -37,7 +37,7 @@ std::array<double, 4> cascade_weights(CascadeKind kind, RngStream& rng);
 
 /// the exact first and second moments of the four weights
 struct WeightMoments {
-  std::array<double, 4> mean{};                  ///< E[W_q]
+  std::array<double, 4> mean{};                   ///< E[W_q]
   std::array<std::array<double, 4>, 4> second{};  ///< E[W_q W_p]
 };
 WeightMoments cascade_weight_moments(CascadeKind kind);

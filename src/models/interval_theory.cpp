@@ -33,7 +33,8 @@ double hyp2f1(double a, double b, double c, double z) {
   const double w = 1.0 - z;
   const double t1 = std::tgamma(c) * std::tgamma(s) / (std::tgamma(c - a) * std::tgamma(c - b));
   const double t2 = std::tgamma(c) * std::tgamma(-s) / (std::tgamma(a) * std::tgamma(b));
-  return t1 * series(a, b, 1.0 - s, w) + (w > 0.0 ? t2 * std::pow(w, s) * series(c - a, c - b, 1.0 + s, w) : 0.0);
+  return t1 * series(a, b, 1.0 - s, w) +
+         (w > 0.0 ? t2 * std::pow(w, s) * series(c - a, c - b, 1.0 + s, w) : 0.0);
 }
 
 double tanh_sinh(const std::function<double(double, double, double)>& f, double a, double b) {
@@ -78,9 +79,10 @@ double appendix_b_density(double xi, double u) {
       },
       0.0, xi);
   // the source term
-  const double i2 = tanh_sinh(
-      [u3](double, double y, double) { return std::pow(y, -2.0 / 3.0) * std::exp(-u3 / (9.0 * y)); },
-      0.0, xi);
+  const double i2 =
+      tanh_sinh([u3](double, double y,
+                     double) { return std::pow(y, -2.0 / 3.0) * std::exp(-u3 / (9.0 * y)); },
+                0.0, xi);
   return -k_const() * i1 + i2;
 }
 
@@ -97,7 +99,8 @@ double appendix_b_mean_exit_time_coefficient() {
                (std::pow(1.0 - y, 2.0 / 3.0) - std::pow(y, 2.0 / 3.0));
       },
       0.0, 0.5);
-  return std::tgamma(4.0 / 3.0) * std::cbrt(3.0) / std::tgamma(2.0 / 3.0) * (0.9 - 1.5 * k_const() * j);
+  return std::tgamma(4.0 / 3.0) * std::cbrt(3.0) / std::tgamma(2.0 / 3.0) *
+         (0.9 - 1.5 * k_const() * j);
 }
 
 }  // namespace gs::models

@@ -41,12 +41,17 @@ namespace {
 struct Moments {
   double s = 0.0, s2 = 0.0;
   long n = 0;
-  void add(double x) { s += x; s2 += x * x; ++n; }
+  void add(double x) {
+    s += x;
+    s2 += x * x;
+    ++n;
+  }
   double mean() const { return n ? s / static_cast<double>(n) : 0.0; }
   double err() const {
     if (n < 2) return 0.0;
     const double m = mean();
-    return std::sqrt(std::max(0.0, (s2 / static_cast<double>(n) - m * m) / static_cast<double>(n - 1)));
+    return std::sqrt(
+        std::max(0.0, (s2 / static_cast<double>(n) - m * m) / static_cast<double>(n - 1)));
   }
 };
 
@@ -150,7 +155,10 @@ WalkResult disc_walk_spm(const WalkParams& p, const PathTable& table) {
   // the smallest region with weight sets the step; the median sets the histogram range
   double l_small = table.l.front();
   for (std::size_t i = 0; i + 1 < table.l.size(); ++i)
-    if (cdf[i + 1] > 0.0) { l_small = table.l[i] > 0 ? table.l[i] : table.l[i + 1]; break; }
+    if (cdf[i + 1] > 0.0) {
+      l_small = table.l[i] > 0 ? table.l[i] : table.l[i + 1];
+      break;
+    }
   const double l_med = table.l[static_cast<std::size_t>(
       std::lower_bound(cdf.begin(), cdf.end(), 0.5 * cdf.back()) - cdf.begin())];
   const double dt = p.dt > 0.0 ? p.dt : walk_time_scale(p, l_small) / 50.0;
@@ -163,7 +171,8 @@ WalkResult disc_walk_spm(const WalkParams& p, const PathTable& table) {
     RngStream rng(p.seed, static_cast<std::uint64_t>(w));
     // l by inverting the distribution function: a linear density within the segment
     const double u = rng.uniform() * cdf.back();
-    const auto i = static_cast<std::size_t>(std::upper_bound(cdf.begin(), cdf.end(), u) - cdf.begin()) - 1;
+    const auto i =
+        static_cast<std::size_t>(std::upper_bound(cdf.begin(), cdf.end(), u) - cdf.begin()) - 1;
     const std::size_t j = std::min(i, cdf.size() - 2);
     const double w0 = table.l[j + 1] - table.l[j], p0 = table.p[j], p1 = table.p[j + 1];
     const double need = u - cdf[j], slope = (p1 - p0) / w0;
@@ -298,8 +307,8 @@ void write_walk_csv(const std::filesystem::path& path, const WalkResult& r, cons
     w.row({qb[i].x, qb[i].x / vs, qb[i].count, qb[i].p, qb[i].p_err, qb[i].p * vs, ab[i].p});
 }
 
-void write_interval_csv(const std::filesystem::path& path, const WalkResult& r,
-                        const WalkParams& p, double length) {
+void write_interval_csv(const std::filesystem::path& path, const WalkResult& r, const WalkParams& p,
+                        double length) {
   // arrivals at x = L in u = v/(D_v L)^(1/3), normalised over u > 0, beside B.32
   const double vs = walk_velocity_scale(p, length);
   const double tau_theory = appendix_b_mean_exit_time_coefficient() * walk_time_scale(p, length);

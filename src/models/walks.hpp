@@ -32,7 +32,7 @@ struct WalkParams {
   double v_max = 0.0;      ///< velocity histogram half-range, m/s; 0 → 8 (D l/M²)^(1/3)
   int bins = 400;          ///< velocity histogram bins
   long max_steps = 100'000'000;  ///< safety cap on the steps of one walk
-  void validate() const;   ///< throws gs::InputError on bad values
+  void validate() const;         ///< throws gs::InputError on bad values
 };
 
 /// (D l/M²)^(1/3): the velocity scale of a walk in a region of size l, m/s
@@ -42,19 +42,19 @@ double walk_time_scale(const WalkParams& p, double l);
 
 /// statistics of many absorbed walks
 struct WalkResult {
-  int dim = 2;                   ///< 1 (interval) or 2 (disc)
-  double dt = 0.0;               ///< time step used, s
-  rfm::Histogram q;              ///< velocity components sampled every step: Q(v, l)
-  rfm::Histogram arrival;        ///< velocity that crossed the boundary (1D: at x = L only)
-  long walks = 0;                ///< walks simulated
-  long samples = 0;              ///< velocity samples (steps × dim)
-  double mean_exit_time = 0.0;   ///< ⟨τ⟩, s
-  double exit_time_err = 0.0;    ///< its standard error, s
-  double mean_v2 = 0.0;          ///< ⟨v_x²⟩ over the time samples (components pooled), m²/s²
-  double mean_region = 0.0;      ///< mean l (disc radius or interval length), m
+  int dim = 2;                  ///< 1 (interval) or 2 (disc)
+  double dt = 0.0;              ///< time step used, s
+  rfm::Histogram q;             ///< velocity components sampled every step: Q(v, l)
+  rfm::Histogram arrival;       ///< velocity that crossed the boundary (1D: at x = L only)
+  long walks = 0;               ///< walks simulated
+  long samples = 0;             ///< velocity samples (steps × dim)
+  double mean_exit_time = 0.0;  ///< ⟨τ⟩, s
+  double exit_time_err = 0.0;   ///< its standard error, s
+  double mean_v2 = 0.0;         ///< ⟨v_x²⟩ over the time samples (components pooled), m²/s²
+  double mean_region = 0.0;     ///< mean l (disc radius or interval length), m
   double heating_residual = 0.0, heating_residual_err = 0.0;  ///< ⟨|v_τ|² − 2 dim D_v τ⟩, m²/s²
-  double virial_residual = 0.0, virial_residual_err = 0.0;    ///< ⟨Δr·v_τ − Σ|v|²Δt⟩, m²/s
-  long capped = 0;               ///< walks stopped by max_steps (should be 0)
+  double virial_residual = 0.0, virial_residual_err = 0.0;  ///< ⟨Δr·v_τ − Σ|v|²Δt⟩, m²/s
+  long capped = 0;  ///< walks stopped by max_steps (should be 0)
 };
 
 /// Q(v, l) of a particle started at rest at the centre of a disc of radius l (§5.3.1)
@@ -101,8 +101,8 @@ void write_walk_csv(const std::filesystem::path& path, const WalkResult& r, cons
 /// the arrivals at x = L of an interval_walk against appendix B: columns u = v/(D_v L)^(1/3),
 /// count, f, f_err (normalised over u > 0), f_theory (B.32); metadata mean_exit_time and
 /// mean_exit_time_theory (uniform release)
-void write_interval_csv(const std::filesystem::path& path, const WalkResult& r,
-                        const WalkParams& p, double length);
+void write_interval_csv(const std::filesystem::path& path, const WalkResult& r, const WalkParams& p,
+                        double length);
 /// columns t, v2, v2_err, v2_exact, x2, x2_err, x2_exact
 void write_heating_csv(const std::filesystem::path& path, const HeatingCurve& h,
                        const WalkParams& p);

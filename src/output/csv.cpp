@@ -1,12 +1,12 @@
 #include "output/csv.hpp"
 
-#include <cerrno>
-#include <cstring>
-#include <stdexcept>
-
 #include <stdio_ext.h>
 #include <sys/stat.h>
 #include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <stdexcept>
 
 #include "core/error.hpp"
 

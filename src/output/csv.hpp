@@ -13,7 +13,9 @@ class CsvWriter {
   CsvWriter(const std::string& path, const std::vector<std::string>& columns);
   /// reopen an existing series to append rows (a resumed run; its header is already there)
   static CsvWriter append(const std::string& path, std::size_t columns);
-  CsvWriter(CsvWriter&& o) noexcept : f_(o.f_), path_(std::move(o.path_)), ncol_(o.ncol_) { o.f_ = nullptr; }
+  CsvWriter(CsvWriter&& o) noexcept : f_(o.f_), path_(std::move(o.path_)), ncol_(o.ncol_) {
+    o.f_ = nullptr;
+  }
   CsvWriter& operator=(CsvWriter&& o) noexcept;
   ~CsvWriter();
   /// one row, flushed; throws std::runtime_error naming the path if the write fails

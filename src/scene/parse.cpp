@@ -11,10 +11,10 @@
 #include <limits>
 #include <sstream>
 
+#include "core/input_file.hpp"
 #include "scene/reader.hpp"
 #include "scene/render_section.hpp"
 #include "scene/rfm_section.hpp"
-#include "core/input_file.hpp"
 #include "scene/snapshot_section.hpp"
 
 namespace gs {
@@ -47,8 +47,9 @@ std::string line_of(const toml::node& n) { return std::to_string(n.source().begi
 // [model]
 
 void read_model(const Ctx& ctx, const TableReader& top, SceneSpec& s) {
-  TableReader r(ctx, table_or_empty(sub_table(top, "model")), "model",
-                {"kind", "hdot_finite_difference", "rocking_damping", "clip_attractive", "rotation"});
+  TableReader r(
+      ctx, table_or_empty(sub_table(top, "model")), "model",
+      {"kind", "hdot_finite_difference", "rocking_damping", "clip_attractive", "rotation"});
   s.model.kind = r.choice("kind", ModelKind::P);
   s.model.hdot_finite_difference = r.boolean("hdot_finite_difference", false);
   s.model.rocking_damping = r.boolean("rocking_damping", true);
@@ -197,8 +198,10 @@ void read_box(const Ctx& ctx, const TableReader& top, SceneSpec& s) {
       r.fail(k, m.str());
     }
   };
-  if (b.reduced_length) bound("reduced_length", *b.reduced_length);
-  else bound("width", b.width);
+  if (b.reduced_length)
+    bound("reduced_length", *b.reduced_length);
+  else
+    bound("width", b.width);
   if (b.kind != BoxKind::Ring1D) bound("height", b.height);
 }
 
@@ -207,10 +210,9 @@ void read_box(const Ctx& ctx, const TableReader& top, SceneSpec& s) {
 
 void read_preparation(const Ctx& ctx, const TableReader& top, SceneSpec& s,
                       const std::vector<SpeciesRead>& species) {
-  TableReader r(
-      ctx, table_or_empty(sub_table(top, "preparation")), "preparation",
-      {"placement", "seed", "column_height", "velocity_amplitude", "settle_time", "particle",
-       "from_state"});
+  TableReader r(ctx, table_or_empty(sub_table(top, "preparation")), "preparation",
+                {"placement", "seed", "column_height", "velocity_amplitude", "settle_time",
+                 "particle", "from_state"});
   PreparationSpec& p = s.prep;
   // a loose column needs a floor; periodic boxes and rings default to random placement
   p.placement = r.choice("placement", s.box.kind == BoxKind::Walls ? PlacementKind::LooseColumn
@@ -235,8 +237,9 @@ void read_preparation(const Ctx& ctx, const TableReader& top, SceneSpec& s,
   // explicit particles: the species may be omitted when there is only one
   auto tables = scene_detail::table_array(r, "particle");
   if (!tables.empty() && !p.from_state.empty())
-    r.fail("from_state", "cannot be combined with [[preparation.particle]] entries: the saved "
-                         "state gives every grain");
+    r.fail("from_state",
+           "cannot be combined with [[preparation.particle]] entries: the saved "
+           "state gives every grain");
   std::vector<std::int64_t> listed(s.species.size(), 0);
   for (std::size_t i = 0; i < tables.size(); ++i) {
     TableReader q(ctx, *tables[i], "preparation.particle[" + std::to_string(i) + "]",
@@ -273,8 +276,9 @@ void read_preparation(const Ctx& ctx, const TableReader& top, SceneSpec& s,
       s.species[k].count_given = species[k].count.has_value();
       s.species[k].count = static_cast<int>(species[k].count.value_or(0));
       if (!species[k].count && s.box.reduced_length)
-        sr.fail("count", "missing: box.reduced_length needs every count, also with "
-                         "preparation.from_state");
+        sr.fail("count",
+                "missing: box.reduced_length needs every count, also with "
+                "preparation.from_state");
     } else if (tables.empty()) {
       if (!species[k].count)
         sr.fail("count", "missing: required (number of grains, an integer >= 0)");
@@ -308,8 +312,9 @@ void read_integrator(const Ctx& ctx, const TableReader& top, SceneSpec& s) {
   s.integrator.broad_phase = r.choice("broad_phase", BroadPhaseKind::Auto);
   s.integrator.sort_every = static_cast<int>(r.integer("sort_every", -1, -1, kIntMax));
   if (s.integrator.sort_every > 0 && s.model.kind == ModelKind::P)
-    r.fail("sort_every", "spatial sorting is for disk scenes (Model S); polygon contacts keep "
-                         "a directed history. Use 0 or -1 (auto)");
+    r.fail("sort_every",
+           "spatial sorting is for disk scenes (Model S); polygon contacts keep "
+           "a directed history. Use 0 or -1 (auto)");
   if (s.integrator.sort_every > 0 && s.box.kind == BoxKind::Ring1D)
     r.fail("sort_every", "the 1D ring keeps its particles in ring order; use 0 or -1 (auto)");
 }
@@ -318,11 +323,10 @@ void read_integrator(const Ctx& ctx, const TableReader& top, SceneSpec& s) {
 // [drive]: every key is checked whatever the kind, so an override can switch kinds
 
 void read_drive(const Ctx& ctx, const TableReader& top, SceneSpec& s) {
-  TableReader r(
-      ctx, table_or_empty(sub_table(top, "drive")), "drive",
-      {"kind", "g", "gx", "gy", "g_p", "t1", "period", "f", "relax", "D", "com_removal_every",
-       "early_rest", "rest_speed", "rest_energy", "rest_hold", "quench", "quench_speed",
-       "quench_hold", "taps"});
+  TableReader r(ctx, table_or_empty(sub_table(top, "drive")), "drive",
+                {"kind", "g", "gx", "gy", "g_p", "t1", "period", "f", "relax", "D",
+                 "com_removal_every", "early_rest", "rest_speed", "rest_energy", "rest_hold",
+                 "quench", "quench_speed", "quench_hold", "taps"});
   DriveSpec& d = s.drive;
   // closed boxes fall under gravity by default; periodic boxes and rings are undriven
   d.kind = r.choice("kind", s.box.kind == BoxKind::Walls ? DriveKind::Gravity : DriveKind::None);
@@ -379,8 +383,8 @@ void read_health(const Ctx& ctx, const TableReader& top, SceneSpec& s) {
 
 void read_output(const Ctx& ctx, const TableReader& top, SceneSpec& s) {
   TableReader r(ctx, table_or_empty(sub_table(top, "output")), "output",
-                {"series_every", "final_state", "test_rect", "discard_taps",
-                 "checkpoint_minutes", "checkpoint_taps", "checkpoint_steps", "snapshots"});
+                {"series_every", "final_state", "test_rect", "discard_taps", "checkpoint_minutes",
+                 "checkpoint_taps", "checkpoint_steps", "snapshots"});
   OutputSpec& o = s.output;
   o.series_every = static_cast<int>(r.integer("series_every", o.series_every, 1, kIntMax));
   o.final_state = r.boolean("final_state", o.final_state);
@@ -428,12 +432,14 @@ void read_scene(const Ctx& ctx, const TableReader& top, SceneSpec& s) {
   std::string stem = std::filesystem::path(ctx.file).stem().string();
   s.name = r.string("name", stem.empty() ? "scene" : stem, true);
   // the name becomes a folder under runs/: it must stay one folder there
-  const bool control =
-      std::any_of(s.name.begin(), s.name.end(), [](char c) { return static_cast<unsigned char>(c) < 32; });
+  const bool control = std::any_of(s.name.begin(), s.name.end(),
+                                   [](char c) { return static_cast<unsigned char>(c) < 32; });
   if (s.name.empty() || s.name[0] == '.' || s.name.find_first_of("/\\") != std::string::npos ||
       control)
-    r.fail("name", "must be a plain folder name (no '/', '\\', leading '.', or control "
-                   "characters; got " + quote(s.name) + ")");
+    r.fail("name",
+           "must be a plain folder name (no '/', '\\', leading '.', or control "
+           "characters; got " +
+               quote(s.name) + ")");
   s.description = r.string("description", "", false);
   s.duration = r.number("duration", s.duration, Range::positive());
 }

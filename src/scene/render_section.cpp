@@ -18,10 +18,10 @@ constexpr EnumName<RenderSchedule> kSchedule[] = {{"time", RenderSchedule::Time}
                                                   {"rest", RenderSchedule::Rest}};
 constexpr std::string_view kColorBy[] = {"speed",    "speed_rms", "species", "vy",
                                          "contacts", "pressure",  "uniform"};
-constexpr std::string_view kColormaps[] = {"viridis",   "magma", "coolwarm", "grayscale",
-                                           "gray",      "turbo", "jet"};
+constexpr std::string_view kColormaps[] = {"viridis", "magma", "coolwarm", "grayscale",
+                                           "gray",    "turbo", "jet"};
 constexpr std::string_view kRenderers[] = {"auto", "gl", "software"};
-constexpr std::string_view kPresets[] = {"ultrafast", "superfast", "veryfast", "faster", "fast",
+constexpr std::string_view kPresets[] = {"ultrafast", "superfast", "veryfast", "faster",  "fast",
                                          "medium",    "slow",      "slower",   "veryslow"};
 
 }  // namespace
@@ -63,11 +63,10 @@ std::array<double, N> numbers(const TableReader& r, std::string_view k, const to
     std::optional<double> v;
     if (auto f = e.as_floating_point()) v = f->get();
     if (auto q = e.as_integer()) v = static_cast<double>(q->get());
-    if (!v)
-      r.fail(k, form + "; element " + std::to_string(i) + " is " + std::string(type_name(e)));
+    if (!v) r.fail(k, form + "; element " + std::to_string(i) + " is " + std::string(type_name(e)));
     if (!std::isfinite(*v))
-      r.fail(k, "element " + std::to_string(i) + " must be a finite number (got " +
-                    node_text(e) + ")");
+      r.fail(k, "element " + std::to_string(i) + " must be a finite number (got " + node_text(e) +
+                    ")");
     out[i] = *v;
   }
   return out;
@@ -99,10 +98,11 @@ void read_render(const Ctx& ctx, const TableReader& top, SceneSpec& s) {
   const toml::table* t = sub_table(top, "render");
   static const toml::table empty;
   TableReader r(ctx, t ? *t : empty, "render",
-                {"enabled", "frames", "movie", "schedule", "every", "fps", "slowmo", "start",
-                 "size", "msaa", "camera", "margin", "color_by", "colormap", "range", "colorbar",
-                 "force_chains", "gravity_arrow", "test_rect", "clock", "title", "crf", "preset",
-                 "renderer", "trajectory_every"});
+                {"enabled",  "frames",       "movie",         "schedule",  "every",
+                 "fps",      "slowmo",       "start",         "size",      "msaa",
+                 "camera",   "margin",       "color_by",      "colormap",  "range",
+                 "colorbar", "force_chains", "gravity_arrow", "test_rect", "clock",
+                 "title",    "crf",          "preset",        "renderer",  "trajectory_every"});
   RenderSpec& o = s.render;
   // outputs: nothing is recorded unless asked (a --set render.* must not start a movie)
   o.enabled = r.boolean("enabled", false);
@@ -114,12 +114,12 @@ void read_render(const Ctx& ctx, const TableReader& top, SceneSpec& s) {
 
   // schedule: per simulated time, per steps, or at the tapping protocol's phases
   o.schedule = r.choice("schedule", RenderSchedule::Time);
-  const bool tapping =
-      s.drive.kind == DriveKind::NegativeG || s.drive.kind == DriveKind::RotatingG;
+  const bool tapping = s.drive.kind == DriveKind::NegativeG || s.drive.kind == DriveKind::RotatingG;
   if ((o.schedule == RenderSchedule::Taps || o.schedule == RenderSchedule::Rest) && !tapping)
     r.fail("schedule", "\"" + std::string(scene_name(o.schedule)) +
                            "\" needs a tapping drive (drive.kind = \"negative_g\" or "
-                           "\"rotating_g\"; got " + quote(scene_name(s.drive.kind)) + ")");
+                           "\"rotating_g\"; got " +
+                           quote(scene_name(s.drive.kind)) + ")");
   o.every = static_cast<int>(r.integer("every", o.every, 1, INT_MAX));
   o.fps = static_cast<int>(r.integer("fps", o.fps, 1, 240));
   o.slowmo = r.number("slowmo", o.slowmo, Range::positive());

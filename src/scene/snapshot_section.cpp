@@ -37,8 +37,8 @@ void read_snapshots(const TableReader& output, SceneSpec& s) {
       if (auto f = e.as_floating_point()) v = f->get();
       if (auto q = e.as_integer()) v = static_cast<double>(q->get());
       if (!v)
-        r.fail("times", form + "; element " + std::to_string(i) + " is " +
-                            std::string(type_name(e)));
+        r.fail("times",
+               form + "; element " + std::to_string(i) + " is " + std::string(type_name(e)));
       if (!std::isfinite(*v) || *v < 0.0)
         r.fail("times", "element " + std::to_string(i) + " must be a finite time >= 0 s (got " +
                             node_text(e) + ")");
@@ -49,8 +49,7 @@ void read_snapshots(const TableReader& output, SceneSpec& s) {
     }
   }
   o.at_taps = r.boolean("at_taps", false);
-  const bool tapping =
-      s.drive.kind == DriveKind::NegativeG || s.drive.kind == DriveKind::RotatingG;
+  const bool tapping = s.drive.kind == DriveKind::NegativeG || s.drive.kind == DriveKind::RotatingG;
   if (o.at_taps && !tapping)
     r.fail("at_taps", "needs a tapping drive (drive.kind = \"negative_g\" or \"rotating_g\"; got " +
                           quote(scene_name(s.drive.kind)) + ")");
@@ -62,8 +61,8 @@ void read_snapshots(const TableReader& output, SceneSpec& s) {
     for (std::size_t i = 0; i < a.size(); ++i) {
       const auto* e = a[i].as_string();
       if (!e)
-        r.fail("formats", form + "; element " + std::to_string(i) + " is " +
-                              std::string(type_name(a[i])));
+        r.fail("formats",
+               form + "; element " + std::to_string(i) + " is " + std::string(type_name(a[i])));
       const std::string v = e->get();
       if (v != "vtp" && v != "xyz")
         r.fail("formats", "element " + std::to_string(i) + " must be \"vtp\" or \"xyz\" (got " +

@@ -23,8 +23,8 @@ std::string encode_checkpoint(const Simulation& sim, const CheckpointExtras& ext
   p.i64(s.step);
   p.u64(w.size());
   p.i32s(w.sp);
-  for (const auto* v : {&w.radius, &w.mass, &w.inv_mass, &w.inv_inertia, &s.x, &s.y, &s.th,
-                        &s.vx, &s.vy, &s.w, &s.ax, &s.ay, &s.aw})
+  for (const auto* v : {&w.radius, &w.mass, &w.inv_mass, &w.inv_inertia, &s.x, &s.y, &s.th, &s.vx,
+                        &s.vy, &s.w, &s.ax, &s.ay, &s.aw})
     p.f64s(*v);
   p.i32s(s.wrap_x);
   p.i32s(s.wrap_y);
@@ -77,37 +77,40 @@ Simulation restore_simulation(const Checkpoint& c) {
   const std::size_t n = c.sp.size();
   for (std::size_t i = 0; i < n; ++i) {
     if (c.sp[i] < 0 || static_cast<std::size_t>(c.sp[i]) >= w.species.size())
-      throw InputError(c.path, "", "particle " + std::to_string(i) + " has unknown species " +
-                                       std::to_string(c.sp[i]));
+      throw InputError(
+          c.path, "",
+          "particle " + std::to_string(i) + " has unknown species " + std::to_string(c.sp[i]));
     for (const auto* v : {&c.s.x, &c.s.y, &c.s.th, &c.s.vx, &c.s.vy, &c.s.w, &c.s.ax, &c.s.ay,
                           &c.s.aw, &c.radius, &c.mass, &c.inv_mass, &c.inv_inertia})
       if (!std::isfinite((*v)[i]))
         throw InputError(c.path, "", "particle " + std::to_string(i) + " has a non-finite value");
     w.add_particle(c.sp[i], {c.s.x[i], c.s.y[i]}, c.s.th[i]);
   }
-  if (!std::isfinite(c.s.t) || c.s.step < 0)
-    throw InputError(c.path, "", "bad time or step count");
+  if (!std::isfinite(c.s.t) || c.s.step < 0) throw InputError(c.path, "", "bad time or step count");
   // a run's time is its step count times dt: anything else (a time of 10³⁸ s) would overflow
   // the protocol's tap count
   const double t_steps = static_cast<double>(c.s.step) * scene.integrator.dt;
   if (c.s.step > 1'000'000'000'000'000 ||
       !(std::abs(c.s.t - t_steps) <= 1e-9 * std::max(1.0, std::abs(t_steps))))
-    throw InputError(c.path, "", "the time t = " + std::to_string(c.s.t) + " s is not step " +
-                                     std::to_string(c.s.step) + " × integrator.dt");
+    throw InputError(c.path, "",
+                     "the time t = " + std::to_string(c.s.t) + " s is not step " +
+                         std::to_string(c.s.step) + " × integrator.dt");
   // per-grain constants: positive, and for polygons exactly the species' (the contact model's
   // pair constants stand for every grain of a species)
   for (std::size_t i = 0; i < n; ++i) {
     const Species& k = w.species[static_cast<std::size_t>(c.sp[i])];
-    const bool positive = c.radius[i] > 0 && c.mass[i] > 0 && c.inv_mass[i] > 0 &&
-                          c.inv_inertia[i] >= 0;
-    const bool species = !w.polygons() ||
-                         (c.radius[i] == k.radius && c.mass[i] == k.mass &&
-                          c.inv_mass[i] == 1.0 / k.mass &&
-                          c.inv_inertia[i] == (k.inertia > 0 ? 1.0 / k.inertia : 0.0));
+    const bool positive =
+        c.radius[i] > 0 && c.mass[i] > 0 && c.inv_mass[i] > 0 && c.inv_inertia[i] >= 0;
+    const bool species =
+        !w.polygons() ||
+        (c.radius[i] == k.radius && c.mass[i] == k.mass && c.inv_mass[i] == 1.0 / k.mass &&
+         c.inv_inertia[i] == (k.inertia > 0 ? 1.0 / k.inertia : 0.0));
     if (!positive || !species)
-      throw InputError(c.path, "", "particle " + std::to_string(i) +
-                                       " has a radius, mass or inertia that is not its species' "
-                                       "(species '" + k.name + "')");
+      throw InputError(c.path, "",
+                       "particle " + std::to_string(i) +
+                           " has a radius, mass or inertia that is not its species' "
+                           "(species '" +
+                           k.name + "')");
   }
   w.sp.assign(c.sp.begin(), c.sp.end());
   w.id.assign(c.id.begin(), c.id.end());

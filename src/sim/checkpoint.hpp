@@ -29,17 +29,17 @@ struct CheckpointExtras {
 
 /// the decoded contents of a checkpoint file
 struct Checkpoint {
-  std::string path;            ///< file it was read from (for messages)
-  std::string scene_toml;      ///< scene_to_toml of the World's scene
-  double clock_origin = 0.0;   ///< drive.clock_origin (a run-time value, not a scene key), s
+  std::string path;           ///< file it was read from (for messages)
+  std::string scene_toml;     ///< scene_to_toml of the World's scene
+  double clock_origin = 0.0;  ///< drive.clock_origin (a run-time value, not a scene key), s
   // per-particle constants (kept, not recomputed, so nothing depends on re-derivation)
   std::vector<std::int32_t> sp;
   std::vector<double> radius, mass, inv_mass, inv_inertia;
-  State s;                     ///< positions, velocities, accelerations, wraps, t, step
+  State s;                       ///< positions, velocities, accelerations, wraps, t, step
   std::vector<std::int32_t> id;  ///< each slot's particle label (version 1: the slot itself)
-  std::uint8_t integrator = 0; ///< IntegratorKind of the history below
-  std::vector<double> integ;   ///< Integrator::save()
-  std::vector<PairKey> keys;   ///< persistent contacts, ascending (i, j, image)
+  std::uint8_t integrator = 0;   ///< IntegratorKind of the history below
+  std::vector<double> integ;     ///< Integrator::save()
+  std::vector<PairKey> keys;     ///< persistent contacts, ascending (i, j, image)
   std::vector<ContactState> contact_state;  ///< parallel to keys, or empty (Model S)
   std::uint64_t degenerate = 0;             ///< ContactSet::degenerate
   CheckpointExtras extras;

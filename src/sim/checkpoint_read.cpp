@@ -6,9 +6,9 @@
 #include <fstream>
 #include <iterator>
 
-#include "core/input_file.hpp"
 #include "core/bytes.hpp"
 #include "core/error.hpp"
+#include "core/input_file.hpp"
 #include "sim/checkpoint.hpp"
 
 namespace gs {
@@ -37,8 +37,9 @@ Checkpoint decode_checkpoint(std::string_view bytes, const std::string& name) {
   r.pos = 8;
   const std::uint32_t version = r.u32("version");
   if (version != kCheckpointVersion && version != 1)
-    r.fail(8, "checkpoint version " + std::to_string(version) + " is not supported (this build reads " +
-                  std::to_string(kCheckpointVersion) + ")");
+    r.fail(8, "checkpoint version " + std::to_string(version) +
+                  " is not supported (this build reads " + std::to_string(kCheckpointVersion) +
+                  ")");
   const std::uint32_t endian = r.u32("endianness marker");
   if (endian != kCheckpointEndian)
     r.fail(12, endian == 0x04030201u ? "checkpoint written big-endian; only little-endian is read"
@@ -61,8 +62,8 @@ Checkpoint decode_checkpoint(std::string_view bytes, const std::string& name) {
   s.step = r.i64("step");
   const std::size_t n = r.count(kParticleBytes + (version >= 2 ? 4 : 0), "particle");
   r.i32s(c.sp, n, "species indices");
-  for (auto* v : {&c.radius, &c.mass, &c.inv_mass, &c.inv_inertia, &s.x, &s.y, &s.th, &s.vx,
-                  &s.vy, &s.w, &s.ax, &s.ay, &s.aw})
+  for (auto* v : {&c.radius, &c.mass, &c.inv_mass, &c.inv_inertia, &s.x, &s.y, &s.th, &s.vx, &s.vy,
+                  &s.w, &s.ax, &s.ay, &s.aw})
     r.f64s(*v, n, "particle arrays");
   r.i32s(s.wrap_x, n, "wrap counts");
   r.i32s(s.wrap_y, n, "wrap counts");

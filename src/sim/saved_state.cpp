@@ -49,8 +49,9 @@ SavedState from_checkpoint(Checkpoint c) {
   const SceneSpec embedded = parse_scene_string(c.scene_toml, c.path + " (embedded scene)");
   for (std::size_t i = 0; i < c.sp.size(); ++i) {
     if (c.sp[i] < 0 || static_cast<std::size_t>(c.sp[i]) >= embedded.species.size())
-      throw InputError(c.path, "", "particle " + std::to_string(i) + " has unknown species " +
-                                       std::to_string(c.sp[i]));
+      throw InputError(
+          c.path, "",
+          "particle " + std::to_string(i) + " has unknown species " + std::to_string(c.sp[i]));
     st.species.push_back(embedded.species[static_cast<std::size_t>(c.sp[i])].name);
     st.where.push_back(c.path + " (particle in slot " + std::to_string(i) + ")");
   }
@@ -88,8 +89,9 @@ SavedState from_run_dir(const std::string& dir, const std::string& where) {
   if (ck && (!have_state || ck->s.step >= read_state_rows(state).step))
     return from_checkpoint(std::move(*ck));
   if (have_state) return from_state_rows(state);
-  throw InputError(where, kKey,
-                   "the run directory " + dir + " has neither a readable checkpoint nor a state.csv");
+  throw InputError(
+      where, kKey,
+      "the run directory " + dir + " has neither a readable checkpoint nor a state.csv");
 }
 
 }  // namespace
@@ -98,8 +100,7 @@ SavedState read_saved_state(const SceneSpec& scene) {
   const std::string& path = scene.prep.from_state;
   const std::string& where = scene.prep.from_state_where;
   std::error_code ec;
-  if (!fs::exists(path, ec))
-    throw InputError(where, kKey, "no such file or directory: " + path);
+  if (!fs::exists(path, ec)) throw InputError(where, kKey, "no such file or directory: " + path);
   if (fs::is_directory(path, ec)) return from_run_dir(path, where);
   if (is_checkpoint_file(path)) return from_checkpoint(read_checkpoint(path));
   return from_state_rows(path);
@@ -122,7 +123,8 @@ void fit_scene_to_state(SceneSpec& scene, const SavedState& st) {
     }
     ++count[k];
   }
-  if (st.size() == 0) throw InputError(where, kKey, "the saved state " + st.path + " has no grains");
+  if (st.size() == 0)
+    throw InputError(where, kKey, "the saved state " + st.path + " has no grains");
   // counts: a given one must match, a missing one is taken
   for (std::size_t k = 0; k < scene.species.size(); ++k) {
     SpeciesSpec& sp = scene.species[k];
@@ -138,8 +140,8 @@ void fit_scene_to_state(SceneSpec& scene, const SavedState& st) {
   if (scene.box.kind == BoxKind::Walls) {
     const double W = scene.box.width, H = scene.box.height;
     for (std::size_t i = 0; i < st.size(); ++i) {
-      const bool inside = st.x[i] >= 0.0 && st.x[i] <= W && st.y[i] >= 0.0 &&
-                          (!scene.box.lid || st.y[i] <= H);
+      const bool inside =
+          st.x[i] >= 0.0 && st.x[i] <= W && st.y[i] >= 0.0 && (!scene.box.lid || st.y[i] <= H);
       if (!inside || !std::isfinite(st.x[i]) || !std::isfinite(st.y[i])) {
         std::ostringstream m;
         m << "the saved state's grain at " << st.where[i] << " lies at (" << st.x[i] << ", "
@@ -153,8 +155,8 @@ void fit_scene_to_state(SceneSpec& scene, const SavedState& st) {
   for (std::size_t i = 0; i < st.size(); ++i)
     for (double v : {st.th[i], st.vx[i], st.vy[i], st.w[i]})
       if (!std::isfinite(v))
-        throw InputError(where, kKey, "the saved state's grain at " + st.where[i] +
-                                          " has a non-finite value");
+        throw InputError(where, kKey,
+                         "the saved state's grain at " + st.where[i] + " has a non-finite value");
   scene.resolved = scene_resolved(scene);
 }
 

@@ -167,9 +167,12 @@ void kick_block(std::size_t m, double c_new, double c_old, double dt, const doub
 }
 void kick_block(const AccelArrays& a, std::size_t m, const double* an, double* acc, double* v,
                 double* q) {
-  if (!a.ahead) kick_block<false, false>(m, a.c_new, a.c_old, a.dt, an, acc, v, q);
-  else if (a.half) kick_block<true, true>(m, a.c_new, a.c_old, a.dt, an, acc, v, q);
-  else kick_block<true, false>(m, a.c_new, a.c_old, a.dt, an, acc, v, q);
+  if (!a.ahead)
+    kick_block<false, false>(m, a.c_new, a.c_old, a.dt, an, acc, v, q);
+  else if (a.half)
+    kick_block<true, true>(m, a.c_new, a.c_old, a.dt, an, acc, v, q);
+  else
+    kick_block<true, false>(m, a.c_new, a.c_old, a.dt, an, acc, v, q);
 }
 
 // has a particle of the block [k, k + m) moved beyond the broad phase's skin? (a.skin, ahead:
@@ -287,7 +290,7 @@ void Simulation::compute_accelerations(std::int64_t index, std::span<const Chann
   const bool noise = w_.scene.drive.kind == DriveKind::RandomForce;
   const bool ring = w_.box == BoxKind::Ring1D;  // x only: no ay (and no torques, disks)
   const bool spin = w_.polygons();              // polygons: contact torques
-  if (noise && noise_keys_.size() != n) {  // each particle's stream follows its label
+  if (noise && noise_keys_.size() != n) {       // each particle's stream follows its label
     const std::vector<std::uint64_t> by_label = random_force_keys(w_.scene.prep.seed, n);
     noise_keys_.resize(n);
     for (std::size_t k = 0; k < n; ++k) noise_keys_[k] = by_label[w_.id[k]];
@@ -301,12 +304,28 @@ void Simulation::compute_accelerations(std::int64_t index, std::span<const Chann
   BroadPhase::SkinTest skin;
   if (ahead && kick && !ring && !spin) skin = broad_->skin_test();
   if (skin.n != n) skin = {};
-  const AccelArrays a{forces_.fx.data(), forces_.fy.data(), forces_.tq.data(),
-                      w_.inv_mass.data(), w_.inv_inertia.data(), w_.mass.data(),
-                      noise ? noise_keys_.data() : nullptr, s.ax.data(), s.ay.data(),
-                      s.aw.data(), s.vx.data(), s.vy.data(), kick_form_.new_frac * dt_,
-                      kick_form_.old_frac * dt_, s.x.data(), s.y.data(), dt_, ahead,
-                      kick_form_.predict_half, n >= kPrefetchFrom, skin, gravity_,
+  const AccelArrays a{forces_.fx.data(),
+                      forces_.fy.data(),
+                      forces_.tq.data(),
+                      w_.inv_mass.data(),
+                      w_.inv_inertia.data(),
+                      w_.mass.data(),
+                      noise ? noise_keys_.data() : nullptr,
+                      s.ax.data(),
+                      s.ay.data(),
+                      s.aw.data(),
+                      s.vx.data(),
+                      s.vy.data(),
+                      kick_form_.new_frac * dt_,
+                      kick_form_.old_frac * dt_,
+                      s.x.data(),
+                      s.y.data(),
+                      dt_,
+                      ahead,
+                      kick_form_.predict_half,
+                      n >= kPrefetchFrom,
+                      skin,
+                      gravity_,
                       noise ? std::sqrt(2.0 * w_.scene.drive.D / dt_) : 0.0,  // T.2.16
                       index};
   using T = std::true_type;
@@ -340,20 +359,26 @@ void Simulation::compute_accelerations(std::int64_t index, std::span<const Chann
           if constexpr (kSp) model_.place_ahead(w_, b, e);  // the next step's polygons
         }
       };
-      stats_ = model_.evaluate(w_, cand, contacts_, forces_, dt_, broad_->generation(),
-                               RangeFn(after));
+      stats_ =
+          model_.evaluate(w_, cand, contacts_, forces_, dt_, broad_->generation(), RangeFn(after));
       if (ahead && kSp) model_.placed_ahead();
       if (skin.x0 != nullptr) broad_->set_moved(moved.load());
     }
   };
   if (noise) {
-    if (ring) go(T{}, T{}, F{});
-    else if (spin) go(T{}, F{}, T{});
-    else go(T{}, F{}, F{});
+    if (ring)
+      go(T{}, T{}, F{});
+    else if (spin)
+      go(T{}, F{}, T{});
+    else
+      go(T{}, F{}, F{});
   } else {
-    if (ring) go(F{}, T{}, F{});
-    else if (spin) go(F{}, F{}, T{});
-    else go(F{}, F{}, F{});
+    if (ring)
+      go(F{}, T{}, F{});
+    else if (spin)
+      go(F{}, F{}, T{});
+    else
+      go(F{}, F{}, F{});
   }
 }
 
@@ -381,8 +406,8 @@ bool Simulation::predicts_in_pass() const {
 
 bool Simulation::removes_drift_after(std::int64_t step) const {
   const DriveSpec& d = w_.scene.drive;
-  return d.kind == DriveKind::RandomForce && w_.box != BoxKind::Ring1D &&
-         d.com_removal_every > 0 && step % d.com_removal_every == 0;
+  return d.kind == DriveKind::RandomForce && w_.box != BoxKind::Ring1D && d.com_removal_every > 0 &&
+         step % d.com_removal_every == 0;
 }
 
 bool Simulation::checks_health_after(std::int64_t step) const {
@@ -399,8 +424,10 @@ void Simulation::advance(bool then_predict) {
   // predict positions and velocities at t + Δt (unless the last step's kick did), evaluate
   // forces there, correct (each particle by the thread that summed its force, inside the force
   // pass) and, ahead, predict the next step there too
-  if (ahead_) ++ahead_steps_;
-  else integ_->predict(ch, dt_);
+  if (ahead_)
+    ++ahead_steps_;
+  else
+    integ_->predict(ch, dt_);
   ahead_ = false;
   const bool ahead = then_predict && may_predict_ahead(w_.s.step);
   w_.s.t = static_cast<double>(w_.s.step + 1) * dt_;
@@ -444,8 +471,8 @@ void Simulation::check_finite() const {
              "[drive] keys)";
       else
         m << "dt = " << dt_ << " s is " << dt_ / model_.min_contact_time()
-          << " contact times: the integration blew up, try dt <= "
-          << model_.min_contact_time() / 20 << " s";
+          << " contact times: the integration blew up, try dt <= " << model_.min_contact_time() / 20
+          << " s";
       throw HealthError(m.str());
     }
   }
@@ -456,8 +483,9 @@ void Simulation::health_check() {
   const State& s = w_.s;
   if (stats_.max_overlap_rel > w_.scene.health.max_overlap) {
     std::ostringstream m;
-    m << "overlap of " << stats_.max_overlap_rel << " grain radii exceeds health.max_overlap = "
-      << w_.scene.health.max_overlap << " at step " << s.step << " (t = " << s.t
+    m << "overlap of " << stats_.max_overlap_rel
+      << " grain radii exceeds health.max_overlap = " << w_.scene.health.max_overlap << " at step "
+      << s.step << " (t = " << s.t
       << " s): grains interpenetrate; the force law is too soft for the driving, or dt = " << dt_
       << " s is too large (contact time " << model_.min_contact_time() << " s)";
     throw HealthError(m.str());
@@ -470,15 +498,18 @@ void Simulation::health_check() {
       double v2 = -1;
       for (std::size_t i = 0; i < w_.size(); ++i) {
         const double q = s.vx[i] * s.vx[i] + s.vy[i] * s.vy[i];
-        if (q > v2) { v2 = q; worst = i; }
+        if (q > v2) {
+          v2 = q;
+          worst = i;
+        }
       }
       std::ostringstream m;
       m << "mechanical energy grew from " << energy_ref_ << " J to " << e
         << " J without driving input at step " << s.step << " (t = " << s.t
         << " s); fastest particle " << w_.id[worst] << " at " << std::sqrt(v2)
         << " m/s. The integration is unstable: dt = " << dt_ << " s is "
-        << dt_ / model_.min_contact_time() << " contact times; try dt <= "
-        << model_.min_contact_time() / 20 << " s";
+        << dt_ / model_.min_contact_time()
+        << " contact times; try dt <= " << model_.min_contact_time() / 20 << " s";
       throw HealthError(m.str());
     }
     // dissipation only lowers the yardstick (only where the energy is exact)

@@ -122,7 +122,7 @@ class Simulation {
   ForceBuffer forces_;
   ForceStats stats_;
   std::vector<std::uint64_t> noise_keys_;  ///< random force: stream keys per particle (cached)
-  std::vector<double> kick_;  ///< the ring's momentum kicks summed per block, kg·m/s²
+  std::vector<double> kick_;      ///< the ring's momentum kicks summed per block, kg·m/s²
   std::vector<double> ring_pre_;  ///< the ring's accelerations before the mean kick, m/s²
   bool fused_ = false;            ///< the integrator's kick inside the acceleration pass
   bool ahead_ = false;  ///< inside run(): the state already holds the next step's prediction

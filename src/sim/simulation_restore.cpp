@@ -7,8 +7,10 @@ namespace gs {
 // keep the observer records of the constructor's evaluation only while they still line up
 void Simulation::restore_contacts(ContactSet c) {
   if (c.records.size() != c.keys.size()) {
-    if (contacts_.records.size() == c.keys.size()) c.records = contacts_.records;
-    else c.records.clear();
+    if (contacts_.records.size() == c.keys.size())
+      c.records = contacts_.records;
+    else
+      c.records.clear();
   }
   contacts_ = std::move(c);
 }

@@ -21,8 +21,7 @@ std::int64_t resolved_sort_every(const World& w) {
 namespace {
 
 // the position of grain i folded into the box (periodic directions) and its cell
-std::size_t cell_of(const World& w, std::size_t i, double cell, std::size_t nx,
-                    std::size_t ny) {
+std::size_t cell_of(const World& w, std::size_t i, double cell, std::size_t nx, std::size_t ny) {
   auto index = [&](double v, double L, bool periodic, std::size_t n) {
     if (periodic) v -= L * std::floor(v / L);
     const double c = std::floor(v / cell);

@@ -13,10 +13,19 @@ double stable_omega_dt(IntegratorKind kind, double zeta) {
   // measured on the damped oscillator (tests/integrate/test_stability.cpp, 0.01 grid)
   double at0 = 2.0, at25 = 1.23;
   switch (kind) {
-    case IntegratorKind::Gear6: at0 = 0.47; at25 = 0.28; break;
+    case IntegratorKind::Gear6:
+      at0 = 0.47;
+      at25 = 0.28;
+      break;
     case IntegratorKind::VelocityVerlet:
-    case IntegratorKind::PositionVerlet: at0 = 2.0; at25 = 1.23; break;
-    case IntegratorKind::SemiImplicitEuler: at0 = 1.32; at25 = 1.40; break;
+    case IntegratorKind::PositionVerlet:
+      at0 = 2.0;
+      at25 = 1.23;
+      break;
+    case IntegratorKind::SemiImplicitEuler:
+      at0 = 1.32;
+      at25 = 1.40;
+      break;
   }
   const double z = std::clamp(zeta, 0.0, 0.5);
   return std::max(0.05, at0 + (at25 - at0) * z / 0.25);
@@ -83,7 +92,8 @@ std::string contact_time_keys(const SceneSpec& scene) {
   for (const auto& sp : scene.species)
     if (sp.count > 0 && (!light || mass(sp) < mass(*light))) light = &sp;
   if (stiff)
-    m << "material '" << stiff->name << "' " << (p ? "E = " : "ks = ") << (p ? stiff->E : stiff->ks);
+    m << "material '" << stiff->name << "' " << (p ? "E = " : "ks = ")
+      << (p ? stiff->E : stiff->ks);
   if (light)
     m << (stiff ? ", " : "") << "species '" << light->name << "' "
       << (light->mass ? "mass = " + short_number(*light->mass) + " kg"

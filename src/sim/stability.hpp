@@ -14,12 +14,12 @@ class Simulation;
 double stable_omega_dt(IntegratorKind kind, double zeta);
 
 struct StepAdvice {
-  double omega = 0.0;        ///< angular frequency of the stiffest binary contact, rad/s
-  double omega_dt = 0.0;     ///< ω·Δt of the scene
-  double limit = 0.0;        ///< the integrator's stable ω·Δt
-  double suggested_dt = 0.0; ///< Δt at half the limit, s
-  bool stable = true;        ///< ω·Δt within the limit
-  std::string message;       ///< a sentence for the user when not stable
+  double omega = 0.0;         ///< angular frequency of the stiffest binary contact, rad/s
+  double omega_dt = 0.0;      ///< ω·Δt of the scene
+  double limit = 0.0;         ///< the integrator's stable ω·Δt
+  double suggested_dt = 0.0;  ///< Δt at half the limit, s
+  bool stable = true;         ///< ω·Δt within the limit
+  std::string message;        ///< a sentence for the user when not stable
 };
 
 /// judge the scene's Δt against its stiffest contact and its integrator

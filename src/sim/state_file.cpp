@@ -72,8 +72,9 @@ StateRows parse_state_rows(const std::string& text, const std::string& path, lon
     for (std::string cell; std::getline(ls, cell, ',');) cells.push_back(cell);
     if (!line.empty() && line.back() == ',') cells.emplace_back();
     if (cells.size() != 8)
-      throw InputError(where, "", "expected 8 columns (id,species,x,y,theta,vx,vy,omega), got " +
-                                      std::to_string(cells.size()));
+      throw InputError(where, "",
+                       "expected 8 columns (id,species,x,y,theta,vx,vy,omega), got " +
+                           std::to_string(cells.size()));
     double v[6];
     for (int c = 0; c < 6; ++c) v[c] = state_number(cells[c + 2], where, c + 3, kColumns[c + 2]);
     r.species.push_back(cells[1]);
@@ -93,9 +94,9 @@ StateRows parse_state_rows(const std::string& text, const std::string& path, lon
 
 void check_count(const StateRows& r, long long declared, const std::string& path) {
   if (declared >= 0 && static_cast<long long>(r.size()) != declared)
-    throw InputError(path, "", "truncated or edited: n=" + std::to_string(declared) +
-                                   " particles declared, the file has " +
-                                   std::to_string(r.size()) + " rows");
+    throw InputError(path, "",
+                     "truncated or edited: n=" + std::to_string(declared) +
+                         " particles declared, the file has " + std::to_string(r.size()) + " rows");
 }
 
 // replace the particles of `w` with the rows, species by name
@@ -146,10 +147,14 @@ void write_state_file(const World& w, const std::string& path) {
   j["t"] = w.s.t;
   j["step"] = w.s.step;
   j["particles"] = w.size();
-  j["columns"] = {{"id", "particle label"},     {"species", "species name"},
-                  {"x", "m"},                   {"y", "m"},
-                  {"theta", "rad"},             {"vx", "m/s"},
-                  {"vy", "m/s"},                {"omega", "rad/s"}};
+  j["columns"] = {{"id", "particle label"},
+                  {"species", "species name"},
+                  {"x", "m"},
+                  {"y", "m"},
+                  {"theta", "rad"},
+                  {"vx", "m/s"},
+                  {"vy", "m/s"},
+                  {"omega", "rad/s"}};
   write_file_atomic(state_sidecar_path(path), j.dump(2) + "\n");
   write_file_atomic(path, o.str());
 }

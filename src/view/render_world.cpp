@@ -96,13 +96,14 @@ std::vector<double> contact_counts(const World& w, const ContactSet& c) {
 
 std::vector<double> contact_pressure(const World& w, const ContactSet& c) {
   std::vector<double> p(w.size(), 0.0);
-  for_each_contact(w, c, [&](std::size_t i, std::size_t j, bool wall, const ContactRecord& r,
-                             Vec2 f) {
-    // −½ tr Σ (s − x) ⊗ f: on i the force is −f, on j it is +f (j's centre in i's frame)
-    const Vec2 xi{w.s.x[i], w.s.y[i]};
-    p[i] += dot(r.s - xi, f);
-    if (!wall) p[j] -= dot(r.s - (xi + w.separation(i, j)), f);
-  });
+  for_each_contact(w, c,
+                   [&](std::size_t i, std::size_t j, bool wall, const ContactRecord& r, Vec2 f) {
+                     // −½ tr Σ (s − x) ⊗ f: on i the force is −f, on j it is +f (j's centre in i's
+                     // frame)
+                     const Vec2 xi{w.s.x[i], w.s.y[i]};
+                     p[i] += dot(r.s - xi, f);
+                     if (!wall) p[j] -= dot(r.s - (xi + w.separation(i, j)), f);
+                   });
   for (std::size_t i = 0; i < p.size(); ++i) p[i] /= 2.0 * w.species[w.sp[i]].area;
   return p;
 }
@@ -110,11 +111,11 @@ std::vector<double> contact_pressure(const World& w, const ContactSet& c) {
 std::vector<ContactLine> force_chain_lines(const World& w, const ContactSet& c) {
   std::vector<ContactLine> out;
   out.reserve(c.records.size());
-  for_each_contact(w, c, [&](std::size_t i, std::size_t j, bool wall, const ContactRecord& r,
-                             Vec2) {
-    const Vec2 xi{w.s.x[i], w.s.y[i]};
-    out.push_back({xi, wall ? r.s : xi + w.separation(i, j), std::abs(r.fn)});
-  });
+  for_each_contact(w, c,
+                   [&](std::size_t i, std::size_t j, bool wall, const ContactRecord& r, Vec2) {
+                     const Vec2 xi{w.s.x[i], w.s.y[i]};
+                     out.push_back({xi, wall ? r.s : xi + w.separation(i, j), std::abs(r.fn)});
+                   });
   return out;
 }
 

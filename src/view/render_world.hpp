@@ -13,11 +13,11 @@ namespace gs {
 
 /// what a frame shows beyond the particles: the clock, the protocol, gravity
 struct FrameInfo {
-  double time = 0.0;          ///< simulated time, s
-  Vec2 gravity{0.0, -9.81};   ///< gravity at that time, m/s²
-  std::optional<long> tap;    ///< tap number (1 = the first excitation period), if tapping
-  bool settling = false;      ///< before the tapping protocol starts
-  bool exciting = false;      ///< inside an excitation window
+  double time = 0.0;         ///< simulated time, s
+  Vec2 gravity{0.0, -9.81};  ///< gravity at that time, m/s²
+  std::optional<long> tap;   ///< tap number (1 = the first excitation period), if tapping
+  bool settling = false;     ///< before the tapping protocol starts
+  bool exciting = false;     ///< inside an excitation window
 };
 
 /// particles with their true shapes (regular n-gons or disks), orientations, velocities and

@@ -56,18 +56,19 @@ void place_particles(World& w) {
       // a centre outside a walled box would fall outside the walls for the whole run
       const std::string key = "preparation.particle[" + std::to_string(i) + "].";
       if (sc.box.kind == BoxKind::Walls && !(p.x >= 0.0 && p.x <= w.Lx))
-        throw InputError(sc.path, key + "x", "x = " + std::to_string(p.x) +
-                                                  " m is outside the box's walls [0, " +
-                                                  std::to_string(w.Lx) + "] m");
+        throw InputError(sc.path, key + "x",
+                         "x = " + std::to_string(p.x) + " m is outside the box's walls [0, " +
+                             std::to_string(w.Lx) + "] m");
       if (sc.box.kind == BoxKind::Walls && !(p.y >= 0.0 && (!sc.box.lid || p.y <= w.Ly)))
-        throw InputError(sc.path, key + "y", "y = " + std::to_string(p.y) +
-                                                  " m is outside the box (below its floor" +
-                                                  std::string(sc.box.lid ? " or above its lid" : "") + ")");
+        throw InputError(sc.path, key + "y",
+                         "y = " + std::to_string(p.y) + " m is outside the box (below its floor" +
+                             std::string(sc.box.lid ? " or above its lid" : "") + ")");
       int k = -1;
       for (std::size_t s = 0; s < w.species.size(); ++s)
         if (w.species[s].name == p.species) k = static_cast<int>(s);
-      if (k < 0) throw InputError(sc.path, "preparation.particle.species",
-                                  "unknown species '" + p.species + "'");
+      if (k < 0)
+        throw InputError(sc.path, "preparation.particle.species",
+                         "unknown species '" + p.species + "'");
       w.add_particle(k, {p.x, p.y}, p.theta, {p.vx, p.vy}, p.omega);
     }
     return;
@@ -81,8 +82,7 @@ void place_particles(World& w) {
   double x0 = 0, y0 = 0, x1 = w.Lx, y1 = w.Ly;
   if (sc.box.kind == BoxKind::Ring1D) {
     // 1D ring: equal spacing L/N along the line (thesis §2.2.2)
-    for (std::size_t i = 0; i < n; ++i)
-      w.add_particle(kinds[i], {(i + 0.5) * w.Lx / n, 0.0}, 0.0);
+    for (std::size_t i = 0; i < n; ++i) w.add_particle(kinds[i], {(i + 0.5) * w.Lx / n, 0.0}, 0.0);
   } else {
     std::vector<Vec2> sites;
     switch (prep.placement) {
@@ -128,14 +128,15 @@ void place_particles(World& w) {
     if (sites.size() < n)
       throw InputError(sc.path, "preparation.placement",
                        std::to_string(n) + " grains do not fit in the box with this placement (" +
-                           std::to_string(sites.size()) + " sites); enlarge the box or reduce counts");
+                           std::to_string(sites.size()) +
+                           " sites); enlarge the box or reduce counts");
     const bool jitter = prep.placement == PlacementKind::LooseColumn;
     const double slack = a * 0.05 / 2;
     for (std::size_t i = 0; i < n; ++i) {
       Vec2 p = sites[i];
       if (jitter) p += Vec2{rng.uniform(-slack, slack), rng.uniform(-slack, slack)};
-      const double th = w.species[kinds[i]].shape == ShapeKind::Polygon
-                            ? rng.uniform(0.0, 2.0 * M_PI) : 0.0;
+      const double th =
+          w.species[kinds[i]].shape == ShapeKind::Polygon ? rng.uniform(0.0, 2.0 * M_PI) : 0.0;
       w.add_particle(kinds[i], p, th);
     }
   }
@@ -144,7 +145,8 @@ void place_particles(World& w) {
   if (prep.velocity_amplitude > 0) {
     for (std::size_t i = 0; i < w.size(); ++i) {
       w.s.vx[i] = prep.velocity_amplitude * rng.uniform(-0.5, 0.5);
-      if (sc.box.kind != BoxKind::Ring1D) w.s.vy[i] = prep.velocity_amplitude * rng.uniform(-0.5, 0.5);
+      if (sc.box.kind != BoxKind::Ring1D)
+        w.s.vy[i] = prep.velocity_amplitude * rng.uniform(-0.5, 0.5);
     }
   }
 }

@@ -68,8 +68,8 @@ void World::clear_particles() {
 
 void World::permute(std::span<const std::uint32_t> perm, PermuteScratch& scratch) {
   if (perm.size() != size()) throw std::invalid_argument("World::permute: wrong size");
-  for (auto* v : {&radius, &mass, &inv_mass, &inv_inertia, &s.x, &s.y, &s.th, &s.vx, &s.vy,
-                  &s.w, &s.ax, &s.ay, &s.aw})
+  for (auto* v : {&radius, &mass, &inv_mass, &inv_inertia, &s.x, &s.y, &s.th, &s.vx, &s.vy, &s.w,
+                  &s.ax, &s.ay, &s.aw})
     gather_permuted(*v, perm, scratch.d);
   for (auto* v : {&sp, &s.wrap_x, &s.wrap_y}) gather_permuted(*v, perm, scratch.i);
   gather_permuted(id, perm, scratch.u);
@@ -177,9 +177,9 @@ World make_world(const SceneSpec& sc) {
   }
   if (sc.box.kind == BoxKind::Walls) {
     const double W = sc.box.width, H = sc.box.height, t = sc.box.wall_thickness;
-    w.walls.push_back(make_wall(-t, -t, W + t, 0.0, {0, -1}, 0.0));     // floor
-    w.walls.push_back(make_wall(-t, 0.0, 0.0, H + t, {-1, 0}, 0.0));    // left
-    w.walls.push_back(make_wall(W, 0.0, W + t, H + t, {1, 0}, W));      // right
+    w.walls.push_back(make_wall(-t, -t, W + t, 0.0, {0, -1}, 0.0));                // floor
+    w.walls.push_back(make_wall(-t, 0.0, 0.0, H + t, {-1, 0}, 0.0));               // left
+    w.walls.push_back(make_wall(W, 0.0, W + t, H + t, {1, 0}, W));                 // right
     if (sc.box.lid) w.walls.push_back(make_wall(-t, H, W + t, H + t, {0, 1}, H));  // lid
   }
   return w;

@@ -15,50 +15,50 @@ namespace gs {
 struct Species {
   std::string name;
   ShapeKind shape = ShapeKind::Polygon;
-  int sides = 0;           ///< n-gon sides (0 for disks)
-  double radius = 0.0;     ///< circumradius or disk radius, m
-  double area = 0.0;       ///< grain area, m²
-  double mass = 0.0;       ///< kg
-  double inertia = 0.0;    ///< moment of inertia about the centre, kg m²
-  int material = 0;        ///< index into World::materials
-  Poly body;               ///< polygon vertices in body coordinates (polygons only), m
+  int sides = 0;         ///< n-gon sides (0 for disks)
+  double radius = 0.0;   ///< circumradius or disk radius, m
+  double area = 0.0;     ///< grain area, m²
+  double mass = 0.0;     ///< kg
+  double inertia = 0.0;  ///< moment of inertia about the centre, kg m²
+  int material = 0;      ///< index into World::materials
+  Poly body;             ///< polygon vertices in body coordinates (polygons only), m
 };
 
 /// a fixed wall: a convex polygon (rectangle) in world coordinates plus, for disks, the
 /// half-plane of its inner face (points x with dot(x, normal) > offset are inside the wall)
 struct Wall {
-  Poly poly;              ///< world-frame polygon, m
-  Vec2 normal;            ///< unit normal of the inner face, pointing into the wall
-  double offset = 0.0;    ///< inner face: dot(x, normal) = offset, m
-  Vec2 lo, hi;            ///< axis-aligned bounds, m
+  Poly poly;            ///< world-frame polygon, m
+  Vec2 normal;          ///< unit normal of the inner face, pointing into the wall
+  double offset = 0.0;  ///< inner face: dot(x, normal) = offset, m
+  Vec2 lo, hi;          ///< axis-aligned bounds, m
 };
 
 /// mutable particle state, structure of arrays; positions are never wrapped (periodic boxes
 /// use the minimum image), so displacements stay continuous for free paths and integrators
 struct State {
-  std::vector<double> x, y, th;   ///< position (m) and orientation (rad)
-  std::vector<double> vx, vy, w;  ///< velocity (m/s) and angular velocity (rad/s)
-  std::vector<double> ax, ay, aw; ///< accelerations at the current state (m/s², rad/s²)
-  std::vector<int> wrap_x, wrap_y;///< periodic boxes: box lengths removed from x, y so far
-  double t = 0.0;                 ///< simulated time, s
-  std::int64_t step = 0;          ///< steps taken
+  std::vector<double> x, y, th;     ///< position (m) and orientation (rad)
+  std::vector<double> vx, vy, w;    ///< velocity (m/s) and angular velocity (rad/s)
+  std::vector<double> ax, ay, aw;   ///< accelerations at the current state (m/s², rad/s²)
+  std::vector<int> wrap_x, wrap_y;  ///< periodic boxes: box lengths removed from x, y so far
+  double t = 0.0;                   ///< simulated time, s
+  std::int64_t step = 0;            ///< steps taken
   std::size_t size() const { return x.size(); }
   void resize(std::size_t n);
 };
 
 struct World {
   // constants
-  SceneSpec scene;                    ///< the validated scene it was built from
+  SceneSpec scene;  ///< the validated scene it was built from
   std::vector<MaterialSpec> materials;
   std::vector<Species> species;
   std::vector<Wall> walls;
   int wall_material = 0;
   BoxKind box = BoxKind::Walls;
-  double Lx = 0.0, Ly = 0.0;          ///< box inner size (periodic: the period), m
-  bool rotation = false;              ///< integrate θ (only when torques can arise)
-  double max_radius = 0.0;            ///< largest circumradius, m
+  double Lx = 0.0, Ly = 0.0;  ///< box inner size (periodic: the period), m
+  bool rotation = false;      ///< integrate θ (only when torques can arise)
+  double max_radius = 0.0;    ///< largest circumradius, m
   // per-particle constants
-  std::vector<int> sp;                ///< species index
+  std::vector<int> sp;  ///< species index
   std::vector<double> radius, mass, inv_mass, inv_inertia;
   /// each slot's particle label: its index when it was placed. A periodic spatial sort
   /// (Simulation, integrator.sort_every) moves particles between slots; files list particles

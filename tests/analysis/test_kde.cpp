@@ -46,7 +46,8 @@ TEST(Kde, SilvermanBandwidth) {
 // canonical bandwidth ratios δ_K/δ_normal, δ = (R(K)/μ₂²)^{1/5}: (15·2√π)^{1/5} and (144·2√π)^{1/5}
 TEST(Kde, EquivalentBandwidths) {
   const double two_sqrt_pi = 2.0 * std::sqrt(std::numbers::pi);
-  EXPECT_NEAR(equivalent_bandwidth(Kernel::Epanechnikov, 1.0), std::pow(15.0 * two_sqrt_pi, 0.2), 1e-12);
+  EXPECT_NEAR(equivalent_bandwidth(Kernel::Epanechnikov, 1.0), std::pow(15.0 * two_sqrt_pi, 0.2),
+              1e-12);
   EXPECT_NEAR(equivalent_bandwidth(Kernel::Box, 1.0), std::pow(144.0 * two_sqrt_pi, 0.2), 1e-12);
   EXPECT_NEAR(equivalent_bandwidth(Kernel::Epanechnikov, 1.0), 2.214, 1e-3);
   EXPECT_NEAR(equivalent_bandwidth(Kernel::Box, 1.0), 3.480, 1e-3);
@@ -86,8 +87,10 @@ TEST(Kde, NormalSampleIntegratedSquaredError) {
     return s;
   };
   // μ₂(K) = ∫u²K: 1 (normal), 1/5 (Epanechnikov), 1/12 (box)
-  const struct { Kernel k; double mu2; } cases[] = {
-      {Kernel::Normal, 1.0}, {Kernel::Epanechnikov, 0.2}, {Kernel::Box, 1.0 / 12.0}};
+  const struct {
+    Kernel k;
+    double mu2;
+  } cases[] = {{Kernel::Normal, 1.0}, {Kernel::Epanechnikov, 0.2}, {Kernel::Box, 1.0 / 12.0}};
   for (const auto& c : cases) {
     const double amise = kernel_roughness(c.k) / (n * h) + std::pow(h, 4) * c.mu2 * c.mu2 * rf2 / 4;
     const double e = ise(c.k, h);
@@ -102,7 +105,8 @@ TEST(Kde, NormalSampleIntegratedSquaredError) {
   const double amise_n = kernel_roughness(Kernel::Normal) / (n * h) + std::pow(h, 4) * rf2 / 4;
   for (const auto& c : cases) {
     const double he = equivalent_bandwidth(c.k, h);
-    const double amise = kernel_roughness(c.k) / (n * he) + std::pow(he, 4) * c.mu2 * c.mu2 * rf2 / 4;
+    const double amise =
+        kernel_roughness(c.k) / (n * he) + std::pow(he, 4) * c.mu2 * c.mu2 * rf2 / 4;
     EXPECT_NEAR(amise / amise_n, 1.0, 0.07) << kernel_name(c.k);
     EXPECT_LT(ise(c.k, he), 3.0 * amise) << kernel_name(c.k);
   }

@@ -123,7 +123,8 @@ TEST(MultiHistogramBeta, AgreesWithTheDirectFitWhereItExists) {
   gas.start_fill = -2.0;
   const double scale = quadron_gas_a(gas) / gas.limits.delta_inv();
   std::vector<std::vector<double>> phi;
-  for (int k = 0; k < 3; ++k) phi.push_back(quadron_gas_phi((1.0 + 0.3 * k) * scale, 1500, gas, 5, k));
+  for (int k = 0; k < 3; ++k)
+    phi.push_back(quadron_gas_phi((1.0 + 0.3 * k) * scale, 1500, gas, 5, k));
   MultiHistOptions opts;
   opts.bootstrap = 100;
   const MultiHistResult r = multi_histogram_beta(phi, 0, gas.v_g, opts);

@@ -30,8 +30,8 @@ double gamma_variate(RngStream& rng, double k) {
 // Boltzmann-weighted volumes with Ω(V) ∝ (V − V₀)^{k−1}: P(V; β) ∝ (V − V₀)^{k−1} e^{−βV} is
 // a gamma law of shape k and rate β shifted by V₀, with Z(β) = Γ(k) β^{−k} e^{−βV₀}
 struct GammaEnsemble {
-  double k = 50.0;    ///< shape, dimensionless
-  double v0 = 0.15;   ///< lowest volume, m²
+  double k = 50.0;   ///< shape, dimensionless
+  double v0 = 0.15;  ///< lowest volume, m²
   std::vector<double> volumes(RngStream& rng, double beta, int n) const {
     std::vector<double> v(n);
     for (auto& x : v) x = v0 + gamma_variate(rng, k) / beta;
@@ -73,10 +73,10 @@ TEST(Overlap, GammaEnsembleRecoversBetaAndLnZ) {
     const double pb = (e.dbeta - dbeta) / e.dbeta_err;
     const double pz = (e.dlnz - dlnz) / e.dlnz_err;
     if (s == 0)
-      std::printf("overlap gamma: dbeta = %.1f +- %.1f (true %.1f), dlnZ = %.2f +- %.2f (true "
-                  "%.2f), %zu points, R2 = %.4f\n",
-                  e.dbeta, e.dbeta_err, dbeta, e.dlnz, e.dlnz_err, dlnz, e.fit.points.size(),
-                  e.fit.r2);
+      std::printf(
+          "overlap gamma: dbeta = %.1f +- %.1f (true %.1f), dlnZ = %.2f +- %.2f (true "
+          "%.2f), %zu points, R2 = %.4f\n",
+          e.dbeta, e.dbeta_err, dbeta, e.dlnz, e.dlnz_err, dlnz, e.fit.points.size(), e.fit.r2);
     EXPECT_LT(std::abs(pb), 3.0) << "seed " << s;
     EXPECT_LT(std::abs(pz), 3.0) << "seed " << s;
     sum_pb += pb * pb;
@@ -170,7 +170,8 @@ TEST(Overlap, KdeOptionRecoversBeta) {
     const auto smp = to_phi(g.volumes(rng, 5900.0, 3000), v_g);
     const BetaEstimate e = beta_from_phi(ref, smp, v_g, o);
     ASSERT_TRUE(e.valid) << e.fit.note;
-    if (s == 0) std::printf("overlap kde: dbeta = %.1f +- %.1f (true -350)\n", e.dbeta, e.dbeta_err);
+    if (s == 0)
+      std::printf("overlap kde: dbeta = %.1f +- %.1f (true -350)\n", e.dbeta, e.dbeta_err);
     EXPECT_NEAR(e.dbeta, -350.0, 3.0 * e.dbeta_err) << "seed " << s;
   }
 }

@@ -122,9 +122,10 @@ TEST(Quadron, NoisyFitWithinErrors) {
     ASSERT_TRUE(f.converged) << f.note;
     if (r < 5) {
       if (r == 0)
-        std::printf("quadron fit: a = %.1f +- %.1f (true %.2f), beta0 = %.0f +- %.0f (true %.0f), "
-                    "chi2/dof = %.1f/%d\n",
-                    f.a, f.a_err, kA, f.beta0, f.beta0_err, beta0, f.chi2, f.dof);
+        std::printf(
+            "quadron fit: a = %.1f +- %.1f (true %.2f), beta0 = %.0f +- %.0f (true %.0f), "
+            "chi2/dof = %.1f/%d\n",
+            f.a, f.a_err, kA, f.beta0, f.beta0_err, beta0, f.chi2, f.dof);
       EXPECT_NEAR(f.a, kA, 3.0 * f.a_err) << "set " << r;
       EXPECT_NEAR(f.beta0, beta0, 3.0 * f.beta0_err) << "set " << r;
     }

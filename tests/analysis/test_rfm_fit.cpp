@@ -42,7 +42,9 @@ TEST(RfmFit, LevenbergMarquardtPullsAreUnitNormal) {
   // y = a exp(−x/τ) + c with Gaussian noise of known σ, refitted 300 times: the pulls
   // (p − p_true)/err must have mean 0 and standard deviation 1 (±0.15 ≈ 2.6σ of an estimated
   // standard deviation from 300 samples; mean within ±0.2 ≈ 3.5σ)
-  const Model model = [](double x, const Eigen::VectorXd& p) { return p[0] * std::exp(-x / p[1]) + p[2]; };
+  const Model model = [](double x, const Eigen::VectorXd& p) {
+    return p[0] * std::exp(-x / p[1]) + p[2];
+  };
   Eigen::VectorXd truth(3);
   truth << 2.0, 1.5, 0.3;
   RngStream rng(91, 0);

@@ -34,8 +34,9 @@ TEST(RfmFreePath, FitRecoversTheParameters) {
   EXPECT_NEAR(f.a0, c * (d_f - 1.0), 4.0 * f.a0_err);
   EXPECT_LT(f.d_f_err, 0.01);
   EXPECT_NEAR(f.chi2_r, 1.0, 0.5);
-  std::printf("[ measured ] free paths: D_f %.4f ± %.4f, C %.2f ± %.2f, A0 %.2f ± %.2f, chi2_r %.2f\n",
-              f.d_f, f.d_f_err, f.c, f.c_err, f.a0, f.a0_err, f.chi2_r);
+  std::printf(
+      "[ measured ] free paths: D_f %.4f ± %.4f, C %.2f ± %.2f, A0 %.2f ± %.2f, chi2_r %.2f\n",
+      f.d_f, f.d_f_err, f.c, f.c_err, f.a0, f.a0_err, f.chi2_r);
 }
 
 TEST(RfmFreePath, TailOnlyFitAndAnotherDimension) {

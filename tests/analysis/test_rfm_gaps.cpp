@@ -23,14 +23,17 @@ std::vector<double> uniform_reduced(RngStream& rng, int n, double lr) {
 }
 
 // C(n, k) as a double
-double choose(int n, int k) { return std::exp(std::lgamma(n + 1.0) - std::lgamma(k + 1.0) - std::lgamma(n - k + 1.0)); }
+double choose(int n, int k) {
+  return std::exp(std::lgamma(n + 1.0) - std::lgamma(k + 1.0) - std::lgamma(n - k + 1.0));
+}
 
 // P(R_{i,i+h} ≤ x) for n iid uniform points on a ring of length 1: R ~ Beta(h, n − h), whose
 // distribution function is P(Binomial(n − 1, x) ≥ h)
 double gap_cdf(double x, int n, int h) {
   if (x >= 1.0) return 1.0;
   double below = 0.0;
-  for (int j = 0; j < h; ++j) below += choose(n - 1, j) * std::pow(x, j) * std::pow(1.0 - x, n - 1 - j);
+  for (int j = 0; j < h; ++j)
+    below += choose(n - 1, j) * std::pow(x, j) * std::pow(1.0 - x, n - 1 - j);
   return 1.0 - below;
 }
 
@@ -43,9 +46,12 @@ TEST(RfmGaps, ReducedCoordinatesRoundTrip) {
   const auto rp = uniform_reduced(rng, n, lr);
   for (double shift : {0.0, 0.77, 1.25}) {
     std::vector<double> r(static_cast<std::size_t>(n));
-    for (int i = 0; i < n; ++i) r[static_cast<std::size_t>(i)] = std::fmod(rp[static_cast<std::size_t>(i)] + i * d + shift, box);
+    for (int i = 0; i < n; ++i)
+      r[static_cast<std::size_t>(i)] =
+          std::fmod(rp[static_cast<std::size_t>(i)] + i * d + shift, box);
     const auto back = reduced_coordinates(r, box, d);
-    for (int i = 0; i < n; ++i) EXPECT_NEAR(back[static_cast<std::size_t>(i)], rp[static_cast<std::size_t>(i)], 1e-12) << i;
+    for (int i = 0; i < n; ++i)
+      EXPECT_NEAR(back[static_cast<std::size_t>(i)], rp[static_cast<std::size_t>(i)], 1e-12) << i;
     double sum = 0.0;
     for (double g : neighbour_gaps(back, reduced_length(box, n, d))) sum += g;
     EXPECT_NEAR(sum, lr, 1e-12);
@@ -74,7 +80,8 @@ TEST(RfmGaps, UniformPointsMatchBetaDistributions) {
   for (std::size_t k = 0; k < gs.orders().size(); ++k) {
     const int h = gs.orders()[k];
     for (const HistBin& b : gs.g(k)) {
-      const double expected = static_cast<double>(n) * snaps * (gap_cdf(b.hi, n, h) - gap_cdf(b.lo, n, h));
+      const double expected =
+          static_cast<double>(n) * snaps * (gap_cdf(b.hi, n, h) - gap_cdf(b.lo, n, h));
       if (expected < 20.0) continue;
       EXPECT_NEAR(b.count, expected, 5.0 * std::sqrt(h * expected)) << "h " << h << " R " << b.x;
     }
@@ -83,7 +90,9 @@ TEST(RfmGaps, UniformPointsMatchBetaDistributions) {
   const auto mean = gs.moments().mean(), err = gs.moments().error();
   for (int m = 2; m <= 6; ++m) {
     const double exact = std::exp(std::lgamma(m + 1.0) + std::lgamma(n) - std::lgamma(n + m));
-    EXPECT_NEAR(mean[static_cast<std::size_t>(m - 1)], exact, 5.0 * err[static_cast<std::size_t>(m - 1)]) << m;
+    EXPECT_NEAR(mean[static_cast<std::size_t>(m - 1)], exact,
+                5.0 * err[static_cast<std::size_t>(m - 1)])
+        << m;
   }
   EXPECT_NEAR(mean[0], 1.0 / n, 1e-12);  // ⟨R⟩ = L′/N exactly (T.3.19)
 }

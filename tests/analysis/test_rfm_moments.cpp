@@ -53,7 +53,8 @@ TEST(RfmMoments, ComponentsAndSpeeds) {
   for (int m = 1; m <= 4; ++m) {
     // relative σ of a mean of n values ≈ √(Var/n)/mean < 0.01 here: 5σ bound 0.05
     EXPECT_NEAR(comp.mean()[m - 1] / normal_abs_moment(1.0, m), 1.0, 0.05);
-    EXPECT_NEAR(speed.mean()[m - 1] / (std::pow(2.0, 0.5 * m) * std::tgamma(1.0 + 0.5 * m)), 1.0, 0.05);
+    EXPECT_NEAR(speed.mean()[m - 1] / (std::pow(2.0, 0.5 * m) * std::tgamma(1.0 + 0.5 * m)), 1.0,
+                0.05);
   }
 }
 
@@ -65,7 +66,8 @@ TEST(RfmMoments, ExponentFitRecoversKnownPowerLaw) {
   std::vector<std::vector<double>> mom, err;
   for (double N : n) {
     MomentSeries ms(12);
-    for (int s = 0; s < 20; ++s) ms.add_snapshot(normal_values(rng, 2.0 * std::pow(N, -1.0 / 3.0), 10'000));
+    for (int s = 0; s < 20; ++s)
+      ms.add_snapshot(normal_values(rng, 2.0 * std::pow(N, -1.0 / 3.0), 10'000));
     mom.push_back(ms.mean());
     err.push_back(ms.error());
   }

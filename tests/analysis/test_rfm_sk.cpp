@@ -48,7 +48,8 @@ TEST(RfmStructureFactor, UniformPointsGiveOne) {
     samples += sh.samples;
   }
   // all modes together: σ = 1/√(total samples) ≈ 0.01
-  EXPECT_NEAR(sum / static_cast<double>(samples), 1.0, 4.0 / std::sqrt(static_cast<double>(samples)));
+  EXPECT_NEAR(sum / static_cast<double>(samples), 1.0,
+              4.0 / std::sqrt(static_cast<double>(samples)));
   EXPECT_EQ(sk.snapshots(), 25);
 }
 
@@ -89,7 +90,10 @@ TEST(RfmStructureFactor, RoundedShellsAverageTheSameModes) {
   rounded.add_snapshot(pts);
   double se = 0, sr = 0;
   long ne = 0, nr = 0;
-  for (const SkShell& s : exact.shells()) { se += s.s * s.samples; ne += s.samples; }
+  for (const SkShell& s : exact.shells()) {
+    se += s.s * s.samples;
+    ne += s.samples;
+  }
   for (const SkShell& s : rounded.shells()) {
     sr += s.s * s.samples;
     nr += s.samples;
@@ -106,7 +110,9 @@ TEST(RfmStructureFactor, DissipativeWavenumberMatchesThesisTables) {
   // ε_t = 1 prints k_D d = 0.095 for 0.0944; L_Eff 0.32 for 0.329 and 0.29 for 0.282), so the
   // tolerances are one unit of the last printed digit rather than half.
   const double d = 3e-3, r = 1.5e-3, box = 0.4;
-  struct Row { double phi, en, et, kd_d, leff; };
+  struct Row {
+    double phi, en, et, kd_d, leff;
+  };
   const Row rows[] = {{0.353, 0.1, 0.1, 0.223, 0.24}, {0.177, 0.1, 0.1, 0.112, 0.48},
                       {0.530, 0.2, 1.0, 0.162, 0.32}, {0.530, 0.6, 1.0, 0.108, 0.49},
                       {0.353, 0.4, 1.0, 0.095, 0.56}, {0.707, 0.4, 1.0, 0.189, 0.29}};

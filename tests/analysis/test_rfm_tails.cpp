@@ -114,8 +114,10 @@ Histogram crossover_sample(double vr, double vc, long n, std::uint64_t seed, dou
   std::vector<double> cdf(static_cast<std::size_t>(grid) + 1, 0.0);
   for (int i = 0; i < grid; ++i) {
     const double a = -vmax + i * dv;
-    const double f = (crossover_density(a, 1, vr, vc, 1) + 4 * crossover_density(a + 0.5 * dv, 1, vr, vc, 1) +
-                      crossover_density(a + dv, 1, vr, vc, 1)) / 6.0 * dv;
+    const double f =
+        (crossover_density(a, 1, vr, vc, 1) + 4 * crossover_density(a + 0.5 * dv, 1, vr, vc, 1) +
+         crossover_density(a + dv, 1, vr, vc, 1)) /
+        6.0 * dv;
     cdf[static_cast<std::size_t>(i) + 1] = cdf[static_cast<std::size_t>(i)] + f;
   }
   *norm = 1.0 / cdf.back();  // D of the normalised density

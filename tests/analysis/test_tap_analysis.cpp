@@ -92,9 +92,10 @@ TEST(TapAnalysis, SyntheticStudyRecoversTheGas) {
   ASSERT_TRUE(r.quadron.count("all"));
   const QuadronFit& f = r.quadron.at("all");
   ASSERT_TRUE(f.converged) << f.note;
-  std::printf("tap study: a = %.1f +- %.1f (true %.2f), beta0 = %.0f +- %.0f (true %.0f), "
-              "chi2/dof = %.1f/%d\n",
-              f.a, f.a_err, a, f.beta0, f.beta0_err, st.beta[0], f.chi2, f.dof);
+  std::printf(
+      "tap study: a = %.1f +- %.1f (true %.2f), beta0 = %.0f +- %.0f (true %.0f), "
+      "chi2/dof = %.1f/%d\n",
+      f.a, f.a_err, a, f.beta0, f.beta0_err, st.beta[0], f.chi2, f.dof);
   EXPECT_NEAR(f.a, a, 3.0 * f.a_err);
   EXPECT_NEAR(f.beta0, st.beta[0], 3.0 * f.beta0_err);
   // each protocol alone: fitted too (4–5 points), consistent with the truth
@@ -165,9 +166,9 @@ TEST(TapAnalysis, ComparesRunsAtTheSameControlValue) {
   EXPECT_EQ(r.pairs[0].b, 1);
   EXPECT_GT(r.pairs[0].test.p_mean, 0.001);  // same gas
   EXPECT_GT(r.pairs[0].test.ks_p, 0.001);
-  EXPECT_GT(r.pairs[0].test.n_eff_a, 90);     // 390 taps / (2 τ_int ≈ 3)
+  EXPECT_GT(r.pairs[0].test.n_eff_a, 90);  // 390 taps / (2 τ_int ≈ 3)
   EXPECT_LT(r.pairs[0].test.n_eff_a, 200);
-  EXPECT_LT(r.pairs[1].test.p_mean, 1e-4);   // another β: φ̄ differs
+  EXPECT_LT(r.pairs[1].test.p_mean, 1e-4);    // another β: φ̄ differs
   EXPECT_GT(r.pairs[1].test.mean_diff, 0.0);  // larger β → denser
 }
 
@@ -177,8 +178,14 @@ TEST(TapAnalysis, ReferenceSelection) {
   QuadronGasSpec gas;
   const double scale = quadron_gas_a(gas) / gas.limits.delta_inv();
   std::vector<TapRunInput> runs;
-  const struct { const char* p; double c; double x; } spec[] = {
-      {"rotating_g", 0.5, 1.2}, {"negative_g", 10, 1.1}, {"negative_g", 5, 1.3}, {"negative_g", 8, 1.2}};
+  const struct {
+    const char* p;
+    double c;
+    double x;
+  } spec[] = {{"rotating_g", 0.5, 1.2},
+              {"negative_g", 10, 1.1},
+              {"negative_g", 5, 1.3},
+              {"negative_g", 8, 1.2}};
   std::uint64_t k = 0;
   for (const auto& s : spec) {
     TapRunInput r;
@@ -189,8 +196,8 @@ TEST(TapAnalysis, ReferenceSelection) {
   }
   TapAnalysisOptions o;
   const TapAnalysisResult r = run_tap_analysis(runs, o);
-  EXPECT_EQ(r.runs[r.ref].label, "negative_g_5");  // |5 − 6| < |8 − 6|
-  EXPECT_EQ(r.runs[r.ref2].label, "negative_g_8"); // the next negative_g run after it
+  EXPECT_EQ(r.runs[r.ref].label, "negative_g_5");   // |5 − 6| < |8 − 6|
+  EXPECT_EQ(r.runs[r.ref2].label, "negative_g_8");  // the next negative_g run after it
   o.reference = "rotating_g_0.5";
   EXPECT_EQ(run_tap_analysis(runs, o).ref, 0);
   o.reference = "nope";
@@ -246,7 +253,8 @@ TEST(TapCsv, LoadsARunFromAFile) {
   {
     std::ofstream f(p);
     f << "tap,t,phi,phi_left,phi_right\n";
-    for (int i = 1; i <= 40; ++i) f << i << ',' << 3.0 * i << ',' << 0.82 + 1e-4 * (i % 7) << ",0.82,0.82\n";
+    for (int i = 1; i <= 40; ++i)
+      f << i << ',' << 3.0 * i << ',' << 0.82 + 1e-4 * (i % 7) << ",0.82,0.82\n";
   }
   const TapRunInput r = load_tap_run(p.string(), "rotating_g", 0.75);
   EXPECT_EQ(tap_run_label(r), "rotating_g_0.75");

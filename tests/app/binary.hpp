@@ -12,8 +12,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <set>
 #include <functional>
+#include <set>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -35,7 +35,7 @@ struct Launch {
   /// observed event such as a checkpoint file appearing, robust on a loaded machine
   std::function<bool()> signal_when;
   int signal = SIGKILL;
-  long file_size_limit = -1;     ///< RLIMIT_FSIZE in bytes (a full disk for every file); −1 none
+  long file_size_limit = -1;  ///< RLIMIT_FSIZE in bytes (a full disk for every file); −1 none
 };
 
 inline Outcome run_binary(const std::vector<std::string>& args, const std::filesystem::path& log,
@@ -71,8 +71,8 @@ inline Outcome run_binary(const std::vector<std::string>& args, const std::files
     }
     ::kill(pid, how.signal);
   } else if (how.signal_after_s >= 0) {
-    const auto until = std::chrono::steady_clock::now() +
-                       std::chrono::duration<double>(how.signal_after_s);
+    const auto until =
+        std::chrono::steady_clock::now() + std::chrono::duration<double>(how.signal_after_s);
     while (std::chrono::steady_clock::now() < until) {
       if (::waitpid(pid, &status, WNOHANG) == pid) goto done;
       std::this_thread::sleep_for(std::chrono::milliseconds(5));
@@ -151,7 +151,8 @@ kind = "negative_g"
 g_p = 2.0
 t1 = 0.01
 period = 0.5
-taps = )" + std::to_string(taps) +
+taps = )" +
+         std::to_string(taps) +
          R"(
 [output]
 test_rect = [0.01, 0.01, 0.09, 0.05]

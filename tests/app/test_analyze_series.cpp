@@ -2,8 +2,8 @@
 // every table is written and the charts that the columns allow; mistakes name the argument
 #include <gtest/gtest.h>
 
-#include <filesystem>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <string>
 
@@ -65,9 +65,10 @@ TEST_F(AnalyzeSeries, AManifestOfPlainSeriesGivesEveryTable) {
 
 TEST_F(AnalyzeSeries, SeriesOnTheCommandLineAndTheirMistakes) {
   const std::string s0 = (dir_ / "s0.csv").string(), s1 = (dir_ / "s1.csv").string();
-  auto o = run_binary({"analyze", "--series", "negative_g:4:" + s0, "--series", "negative_g:6:" + s1,
-                       "--test-area", "0.13", "--out", (dir_ / "cli").string(), "--no-charts", "-q"},
-                      dir_ / "log.txt");
+  auto o =
+      run_binary({"analyze", "--series", "negative_g:4:" + s0, "--series", "negative_g:6:" + s1,
+                  "--test-area", "0.13", "--out", (dir_ / "cli").string(), "--no-charts", "-q"},
+                 dir_ / "log.txt");
   EXPECT_EQ(o.code, 0) << o.output;
   EXPECT_TRUE(fs::exists(dir_ / "cli" / "beta.csv"));
   // no test area

@@ -78,16 +78,16 @@ TEST_F(FromState, CheckpointForkContinuesBitwise) {
   const fs::path ck = dir_ / "ref" / "checkpoint-000000005000.gsck";
   ASSERT_TRUE(fs::exists(ck));
   // half the run from the checkpoint half-way: the same grains, bit for bit
-  const auto o = run({"run", (dir_ / "pile.toml").string(), "--out", (dir_ / "fork").string(),
-                      "--set", "preparation.from_state=" + ck.string(), "--set",
-                      "scene.duration=0.25"});
+  const auto o =
+      run({"run", (dir_ / "pile.toml").string(), "--out", (dir_ / "fork").string(), "--set",
+           "preparation.from_state=" + ck.string(), "--set", "scene.duration=0.25"});
   ASSERT_EQ(o.code, 0) << o.output;
   EXPECT_EQ(slurp(dir_ / "fork" / "state.csv"), slurp(dir_ / "ref" / "state.csv"));
   // the resolved scene names the state by an absolute path and runs as it is
   const std::string resolved = slurp(dir_ / "fork" / "scene.toml");
   EXPECT_NE(resolved.find("from_state = \"" + ck.string() + "\""), std::string::npos) << resolved;
-  const auto again = run({"run", (dir_ / "fork" / "scene.toml").string(), "--out",
-                          (dir_ / "again").string()});
+  const auto again =
+      run({"run", (dir_ / "fork" / "scene.toml").string(), "--out", (dir_ / "again").string()});
   ASSERT_EQ(again.code, 0) << again.output;
   EXPECT_EQ(slurp(dir_ / "again" / "state.csv"), slurp(dir_ / "ref" / "state.csv"));
 }
@@ -99,12 +99,13 @@ TEST_F(FromState, RunDirectoryRelativePathAndCountsLeftOut) {
                 dir_ / "sub" / "half" / "checkpoint-000000005000.gsck",
                 fs::copy_options::overwrite_existing);
   std::string text = kPile;
-  for (const char* c : {"count = 15\n", "count = 15\n"}) text.erase(text.find(c), std::string(c).size());
+  for (const char* c : {"count = 15\n", "count = 15\n"})
+    text.erase(text.find(c), std::string(c).size());
   text.replace(text.find("seed = 3"), 8, "from_state = \"half\"");
   text.replace(text.find("duration = 0.5"), 14, "duration = 0.25");
   std::ofstream(dir_ / "sub" / "fork.toml") << text;
-  const auto o = run({"run", (dir_ / "sub" / "fork.toml").string(), "--out",
-                      (dir_ / "fork_dir").string()});
+  const auto o =
+      run({"run", (dir_ / "sub" / "fork.toml").string(), "--out", (dir_ / "fork_dir").string()});
   ASSERT_EQ(o.code, 0) << o.output;
   EXPECT_EQ(slurp(dir_ / "fork_dir" / "state.csv"), slurp(dir_ / "ref" / "state.csv"));
   EXPECT_NE(slurp(dir_ / "fork_dir" / "scene.toml").find("count = 15"), std::string::npos);

@@ -2,9 +2,8 @@
 // locked and occupied directories, FIFOs, sizes that would hang or exhaust memory) ends with
 // its exit code, no signal, no internal error, within 10 s; every bad checkpoint is refused by
 // read_checkpoint or restore_simulation with an InputError naming the file
-#include <gtest/gtest.h>
-
 #include <fcntl.h>
+#include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/file.h>
 #include <sys/stat.h>
@@ -175,7 +174,8 @@ class Sandbox {
         std::ofstream o(p);
         o << "[model]\nkind = \"S\"\n[[material]]\nname = \"m\"\n";
         for (int i = 0; i < 20000; ++i)
-          o << "[[species]]\nname = \"s" << i << "\"\nshape = \"disk\"\nradius = 0.001\ncount = 1\n";
+          o << "[[species]]\nname = \"s" << i
+            << "\"\nshape = \"disk\"\nradius = 0.001\ncount = 1\n";
         o << "[box]\nkind = \"periodic\"\nwidth = 10.0\n[integrator]\nkind = \"velocity_verlet\"\n"
              "dt = 1e-6\n[scene]\nduration = 0.001\n";
       }
@@ -226,12 +226,14 @@ TEST(Hostile, EveryManifestCaseEndsWithItsExitCode) {
     const std::string what = c.file + " [" + c.cls + "] " + c.command;
     ++per_class[c.cls];
     ASSERT_TRUE(o.exited) << what << ": killed by signal " << o.code
-                          << (o.code == SIGALRM ? " (took more than 10 s)" : "") << "\n" << o.output;
+                          << (o.code == SIGALRM ? " (took more than 10 s)" : "") << "\n"
+                          << o.output;
     EXPECT_EQ(o.code, c.code) << what << "\n" << o.output;
     EXPECT_EQ(o.output.find("internal error"), std::string::npos) << what << "\n" << o.output;
     if (c.code == 0) continue;
     EXPECT_NE(o.output.find(c.expect), std::string::npos)
-        << what << ": expected '" << c.expect << "' in\n" << o.output;
+        << what << ": expected '" << c.expect << "' in\n"
+        << o.output;
     EXPECT_EQ(o.output.find("completed"), std::string::npos) << what << "\n" << o.output;
     if (c.cls == "scene" && c.code == 2) {
       const fs::path out = tmp / "out";
@@ -239,7 +241,8 @@ TEST(Hostile, EveryManifestCaseEndsWithItsExitCode) {
       EXPECT_TRUE(!fs::exists(out) || fs::is_empty(out)) << what << ": left output behind";
     }
   }
-  for (const auto& [cls, n] : per_class) std::printf("hostile class %s: %d cases\n", cls.c_str(), n);
+  for (const auto& [cls, n] : per_class)
+    std::printf("hostile class %s: %d cases\n", cls.c_str(), n);
   fs::remove_all(tmp);
 }
 
@@ -251,9 +254,9 @@ TEST(Hostile, BadSceneWithForceKeepsExistingDirectory) {
   std::ofstream(out / "keep.txt") << "keep";
   for (const char* f : {"value_radius_nan.toml", "dt_too_large.toml", "too_many_grains_walls.toml",
                         "syntax_garbage.toml"}) {
-    const Outcome o = run_binary(
-        {"run", (kCorpus / f).string(), "--out", out.string(), "--force", "--quiet"},
-        tmp / "log.txt");
+    const Outcome o =
+        run_binary({"run", (kCorpus / f).string(), "--out", out.string(), "--force", "--quiet"},
+                   tmp / "log.txt");
     ASSERT_TRUE(o.exited) << f;
     EXPECT_EQ(o.code, 2) << f << "\n" << o.output;
     std::size_t n = 0;
@@ -292,8 +295,8 @@ TEST(Hostile, BadCheckpointsAreInputErrors) {
       if (e.third == "read") {
         EXPECT_NE(m.find("byte offset"), std::string::npos) << m;
       }
-      EXPECT_NE(m.find(e.expect), std::string::npos) << e.file << ": expected '" << e.expect
-                                                     << "' in " << m;
+      EXPECT_NE(m.find(e.expect), std::string::npos)
+          << e.file << ": expected '" << e.expect << "' in " << m;
     }
   }
   EXPECT_THROW(read_checkpoint((kCorpus / "no_such.gsck").string()), InputError);

@@ -22,11 +22,12 @@ TEST(InputBounds, StepCountsThatCannotBeRunAreRefused) {
   struct Case {
     std::string scene, set;
   };
-  for (const Case& c : {Case{demo, "integrator.dt=1e-300"}, Case{demo, "scene.duration=1e300"},
-                        Case{tap, "preparation.settle_time=1e30"}, Case{tap, "drive.taps=2000000000"}}) {
+  for (const Case& c :
+       {Case{demo, "integrator.dt=1e-300"}, Case{demo, "scene.duration=1e300"},
+        Case{tap, "preparation.settle_time=1e30"}, Case{tap, "drive.taps=2000000000"}}) {
     const fs::path out = tmp / "run";
-    const auto r = run_binary({"run", c.scene, "--out", out.string(), "--set", c.set, "-q"},
-                              tmp / "log.txt");
+    const auto r =
+        run_binary({"run", c.scene, "--out", out.string(), "--set", c.set, "-q"}, tmp / "log.txt");
     EXPECT_TRUE(r.exited) << c.set;
     EXPECT_EQ(r.code, 2) << c.set << "\n" << r.output;
     EXPECT_NE(r.output.find("integrator.dt"), std::string::npos) << r.output;

@@ -22,7 +22,8 @@ using testing::run_binary;
 const std::string kDemo = std::string(GS_SOURCE_DIR) + "/scenes/demo.toml";
 
 fs::path fresh(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("gs-locks-" + name + "-" + std::to_string(::getpid()));
+  const fs::path d =
+      fs::temp_directory_path() / ("gs-locks-" + name + "-" + std::to_string(::getpid()));
   fs::remove_all(d);
   fs::create_directories(d);
   return d;
@@ -55,8 +56,8 @@ TEST(RunDirLock, SecondWriterIsRefusedAndKillLeavesNoStaleLock) {
   ASSERT_GT(pid, 0) << "the first run never took its lock";
 
   // a second run with --force, a resume and a sweep into it are refused while it runs
-  const auto second = run_binary({"run", kDemo, "--out", dir.string(), "--force", "-q"},
-                                 tmp / "second.log");
+  const auto second =
+      run_binary({"run", kDemo, "--out", dir.string(), "--force", "-q"}, tmp / "second.log");
   EXPECT_TRUE(second.exited);
   EXPECT_EQ(second.code, 2) << second.output;
   EXPECT_NE(second.output.find("PID " + std::to_string(pid)), std::string::npos) << second.output;
@@ -71,9 +72,9 @@ TEST(RunDirLock, SecondWriterIsRefusedAndKillLeavesNoStaleLock) {
   ::kill(static_cast<pid_t>(pid), SIGKILL);
   t.join();
   EXPECT_FALSE(first.exited);
-  const auto after = run_binary({"run", kDemo, "--out", dir.string(), "--force", "-q", "--set",
-                                 "scene.duration=0.02"},
-                                tmp / "after.log");
+  const auto after = run_binary(
+      {"run", kDemo, "--out", dir.string(), "--force", "-q", "--set", "scene.duration=0.02"},
+      tmp / "after.log");
   EXPECT_EQ(after.code, 0) << after.output;
   fs::remove_all(tmp);
 }
@@ -83,9 +84,10 @@ TEST(RunDirLock, AnalysisNeverWritesIntoARunOrAnInput) {
   const fs::path run = tmp / "tap";
   Launch slow;
   slow.alarm_s = 120;
-  const auto r = run_binary({"run", std::string(GS_SOURCE_DIR) + "/scenes/tap_small_negative_g.toml",
-                             "--out", run.string(), "-q", "--set", "drive.taps=2"},
-                            tmp / "run.log", slow);
+  const auto r =
+      run_binary({"run", std::string(GS_SOURCE_DIR) + "/scenes/tap_small_negative_g.toml", "--out",
+                  run.string(), "-q", "--set", "drive.taps=2"},
+                 tmp / "run.log", slow);
   ASSERT_EQ(r.code, 0) << r.output;
   const auto before = fs::last_write_time(run / "series.csv");
   for (const fs::path& out : {run, run / ".", tmp / "tap"}) {

@@ -11,15 +11,14 @@
 #include <fstream>
 #include <sstream>
 
-#include "view/render_world.hpp"
 #include "app/trajectory.hpp"
+#include "binary.hpp"
 #include "geometry/polygon.hpp"
 #include "output/png.hpp"
 #include "scene/parse.hpp"
 #include "sim/state_file.hpp"
+#include "view/render_world.hpp"
 #include "world/prepare.hpp"
-
-#include "binary.hpp"
 #if defined(GS_HAVE_FFMPEG)
 #include "output/movie/movie.hpp"
 #endif
@@ -93,7 +92,8 @@ const fs::path& run_dir() {
     std::ofstream(scene) << text;
     const fs::path out = scratch() / "run";
     std::string err;
-    const int rc = gransim("run '" + scene.string() + "' --out '" + out.string() + "' --quiet", &err);
+    const int rc =
+        gransim("run '" + scene.string() + "' --out '" + out.string() + "' --quiet", &err);
     EXPECT_EQ(rc, 0) << err;
     return out;
   }();
@@ -146,11 +146,11 @@ TEST(RenderCommand, TrajectoryParsesBackToTheFinalState) {
       std::vector<std::string> cols;
       for (std::string c; ls >> c;) cols.push_back(c);
       ASSERT_EQ(cols.size(), 22u) << line;
-      EXPECT_EQ(cols[0], "H");    // species 0 as an element symbol (ASE, OVITO)
-      EXPECT_EQ(cols[4], "g");    // its name
-      EXPECT_EQ(cols[5], "0");    // its index
+      EXPECT_EQ(cols[0], "H");                // species 0 as an element symbol (ASE, OVITO)
+      EXPECT_EQ(cols[4], "g");                // its name
+      EXPECT_EQ(cols[5], "0");                // its index
       EXPECT_EQ(cols[6], std::to_string(i));  // label
-      EXPECT_EQ(cols[16], "0");   // ω as the vector (0, 0, ω)
+      EXPECT_EQ(cols[16], "0");               // ω as the vector (0, 0, ω)
       EXPECT_EQ(cols[17], "0");
       EXPECT_EQ(cols[20], "10");  // sides
     }
@@ -185,11 +185,12 @@ TEST(RenderCommand, TrajectoryParsesBackToTheFinalState) {
 // column) still read: `movie` and `render` take both
 TEST(RenderCommand, TrajectoryReaderTakesTheOlderColumnsToo) {
   const fs::path p = scratch() / "old.xyz";
-  std::ofstream(p) << "2\nLattice=\"0.2 0 0 0 0.6 0 0 0 1\" Origin=\"0 0 -0.5\" "
-                      "Properties=species:S:1:pos:R:3:velo:R:3:radius:R:1:theta:R:1:omega:R:1:"
-                      "speed:R:1:sides:I:1 Time=0.025 Step=500 Gravity=\"0 -9.81 0\" pbc=\"F F F\"\n"
-                      "small 0.01 0.02 0 0.5 -0.25 0 0.00636 6.27 1.5 0.56 10\n"
-                      "big 0.03 0.04 0 0 0 0 0.009 0.1 -2.5 0 10\n";
+  std::ofstream(p)
+      << "2\nLattice=\"0.2 0 0 0 0.6 0 0 0 1\" Origin=\"0 0 -0.5\" "
+         "Properties=species:S:1:pos:R:3:velo:R:3:radius:R:1:theta:R:1:omega:R:1:"
+         "speed:R:1:sides:I:1 Time=0.025 Step=500 Gravity=\"0 -9.81 0\" pbc=\"F F F\"\n"
+         "small 0.01 0.02 0 0.5 -0.25 0 0.00636 6.27 1.5 0.56 10\n"
+         "big 0.03 0.04 0 0 0 0 0.009 0.1 -2.5 0 10\n";
   TrajectoryReader reader(p.string());
   TrajectoryFrame f;
   ASSERT_TRUE(reader.next(f));
@@ -268,7 +269,8 @@ TEST(RenderCommand, MovieFromFramesAndFromTheTrajectory) {
 
 TEST(RenderCommand, BadOptionsExitWithTwoAndSayWhy) {
   const fs::path& run = run_dir();
-  const std::string r = "render '" + run.string() + "' -o '" + (scratch() / "x.png").string() + "' ";
+  const std::string r =
+      "render '" + run.string() + "' -o '" + (scratch() / "x.png").string() + "' ";
   std::string err;
   EXPECT_EQ(gransim(r + "--color-by temperature", &err), 2);
   EXPECT_NE(err.find("--color-by: unknown value 'temperature' (known: speed"), std::string::npos)
@@ -300,9 +302,10 @@ TEST(RenderCommand, BadOptionsExitWithTwoAndSayWhy) {
   std::string text = kScene;
   text.replace(text.find("size = [320, 240]"), 17, "size = [320, 8]");
   std::ofstream(bad) << text;
-  EXPECT_EQ(gransim("run '" + bad.string() + "' --out '" + (scratch() / "bad").string() + "'", &err),
-            2);
-  const int line = 1 + static_cast<int>(std::count(text.begin(), text.begin() + text.find("size ="), '\n'));
+  EXPECT_EQ(
+      gransim("run '" + bad.string() + "' --out '" + (scratch() / "bad").string() + "'", &err), 2);
+  const int line =
+      1 + static_cast<int>(std::count(text.begin(), text.begin() + text.find("size ="), '\n'));
   EXPECT_NE(err.find("bad.toml:" + std::to_string(line) + ": key 'render.size'"), std::string::npos)
       << err;
 }

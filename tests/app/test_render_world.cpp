@@ -1,7 +1,5 @@
 // the World → frame adapter: shapes, walls, box, colours, overlays, contact quantities, and the
 // agreement of the [render] names with what the renderer knows
-#include "view/render_world.hpp"
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -11,6 +9,7 @@
 #include "scene/parse.hpp"
 #include "scene/render_section.hpp"
 #include "sim/simulation.hpp"
+#include "view/render_world.hpp"
 #include "world/prepare.hpp"
 
 namespace gs {
@@ -250,8 +249,8 @@ TEST(RenderWorld, ContactCountsPressureAndChainsFromTheContacts) {
   // chains: centre to centre for the pair, centre to contact point for the wall
   const auto lines = force_chain_lines(sw, c);
   ASSERT_EQ(lines.size(), 2u);
-  const auto pair = std::find_if(lines.begin(), lines.end(),
-                                 [](const ContactLine& l) { return l.a.y == 0.05; });
+  const auto pair =
+      std::find_if(lines.begin(), lines.end(), [](const ContactLine& l) { return l.a.y == 0.05; });
   ASSERT_NE(pair, lines.end());
   EXPECT_NEAR(pair->force, F, 1e-9);
   EXPECT_NEAR(norm(pair->b - pair->a), 0.0099, 1e-12);

@@ -22,10 +22,10 @@ namespace gs {
 namespace {
 
 namespace fs = std::filesystem;
-using testing::slurp;
 using testing::Launch;
 using testing::Outcome;
 using testing::run_binary;
+using testing::slurp;
 
 const std::string kSource = GS_SOURCE_DIR;
 
@@ -36,8 +36,7 @@ std::map<std::string, std::string> outputs(const fs::path& dir) {
   for (const auto& e : fs::recursive_directory_iterator(dir)) {
     if (!e.is_regular_file()) continue;
     const std::string name = fs::relative(e.path(), dir).string();
-    if (name == "run.json" || name.rfind("checkpoint-", 0) == 0 ||
-        e.path().filename() == ".lock")
+    if (name == "run.json" || name.rfind("checkpoint-", 0) == 0 || e.path().filename() == ".lock")
       continue;
     m[name] = slurp(e.path());
   }
@@ -132,8 +131,8 @@ TEST_P(KillResume, SigkillAtRandomMomentsThenResumeIsBitwise) {
       } else {
         break;
       }
-      kill.signal_after_s = too_late > 0.0 ? 0.5 * (too_early + too_late)
-                                           : kill.signal_after_s + 0.1 * wall;
+      kill.signal_after_s =
+          too_late > 0.0 ? 0.5 * (too_early + too_late) : kill.signal_after_s + 0.1 * wall;
     }
     ASSERT_FALSE(killed.exited) << "the run ended before the kill at " << kill.signal_after_s
                                 << " s (reference took " << wall << " s)";
@@ -156,20 +155,32 @@ TEST_P(KillResume, SigkillAtRandomMomentsThenResumeIsBitwise) {
 // a small tapping pile (90 decagons, early rest on: the clock's rest state is checkpointed
 // too) and a 2000-disk randomly forced fluid (over 1000 contacts per step: the force loop
 // runs on both threads); checkpoints every few thousand steps
-const std::vector<std::string> kTapping = {
-    kSource + "/scenes/tap_small_negative_g.toml", "--set", "species[0].count=40", "--set",
-    "species[1].count=50", "--set", "drive.taps=3", "--set", "preparation.settle_time=0.6",
-    "--set", "output.checkpoint_steps=3000"};
+const std::vector<std::string> kTapping = {kSource + "/scenes/tap_small_negative_g.toml",
+                                           "--set",
+                                           "species[0].count=40",
+                                           "--set",
+                                           "species[1].count=50",
+                                           "--set",
+                                           "drive.taps=3",
+                                           "--set",
+                                           "preparation.settle_time=0.6",
+                                           "--set",
+                                           "output.checkpoint_steps=3000"};
 // the same pile with the quench on: its state (armed, last kinetic energy, rising) is in the
 // clock's checkpoint entry, and a resumed run must reset at the same steps
 std::vector<std::string> with_quench(std::vector<std::string> a) {
   a.insert(a.end(), {"--set", "drive.quench=true"});
   return a;
 }
-const std::vector<std::string> kRfm = {
-    kSource + "/scenes/rfm2d_reference.toml", "--set", "scene.duration=0.03", "--set",
-    "rfm.discard_time=0.01", "--set", "rfm.sample_every=500", "--set",
-    "output.checkpoint_steps=4000"};
+const std::vector<std::string> kRfm = {kSource + "/scenes/rfm2d_reference.toml",
+                                       "--set",
+                                       "scene.duration=0.03",
+                                       "--set",
+                                       "rfm.discard_time=0.01",
+                                       "--set",
+                                       "rfm.sample_every=500",
+                                       "--set",
+                                       "output.checkpoint_steps=4000"};
 
 INSTANTIATE_TEST_SUITE_P(Scenes, KillResume,
                          ::testing::Values(Case{"tap1", kTapping, "1"}, Case{"tap2", kTapping, "2"},
@@ -193,8 +204,7 @@ TEST(Resume, SigintCheckpointsAndSaysHowToResume) {
   ASSERT_EQ(o.code, 4) << o.output;
   EXPECT_NE(o.output.find("gransim resume " + (tmp / "run").string()), std::string::npos)
       << o.output;
-  EXPECT_NE(slurp(tmp / "run" / "run.json").find("\"status\": \"interrupted\""),
-            std::string::npos);
+  EXPECT_NE(slurp(tmp / "run" / "run.json").find("\"status\": \"interrupted\""), std::string::npos);
   // a checkpoint is a snapshot `gransim render` can draw
   std::string ck;
   for (const auto& e : fs::directory_iterator(tmp / "run"))
@@ -264,7 +274,8 @@ TEST(Resume, FullDiskKeepsEveryCompleteRowAndResumes) {
     std::string line;
     std::getline(in, line);
     const auto fields = std::count(line.begin(), line.end(), ',');
-    while (std::getline(in, line)) ASSERT_EQ(std::count(line.begin(), line.end(), ','), fields) << f;
+    while (std::getline(in, line))
+      ASSERT_EQ(std::count(line.begin(), line.end(), ','), fields) << f;
   }
   EXPECT_LT(fs::file_size(tmp / "run" / "series.csv"), fs::file_size(tmp / "ref" / "series.csv"));
   const Outcome r = run_binary({"resume", (tmp / "run").string(), "--quiet"}, tmp / "r.log");
@@ -279,7 +290,8 @@ TEST(Resume, InterruptedSweepResumesItsRuns) {
   auto sweep = [&](const fs::path& out) {
     std::vector<std::string> a = kTapping;
     a.insert(a.begin(), "sweep");
-    a.insert(a.end(), {"--param", "drive.g_p=4,8", "--jobs", "2", "--quiet", "--out", out.string()});
+    a.insert(a.end(),
+             {"--param", "drive.g_p=4,8", "--jobs", "2", "--quiet", "--out", out.string()});
     return a;
   };
   Launch env;

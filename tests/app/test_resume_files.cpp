@@ -18,7 +18,8 @@ using testing::Launch;
 using testing::run_binary;
 
 TEST(ResumeFiles, LockAndFinalPictureMayShrinkBetweenSittings) {
-  const fs::path tmp = fs::temp_directory_path() / ("gs-resume-files-" + std::to_string(::getpid()));
+  const fs::path tmp =
+      fs::temp_directory_path() / ("gs-resume-files-" + std::to_string(::getpid()));
   fs::remove_all(tmp);
   fs::create_directories(tmp);
   const fs::path dir = tmp / "run";

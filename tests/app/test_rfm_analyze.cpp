@@ -148,9 +148,8 @@ TEST(RfmAnalyze, WritesThePerRunAnalysisAndExponents) {
 TEST(RfmAnalyze, BinaryAnalyzesAndDrawsCharts) {
   const Runs& r = runs();
   const fs::path out = r.root / "analysis_bin";
-  const std::string cmd = std::string(GS_BINARY) + " analyze " +
-                          (r.root / "sizes").string() + " --out " + out.string() +
-                          " -q 2>" + (r.root / "err.txt").string();
+  const std::string cmd = std::string(GS_BINARY) + " analyze " + (r.root / "sizes").string() +
+                          " --out " + out.string() + " -q 2>" + (r.root / "err.txt").string();
   ASSERT_EQ(std::system(cmd.c_str()), 0)
       << read_text_file((r.root / "err.txt").string()).value_or("");
   EXPECT_TRUE(fs::exists(out / "ring50" / "velocity.csv"));
@@ -160,10 +159,10 @@ TEST(RfmAnalyze, BinaryAnalyzesAndDrawsCharts) {
     GTEST_SKIP() << "no python/matplotlib: " << err;
   // every chart of a ring, and the comparisons: G_h against the bisection, post-collision
   // against all velocities, moments against N with ξ_m, ζ_m (a PNG of a few kB is an empty frame)
-  for (const char* f : {"ring50/velocity.png", "ring50/gh.png", "ring50/temperature.png",
-                        "ring50/tail_scan.png", "ring50/lnln.png", "ring50/freepath.png",
-                        "ring50/gh_bisection.png", "ring50/postcollision.png",
-                        "ring100/gh_bisection.png", "moments_vs_N.png"}) {
+  for (const char* f :
+       {"ring50/velocity.png", "ring50/gh.png", "ring50/temperature.png", "ring50/tail_scan.png",
+        "ring50/lnln.png", "ring50/freepath.png", "ring50/gh_bisection.png",
+        "ring50/postcollision.png", "ring100/gh_bisection.png", "moments_vs_N.png"}) {
     std::error_code ec;
     EXPECT_TRUE(fs::exists(out / f)) << f;
     EXPECT_GT(fs::file_size(out / f, ec), 15000u) << f;

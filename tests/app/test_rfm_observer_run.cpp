@@ -201,7 +201,8 @@ TEST(RfmObserver, FollowsTheSpatialSort) {
   ASSERT_GT(lp.total(), 30.0);
   EXPECT_EQ(ls.total(), lp.total());
   ASSERT_EQ(ls.bins().size(), lp.bins().size());
-  for (std::size_t b = 0; b < lp.bins().size(); ++b) EXPECT_EQ(ls.bins()[b].count, lp.bins()[b].count) << b;
+  for (std::size_t b = 0; b < lp.bins().size(); ++b)
+    EXPECT_EQ(ls.bins()[b].count, lp.bins()[b].count) << b;
   const rfm::Histogram pp = rfm::read_histogram_raw(plain.dir / "run" / "hist_postcollision.csv");
   const rfm::Histogram ps = rfm::read_histogram_raw(sorted.dir / "run" / "hist_postcollision.csv");
   EXPECT_EQ(ps.total(), pp.total());
@@ -238,8 +239,8 @@ TEST(RfmObserver, QuietStepsLoseNothing) {
   std::int64_t calls = 0;
   while (quiet.world().s.step < steps) {
     // as the run loop: never past a sort (the observer follows one sort per call)
-    const std::int64_t m = std::min({1 + obs_quiet.quiet_steps(quiet), quiet.sort_every(),
-                                     steps - quiet.world().s.step});
+    const std::int64_t m = std::min(
+        {1 + obs_quiet.quiet_steps(quiet), quiet.sort_every(), steps - quiet.world().s.step});
     quiet.run(m);
     obs_quiet.after_step(quiet);
     ++calls;

@@ -45,8 +45,8 @@ TEST(RobustOutputs, ModelOnAFullDiskKeepsWholeRowsAndExitsFive) {
   const fs::path tmp = testing::fresh_test_dir("gs-robust");
   Launch full;
   full.file_size_limit = 3000;
-  const auto o = run_binary({"model", "bisection", "--levels", "8", "--realisations", "200", "--bins",
-                             "400", "--out", (tmp / "m").string(), "--no-charts", "-q"},
+  const auto o = run_binary({"model", "bisection", "--levels", "8", "--realisations", "200",
+                             "--bins", "400", "--out", (tmp / "m").string(), "--no-charts", "-q"},
                             tmp / "log.txt", full);
   ASSERT_TRUE(o.exited) << "killed by signal " << o.code;
   EXPECT_EQ(o.code, 5) << o.output;
@@ -79,7 +79,8 @@ TEST(RobustOutputs, ResumeRefusesAnEditedSceneToml) {
   std::ofstream(dir / "scene.toml") << edited;
   const auto refused = run_binary({"resume", dir.string(), "-q"}, tmp / "refused.log");
   EXPECT_EQ(refused.code, 2) << refused.output;
-  EXPECT_NE(refused.output.find((dir / "scene.toml").string()), std::string::npos) << refused.output;
+  EXPECT_NE(refused.output.find((dir / "scene.toml").string()), std::string::npos)
+      << refused.output;
   EXPECT_NE(refused.output.find("edited"), std::string::npos) << refused.output;
   EXPECT_NE(refused.output.find("eps_n"), std::string::npos) << refused.output;
   // restored: the resume proceeds (stopped again at its first checkpoint)
@@ -96,12 +97,12 @@ TEST(RobustOutputs, ResumeRefusesAnEditedSceneToml) {
 TEST(RobustOutputs, BlownUpStateIsNeverCompleted) {
   const fs::path tmp = testing::fresh_test_dir("gs-robust");
   for (const char* every : {"100", "1000000000"}) {
-    const auto o = run_binary(
-        {"run", kBase, "--out", (tmp / "run").string(), "--force", "-q", "--allow-unstable", "--set",
-         "integrator.dt=2e-4", "--set", "scene.duration=0.5", "--set",
-         std::string("health.check_every=") + every, "--set", "health.max_overlap=1.0", "--set",
-         "preparation.velocity_amplitude=5"},
-        tmp / "log.txt");
+    const auto o =
+        run_binary({"run", kBase, "--out", (tmp / "run").string(), "--force", "-q",
+                    "--allow-unstable", "--set", "integrator.dt=2e-4", "--set",
+                    "scene.duration=0.5", "--set", std::string("health.check_every=") + every,
+                    "--set", "health.max_overlap=1.0", "--set", "preparation.velocity_amplitude=5"},
+                   tmp / "log.txt");
     ASSERT_TRUE(o.exited) << every << ": killed by signal " << o.code << "\n" << o.output;
     EXPECT_EQ(o.code, 3) << every << "\n" << o.output;
     EXPECT_EQ(o.output.find("completed"), std::string::npos) << o.output;

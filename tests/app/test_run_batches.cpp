@@ -18,9 +18,9 @@ namespace gs {
 namespace {
 
 namespace fs = std::filesystem;
-using testing::slurp;
 using testing::gransim;
 using testing::sh;
+using testing::slurp;
 
 // runs `scene` with `sets` into dir/<tag>: the exit code
 int run(const fs::path& dir, const std::string& tag, const std::string& scene,

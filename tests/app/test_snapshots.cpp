@@ -10,11 +10,11 @@
 #include <map>
 #include <sstream>
 
-#include "view/render_world.hpp"
 #include "app/snapshot_files.hpp"
 #include "binary.hpp"
 #include "scene/parse.hpp"
 #include "sim/simulation.hpp"
+#include "view/render_world.hpp"
 #include "world/prepare.hpp"
 
 namespace gs {
@@ -123,9 +123,16 @@ TEST(Snapshots, KilledRunResumesToTheUninterruptedSnapshots) {
   const fs::path tmp = testing::fresh_test_dir("gs_snapshots");
   std::ofstream(tmp / "tiny.toml") << testing::tiny_tapping_scene(10);
   auto args = [&](const fs::path& out) {
-    return std::vector<std::string>{"run", (tmp / "tiny.toml").string(), "--out", out.string(),
-                                    "--quiet", "--set", "output.snapshots.at_taps=true", "--set",
-                                    "output.snapshots.every_time=0.35", "--set",
+    return std::vector<std::string>{"run",
+                                    (tmp / "tiny.toml").string(),
+                                    "--out",
+                                    out.string(),
+                                    "--quiet",
+                                    "--set",
+                                    "output.snapshots.at_taps=true",
+                                    "--set",
+                                    "output.snapshots.every_time=0.35",
+                                    "--set",
                                     "output.checkpoint_steps=2000"};
   };
   Launch env;

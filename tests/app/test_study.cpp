@@ -16,7 +16,6 @@
 
 #include "app/study.hpp"
 #include "app/study_problems.hpp"
-
 #include "binary.hpp"
 
 namespace gs {
@@ -30,8 +29,8 @@ using testing::sh;
 
 // a fresh scratch folder per test
 fs::path scratch(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() /
-                     ("gs_test_study_" + std::to_string(getpid()) + "_" + name);
+  const fs::path d =
+      fs::temp_directory_path() / ("gs_test_study_" + std::to_string(getpid()) + "_" + name);
   fs::remove_all(d);
   fs::create_directories(d);
   return d;
@@ -154,8 +153,8 @@ TEST(Study, UnstableStepIsRecordedWithTheHealthMessage) {
   const fs::path dir = scratch("unstable");
   std::ofstream(dir / "u.toml") << "name = \"u\"\nproblems = [\"two_disk\"]\n[matrix]\n"
                                    "integrators = [\"gear6\"]\ndt_over_tc = [0.02, 1.0]\n";
-  const Result r = sh(gransim("study " + (dir / "u.toml").string() + " --quiet --out " +
-                              (dir / "out").string()));
+  const Result r = sh(
+      gransim("study " + (dir / "u.toml").string() + " --quiet --out " + (dir / "out").string()));
   ASSERT_EQ(r.code, 0) << r.output;
   const auto rows = read_csv(dir / "out" / "study.csv");
   ASSERT_EQ(rows.size(), 3u);

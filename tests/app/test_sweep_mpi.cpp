@@ -83,8 +83,8 @@ TEST_F(SweepMpi, TwoRanksWriteTheFilesOfASerialSweep) {
   // every file of the serial sweep, and no other, with the same bytes; logs and checkpoints
   // (these hold wall-clock data, "run/clock") aside
   std::set<std::string> serial_files, mpi_files;
-  for (const auto& [root, files] : {std::pair{dir_ / "serial", &serial_files},
-                                    std::pair{dir_ / "mpi", &mpi_files}})
+  for (const auto& [root, files] :
+       {std::pair{dir_ / "serial", &serial_files}, std::pair{dir_ / "mpi", &mpi_files}})
     for (const auto& e : fs::recursive_directory_iterator(root))
       if (e.is_regular_file() && e.path().filename() != ".lock")  // a lock holds its PID
         files->insert(fs::relative(e.path(), root).string());
@@ -164,8 +164,8 @@ TEST_F(SweepMpi, ResumesAPartlyFinishedSweep) {
 TEST_F(SweepMpi, BadInputStopsEveryRank) {
   if (const std::string why = mpi_unavailable(); !why.empty()) GTEST_SKIP() << why;
   const fs::path sw = dir_ / "sweep";
-  Result r = sh(mpirun2("sweep " + scene_ + " --param drive.no_such_key=1,2 -q --out " +
-                        sw.string()));
+  Result r =
+      sh(mpirun2("sweep " + scene_ + " --param drive.no_such_key=1,2 -q --out " + sw.string()));
   EXPECT_EQ(r.code, 2) << r.output;
   EXPECT_NE(r.output.find("no_such_key"), std::string::npos) << r.output;
   EXPECT_EQ(r.output.find("gransim: error"), r.output.rfind("gransim: error")) << r.output;

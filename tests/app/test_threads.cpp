@@ -39,9 +39,7 @@ int allowed_cpus() {
 
 class Threads : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = testing::fresh_test_dir("gs_threads");
-  }
+  void SetUp() override { dir_ = testing::fresh_test_dir("gs_threads"); }
   void TearDown() override { fs::remove_all(dir_); }
 
   // a short run of the demo pile with this environment; run.json's path
@@ -51,8 +49,8 @@ class Threads : public ::testing::Test {
     how.alarm_s = 120;
     const fs::path out = dir_ / "run";
     const testing::Outcome o = testing::run_binary(
-        {"run", std::string(GS_SOURCE_DIR) + "/scenes/demo.toml", "--out", out.string(),
-         "--force", "--quiet", "--set", "preparation.settle_time=0.02"},
+        {"run", std::string(GS_SOURCE_DIR) + "/scenes/demo.toml", "--out", out.string(), "--force",
+         "--quiet", "--set", "preparation.settle_time=0.02"},
         dir_ / "log.txt", how);
     EXPECT_TRUE(o.exited && o.code == 0) << o.output;
     return out / "run.json";

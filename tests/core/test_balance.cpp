@@ -97,8 +97,7 @@ TEST(RangeBalancer, ConcentratedCostAndDegenerateInput) {
   }
   // the busy items end up spread over several threads, not all with one
   int busy = 0;
-  for (int t = 0; t < 8; ++t)
-    busy += b.begin(t) < 504 && b.end(t) > 500;
+  for (int t = 0; t < 8; ++t) busy += b.begin(t) < 504 && b.end(t) > 500;
   EXPECT_GE(busy, 3);
   // zero and non-finite timings leave the split as it was
   const std::size_t before = b.end(3);

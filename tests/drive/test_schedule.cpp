@@ -230,8 +230,7 @@ SceneSpec quench_scene(bool on) {
 }
 
 // steps n in [from, to) of the script with clock c on world w
-void well_steps(ProtocolClock& c, World& w, Well& well, long from, long to, bool kick,
-                double dt) {
+void well_steps(ProtocolClock& c, World& w, Well& well, long from, long to, bool kick, double dt) {
   for (long n = from; n < to; ++n) {
     w.s.t = static_cast<double>(n) * dt;
     if (w.s.t < 1.0 - 1e-9) {

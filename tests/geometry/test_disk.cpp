@@ -61,8 +61,8 @@ TEST(DiskAreaInRect, CentredStrip) {
     EXPECT_NEAR(disk_area_in_rect(c, r, c.x - h, 0.0, c.x + h, 4.0), want, kRel * full);
   }
   // a small rectangle wholly inside the disk is simply its own area
-  EXPECT_NEAR(disk_area_in_rect(c, r, c.x - 0.1, c.y - 0.05, c.x + 0.12, c.y + 0.1),
-              0.22 * 0.15, kRel * full);
+  EXPECT_NEAR(disk_area_in_rect(c, r, c.x - 0.1, c.y - 0.05, c.x + 0.12, c.y + 0.1), 0.22 * 0.15,
+              kRel * full);
 }
 
 // any point splits the plane into four quadrants whose areas sum to πr²
@@ -72,10 +72,9 @@ TEST(DiskAreaInRect, QuadrantsSumToDisk) {
   const double r = 9e-3, full = kPi * r * r, big = 1.0;
   for (int k = 0; k < 1000; ++k) {
     const double px = c.x + rng.uniform(-1.2, 1.2) * r, py = c.y + rng.uniform(-1.2, 1.2) * r;
-    const double sum = disk_area_in_rect(c, r, -big, -big, px, py) +
-                       disk_area_in_rect(c, r, px, -big, big, py) +
-                       disk_area_in_rect(c, r, -big, py, px, big) +
-                       disk_area_in_rect(c, r, px, py, big, big);
+    const double sum =
+        disk_area_in_rect(c, r, -big, -big, px, py) + disk_area_in_rect(c, r, px, -big, big, py) +
+        disk_area_in_rect(c, r, -big, py, px, big) + disk_area_in_rect(c, r, px, py, big, big);
     EXPECT_NEAR(sum, full, kRel * full);
   }
 }

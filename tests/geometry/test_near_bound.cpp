@@ -99,7 +99,8 @@ TEST(NearBound, OverlapSameWithoutTheShortcut) {
     const double f = i % 5 == 0 ? rng.uniform(0.3, 0.9) : rng.uniform(0.9, 1.0);
     const double phi = rng.uniform(0.0, 2.0 * kPi);
     st.set_placed(0, regular_polygon(10, ra), ca, rng.uniform(0.0, 2.0 * kPi));
-    st.set_placed(1, regular_polygon(10, rb), ca + Vec2{std::cos(phi), std::sin(phi)} * (f * (ra + rb)),
+    st.set_placed(1, regular_polygon(10, rb),
+                  ca + Vec2{std::cos(phi), std::sin(phi)} * (f * (ra + rb)),
                   rng.uniform(0.0, 2.0 * kPi));
     const PolyRef a = st.ref(0), b = st.ref(1);
     ASSERT_GT(b.near, 0.0);

@@ -18,7 +18,7 @@ constexpr double kPi = std::numbers::pi;
 // areas are sums of ≲ 40 coordinate products, each crossing point a few ulp off: round-off is
 // ≲ 1e-14 relative, 1e-12 leaves margin while catching any wrong vertex
 constexpr double kRel = 1e-12;
-constexpr double kRBig = 9e-3;     // the paper's big decagon, m
+constexpr double kRBig = 9e-3;       // the paper's big decagon, m
 constexpr double kRSmall = 6.36e-3;  // the paper's small decagon, m
 
 double deg(double d) { return d * kPi / 180.0; }
@@ -110,7 +110,8 @@ double cap_area(double r, double d) {
   const double c36 = r * std::cos(deg(36)), s36 = r * std::sin(deg(36));
   const double cot18 = 1.0 / std::tan(deg(18));
   if (d >= c36) return (r - d) * (r - d) * cot18;
-  const double k = (std::sin(deg(72)) - std::sin(deg(36))) / (std::cos(deg(36)) - std::cos(deg(72)));
+  const double k =
+      (std::sin(deg(72)) - std::sin(deg(36))) / (std::cos(deg(36)) - std::cos(deg(72)));
   const double w = c36 - d;
   return (r - c36) * (r - c36) * cot18 + 2.0 * (w * s36 + 0.5 * k * w * w);
 }
@@ -118,7 +119,8 @@ double cap_area(double r, double d) {
 double cap_half_width(double r, double d) {
   const double c36 = r * std::cos(deg(36)), s36 = r * std::sin(deg(36));
   if (d >= c36) return (r - d) / std::tan(deg(18));
-  const double k = (std::sin(deg(72)) - std::sin(deg(36))) / (std::cos(deg(36)) - std::cos(deg(72)));
+  const double k =
+      (std::sin(deg(72)) - std::sin(deg(36))) / (std::cos(deg(36)) - std::cos(deg(72)));
   return s36 + k * (c36 - d);
 }
 
@@ -161,8 +163,8 @@ TEST(Overlap, IdenticalDecagonsRotatedAndMoved) {
   const double r = kRBig, f = 0.93, D = 2.0 * f * r;
   const double phi = 0.7321;
   const Vec2 x0{0.31, 0.47}, u{std::cos(phi), std::sin(phi)};
-  const Overlap o = overlap(regular_polygon(10, r, x0, phi),
-                            regular_polygon(10, r, x0 + u * D, phi + kPi));
+  const Overlap o =
+      overlap(regular_polygon(10, r, x0, phi), regular_polygon(10, r, x0 + u * D, phi + kPi));
   const double want = 2.0 * cap_area(r, f * r);
   EXPECT_NEAR(o.area, want, kRel * want);
   const double y = cap_half_width(r, f * r);
@@ -178,8 +180,8 @@ TEST(Overlap, IdenticalDecagonsFaceToFace) {
   const double t54 = std::tan(deg(54));
   for (double f : {0.999, 0.98, 0.9, 0.8, 0.7}) {
     const double d = f * a, D = 2.0 * d, w = a - d;
-    const Overlap o = overlap(regular_polygon(10, r, {}, deg(18)),
-                              regular_polygon(10, r, {D, 0.0}, deg(18)));
+    const Overlap o =
+        overlap(regular_polygon(10, r, {}, deg(18)), regular_polygon(10, r, {D, 0.0}, deg(18)));
     const double want = 2.0 * (2.0 * s18 * w + t54 * w * w);
     EXPECT_NEAR(o.area, want, kRel * want) << "d/a = " << f;
     const double y = s18 + t54 * w;
@@ -221,7 +223,8 @@ TEST(Overlap, TouchingAndSeparatedAreZeroAndFinite) {
   // decagons tip to tip, and tip to tip with a hair's gap
   const double r = kRBig;
   for (double gap : {0.0, 1e-15, 1e-9}) {
-    const Overlap o = overlap(regular_polygon(10, r), regular_polygon(10, r, {2 * r + gap, 0}, kPi));
+    const Overlap o =
+        overlap(regular_polygon(10, r), regular_polygon(10, r, {2 * r + gap, 0}, kPi));
     EXPECT_TRUE(finite(o));
     EXPECT_LE(o.area, 1e-30);
   }
@@ -298,8 +301,8 @@ TEST(Overlap, RandomConvexPairsProperties) {
     const double dist = rng.uniform(0.0, ra + rb), ang = rng.uniform(0.0, 2 * kPi);
     const Poly b = (k % 5 == 0)
                        ? regular_polygon(10, rb, {dist * std::cos(ang), dist * std::sin(ang)}, ang)
-                       : test::random_convex(rng, {dist * std::cos(ang), dist * std::sin(ang)},
-                                             rb, 3 + (k / 3) % 12);
+                       : test::random_convex(rng, {dist * std::cos(ang), dist * std::sin(ang)}, rb,
+                                             3 + (k / 3) % 12);
     const Overlap ab = overlap(a, b), ba = overlap(b, a);
     const double amin = std::min(signed_area(a), signed_area(b));
     ASSERT_TRUE(finite(ab) && finite(ba));

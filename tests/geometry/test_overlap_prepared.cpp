@@ -122,7 +122,8 @@ TEST(PreparedOverlap, FarFromOriginBitwise) {
   for (int i = 0; i < 10000; ++i) {
     const double far = std::pow(10.0, rng.uniform(3.0, 5.0));
     const Vec2 ca{rng.uniform(-far, far), rng.uniform(-far, far)};
-    const Vec2 cb = ca + dir(rng.uniform(0.0, 2.0 * kPi)) * ((kRBig + kRSmall) * rng.uniform(0.85, 1.0));
+    const Vec2 cb =
+        ca + dir(rng.uniform(0.0, 2.0 * kPi)) * ((kRBig + kRSmall) * rng.uniform(0.85, 1.0));
     PolyStore st;
     st.resize(2, 10);
     st.set_placed(0, big, ca, rng.uniform(0.0, 2.0 * kPi));

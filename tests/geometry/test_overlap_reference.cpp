@@ -77,8 +77,10 @@ TEST(OverlapReference, GridAlignedAsBefore) {
   RngStream rng(23, 0);
   int touching = 0;
   for (int i = 0; i < 4000; ++i) {
-    const double x0 = std::floor(rng.uniform(0.0, 8.0)) * 0.25, y0 = std::floor(rng.uniform(0.0, 8.0)) * 0.25;
-    const double x1 = std::floor(rng.uniform(0.0, 8.0)) * 0.25, y1 = std::floor(rng.uniform(0.0, 8.0)) * 0.25;
+    const double x0 = std::floor(rng.uniform(0.0, 8.0)) * 0.25,
+                 y0 = std::floor(rng.uniform(0.0, 8.0)) * 0.25;
+    const double x1 = std::floor(rng.uniform(0.0, 8.0)) * 0.25,
+                 y1 = std::floor(rng.uniform(0.0, 8.0)) * 0.25;
     const Poly a = rectangle(x0, y0, x0 + 0.5, y0 + 0.75);
     const Poly b = rectangle(x1, y1, x1 + 1.0, y1 + 0.5);
     expect_as_before(a, b, touching);

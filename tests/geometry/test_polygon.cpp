@@ -170,7 +170,8 @@ double decagon_cap(double r, double d) {
   const double c36 = r * std::cos(deg(36)), s36 = r * std::sin(deg(36));
   const double cot18 = 1.0 / std::tan(deg(18));
   if (d >= c36) return (r - d) * (r - d) * cot18;
-  const double k = (std::sin(deg(72)) - std::sin(deg(36))) / (std::cos(deg(36)) - std::cos(deg(72)));
+  const double k =
+      (std::sin(deg(72)) - std::sin(deg(36))) / (std::cos(deg(36)) - std::cos(deg(72)));
   const double w = c36 - d;
   return (r - c36) * (r - c36) * cot18 + 2.0 * (w * s36 + 0.5 * k * w * w);
 }
@@ -199,8 +200,8 @@ TEST(AreaInRect, InsideAndHalfOutside) {
   EXPECT_EQ(area_in_rect(d, 0.3, 0.0, 0.4, 0.4), 0.0);
   // a rectangle side along a polygon edge
   EXPECT_DOUBLE_EQ(area_in_rect(rectangle(0, 0, 1, 1), 0.0, 0.0, 1.0, 0.5), 0.5);
-  EXPECT_NEAR(area_in_rect(d0, c.x + 0.8 * kRBig, -1, 1, 1),
-              decagon_cap(kRBig, 0.8 * kRBig), kRel * full);
+  EXPECT_NEAR(area_in_rect(d0, c.x + 0.8 * kRBig, -1, 1, 1), decagon_cap(kRBig, 0.8 * kRBig),
+              kRel * full);
 }
 
 // the four quadrants around any point partition the polygon: their areas sum to the total
@@ -219,8 +220,8 @@ TEST(AreaInRect, RandomQuadrantsSumToTotal) {
     // and the clipping agrees with the general intersection with the rectangle polygon
     const double x0 = rng.uniform(b.lo.x, b.hi.x), y0 = rng.uniform(b.lo.y, b.hi.y);
     const double x1 = rng.uniform(x0, b.hi.x + 0.1), y1 = rng.uniform(y0, b.hi.y + 0.1);
-    EXPECT_NEAR(area_in_rect(p, x0, y0, x1, y1), signed_area(intersect(p, rectangle(x0, y0, x1, y1))),
-                kRel * total);
+    EXPECT_NEAR(area_in_rect(p, x0, y0, x1, y1),
+                signed_area(intersect(p, rectangle(x0, y0, x1, y1))), kRel * total);
   }
 }
 

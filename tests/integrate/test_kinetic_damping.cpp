@@ -8,8 +8,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <string>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "integrate/integrator.hpp"
@@ -22,7 +22,7 @@ namespace {
 // normal dashpot γ√(E m⊥)·ḣ does in a pile
 struct Column {
   static constexpr int kN = 20;
-  static constexpr double kG = 1.0;     // gravity, per unit mass and stiffness
+  static constexpr double kG = 1.0;      // gravity, per unit mass and stiffness
   static constexpr double kBeta = 0.25;  // ζ = 0.25 in the fastest mode (ω ≈ 2)
   std::vector<double> q = std::vector<double>(kN, 0.0), v = q, a = q;
   std::vector<Channel> ch;
@@ -108,9 +108,10 @@ TEST_P(KineticDamping, ReachesTheSameRestFarSooner) {
   Column damped, free;
   const long n_kd = steps_to_rest(GetParam(), true, tol, 2'000'000, &resets, &damped);
   const long n_free = steps_to_rest(GetParam(), false, tol, 2'000'000, nullptr, &free);
-  std::printf("[ %s ] column of %d: rest within 1e-6 of the sag in %ld steps with kinetic "
-              "damping (%ld resets), %ld without\n",
-              std::string(to_string(GetParam())).c_str(), Column::kN, n_kd, resets, n_free);
+  std::printf(
+      "[ %s ] column of %d: rest within 1e-6 of the sag in %ld steps with kinetic "
+      "damping (%ld resets), %ld without\n",
+      std::string(to_string(GetParam())).c_str(), Column::kN, n_kd, resets, n_free);
   ASSERT_GT(n_kd, 0) << "kinetic damping did not reach rest";
   ASSERT_GT(n_free, 0) << "the lightly damped column did not reach rest";
   EXPECT_LT(n_kd * 20, n_free) << n_kd << " steps with kinetic damping, " << n_free << " without";

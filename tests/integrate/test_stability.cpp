@@ -37,10 +37,11 @@ TEST(IntegratorStability, LimitsOfTheExplicitSchemes) {
   EXPECT_NEAR(stable_limit(IntegratorKind::PositionVerlet, 0.0), 2.0, 0.011);
   const double gear0 = stable_limit(IntegratorKind::Gear6, 0.0);
   const double gear25 = stable_limit(IntegratorKind::Gear6, 0.25);
-  std::printf("[ measured ] Gear6 stable to w*dt = %.2f (zeta 0), %.2f (zeta 0.25); "
-              "VV %.2f (zeta 0.25); SIE %.2f (zeta 0.25)\n",
-              gear0, gear25, stable_limit(IntegratorKind::VelocityVerlet, 0.25),
-              stable_limit(IntegratorKind::SemiImplicitEuler, 0.25));
+  std::printf(
+      "[ measured ] Gear6 stable to w*dt = %.2f (zeta 0), %.2f (zeta 0.25); "
+      "VV %.2f (zeta 0.25); SIE %.2f (zeta 0.25)\n",
+      gear0, gear25, stable_limit(IntegratorKind::VelocityVerlet, 0.25),
+      stable_limit(IntegratorKind::SemiImplicitEuler, 0.25));
   // the Gear predictor–corrector pays for its accuracy with a far smaller stability region
   EXPECT_LT(gear0, 1.0);
   EXPECT_LT(gear25, gear0);

@@ -85,9 +85,12 @@ TEST(Bisection, HistogramAndMomentsMatchTheExactForms) {
   // second-neighbour pairs are not siblings); printed for the record
   double worst = 0.0;
   for (const BisectionBin& b : r.bins)
-    if (b.x > 1e-4 && b.x < 0.05) worst = std::max(worst, std::abs(std::log(b.g2 / b.p_exact_prev)));
-  std::printf("[ measured ] bisection n=9: chi2_r %.2f over %d bins; max |ln(G2/P_8)| on 1e-4..0.05 = %.3f\n",
-              chi2 / used, used, worst);
+    if (b.x > 1e-4 && b.x < 0.05)
+      worst = std::max(worst, std::abs(std::log(b.g2 / b.p_exact_prev)));
+  std::printf(
+      "[ measured ] bisection n=9: chi2_r %.2f over %d bins; max |ln(G2/P_8)| on 1e-4..0.05 = "
+      "%.3f\n",
+      chi2 / used, used, worst);
 }
 
 TEST(Bisection, MomentExponentsAreLog2OfOnePlusM) {
@@ -112,8 +115,8 @@ TEST(Bisection, MomentExponentsAreLog2OfOnePlusM) {
   const auto fits = rfm::fit_scaling_exponents(n_part, mom, err);
   for (const auto& f : fits) {
     EXPECT_NEAR(f.exponent, std::log2(1.0 + f.m), 4.0 * f.exponent_err + 1e-9) << "m = " << f.m;
-    std::printf("[ measured ] zeta_%d = %.4f ± %.4f (exact %.4f)\n", f.m, f.exponent, f.exponent_err,
-                std::log2(1.0 + f.m));
+    std::printf("[ measured ] zeta_%d = %.4f ± %.4f (exact %.4f)\n", f.m, f.exponent,
+                f.exponent_err, std::log2(1.0 + f.m));
   }
 }
 

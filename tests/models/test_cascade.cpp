@@ -25,12 +25,18 @@ TEST(Cascade, CorrelationDimensions) {
   // ≈ 2·10⁻⁴) must agree with the quadrature within 5σ.
   EXPECT_NEAR(correlation_dimension(CascadeKind::unoncp), std::log2(3.0), 1e-12);
   EXPECT_NEAR(correlation_dimension(CascadeKind::symmetrised), std::log2(3.0), 1e-12);
-  const double table[4][4] = {{0.001, 0.15, 0.32, 0.53}, {0.02, 0.32, 0.32, 0.34},
-                              {0.18, 0.21, 0.29, 0.31}, {0.07, 0.26, 0.32, 0.36}};
+  const double table[4][4] = {{0.001, 0.15, 0.32, 0.53},
+                              {0.02, 0.32, 0.32, 0.34},
+                              {0.18, 0.21, 0.29, 0.31},
+                              {0.07, 0.26, 0.32, 0.36}};
   for (int k = 0; k < 4; ++k) {
     double s = 0, s2 = 0;
-    for (double p : table[k]) { s += p; s2 += p * p; }
-    EXPECT_NEAR(correlation_dimension(static_cast<CascadeKind>(3 + k)), -std::log2(s2 / (s * s)), 1e-12);
+    for (double p : table[k]) {
+      s += p;
+      s2 += p * p;
+    }
+    EXPECT_NEAR(correlation_dimension(static_cast<CascadeKind>(3 + k)), -std::log2(s2 / (s * s)),
+                1e-12);
   }
   const double ucp = correlation_dimension(CascadeKind::ucp);
   EXPECT_NEAR(ucp, 1.608, 0.0006);
@@ -45,8 +51,8 @@ TEST(Cascade, CorrelationDimensions) {
   }
   const double mean = sum / n, err = std::sqrt((sum2 / n - mean * mean) / n);
   EXPECT_NEAR(-std::log2(mean), ucp, 5.0 * err / (mean * std::numbers::ln2));
-  std::printf("[ measured ] D2(UCP) quadrature %.5f, Monte Carlo %.5f ± %.5f\n", ucp, -std::log2(mean),
-              err / (mean * std::numbers::ln2));
+  std::printf("[ measured ] D2(UCP) quadrature %.5f, Monte Carlo %.5f ± %.5f\n", ucp,
+              -std::log2(mean), err / (mean * std::numbers::ln2));
 }
 
 TEST(Cascade, WeightMomentsMatchTheSampler) {
@@ -68,10 +74,12 @@ TEST(Cascade, WeightMomentsMatchTheSampler) {
       }
     }
     for (int a = 0; a < 4; ++a) {
-      EXPECT_NEAR(s1[a] / n, m.mean[static_cast<std::size_t>(a)], 5.0 * 0.3 / std::sqrt(n)) << cascade_name(k);
+      EXPECT_NEAR(s1[a] / n, m.mean[static_cast<std::size_t>(a)], 5.0 * 0.3 / std::sqrt(n))
+          << cascade_name(k);
       for (int b = 0; b < 4; ++b) {
         const double mu = s2[a][b] / n, sd = std::sqrt(q2[a][b] / n - mu * mu);
-        EXPECT_NEAR(mu, m.second[static_cast<std::size_t>(a)][static_cast<std::size_t>(b)], 5.0 * sd / std::sqrt(n) + 1e-15)
+        EXPECT_NEAR(mu, m.second[static_cast<std::size_t>(a)][static_cast<std::size_t>(b)],
+                    5.0 * sd / std::sqrt(n) + 1e-15)
             << cascade_name(k) << " " << a << b;
       }
     }
@@ -136,8 +144,9 @@ TEST(Cascade, TransformAgreesWithDirectSum) {
       std::complex<double> f = 0.0;
       for (int j = 0; j < n; ++j)
         for (int i = 0; i < n; ++i)
-          f += m[static_cast<std::size_t>(j * n + i)] *
-               std::polar(1.0, 2.0 * std::numbers::pi * (md.nx * (i + 0.5) + md.ny * (j + 0.5)) / n);
+          f +=
+              m[static_cast<std::size_t>(j * n + i)] *
+              std::polar(1.0, 2.0 * std::numbers::pi * (md.nx * (i + 0.5) + md.ny * (j + 0.5)) / n);
       acc.add(md.nx, md.ny, std::norm(f));
     }
   }
@@ -168,14 +177,16 @@ TEST(Cascade, MeasuredSkMatchesTheExactExpectation) {
         EXPECT_LT(r.shells[i].s, 1e-15) << cascade_name(k) << " n " << exact[i].n;
         continue;
       }
-      EXPECT_NEAR(r.shells[i].s, exact[i].s, 5.0 * r.shells[i].s_err) << cascade_name(k) << " n " << exact[i].n;
+      EXPECT_NEAR(r.shells[i].s, exact[i].s, 5.0 * r.shells[i].s_err)
+          << cascade_name(k) << " n " << exact[i].n;
       chi2 += std::pow((r.shells[i].s - exact[i].s) / r.shells[i].s_err, 2);
       ++used;
     }
     EXPECT_GT(used, 150);
     EXPECT_LT(chi2 / used, 2.0) << cascade_name(k);
-    std::printf("[ measured ] %s: chi2_r of measured S(k) against exact E[S(k)]: %.2f (%d shells)\n",
-                std::string(cascade_name(k)).c_str(), chi2 / used, used);
+    std::printf(
+        "[ measured ] %s: chi2_r of measured S(k) against exact E[S(k)]: %.2f (%d shells)\n",
+        std::string(cascade_name(k)).c_str(), chi2 / used, used);
     if (k == CascadeKind::unoncp) {
       EXPECT_NEAR(r.mass_mean, 1.0, 5.0 * r.mass_err);
     }

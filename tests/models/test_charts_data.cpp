@@ -41,7 +41,8 @@ std::vector<Vec2> cascade_points(int levels, int n, RngStream& rng) {
   const int side = 1 << levels;
   std::vector<Vec2> p;
   for (int k = 0; k < n; ++k) {
-    const auto c = static_cast<int>(std::lower_bound(cdf.begin(), cdf.end(), rng.uniform() * s) - cdf.begin());
+    const auto c =
+        static_cast<int>(std::lower_bound(cdf.begin(), cdf.end(), rng.uniform() * s) - cdf.begin());
     p.push_back({((c % side) + rng.uniform()) / side, ((c / side) + rng.uniform()) / side});
   }
   return p;
@@ -89,7 +90,8 @@ TEST(ChartsData, WritesEveryCsv) {
     rfm::Histogram h = rfm::velocity_histogram(20.0, 800);
     for (int k = 0; k < 2'000'000; ++k) {
       const double u = rng.uniform() * cdf.back();
-      const auto i = static_cast<std::size_t>(std::upper_bound(cdf.begin(), cdf.end(), u) - cdf.begin()) - 1;
+      const auto i =
+          static_cast<std::size_t>(std::upper_bound(cdf.begin(), cdf.end(), u) - cdf.begin()) - 1;
       h.add(grid[i] + dv * (u - cdf[i]) / (cdf[i + 1] - cdf[i]));
     }
     rfm::TailFitOptions opt;
@@ -188,9 +190,10 @@ TEST(ChartsData, WritesEveryCsv) {
   }
 
   // every file is there and parses
-  for (const char* name : {"temperature.csv", "velocity.csv", "tail_scan.csv", "lnln_A0.csv", "lnln_P0.csv",
-                           "sk.csv", "gr.csv", "gh.csv", "bisection.csv", "freepath.csv", "walk_l1.csv",
-                           "walk_l8.csv", "heating.csv", "interval.csv", "cascade_ucp.csv"}) {
+  for (const char* name :
+       {"temperature.csv", "velocity.csv", "tail_scan.csv", "lnln_A0.csv", "lnln_P0.csv", "sk.csv",
+        "gr.csv", "gh.csv", "bisection.csv", "freepath.csv", "walk_l1.csv", "walk_l8.csv",
+        "heating.csv", "interval.csv", "cascade_ucp.csv"}) {
     const rfm::CsvTable t = rfm::read_csv(dir / name);
     EXPECT_FALSE(t.names.empty()) << name;
     EXPECT_FALSE(t.column.at(t.names[0]).empty()) << name;

@@ -20,7 +20,8 @@ TEST(IntervalTheory, HypergeometricAgainstClosedForms) {
   }
   const double a = -1.0 / 3.0, b = 1.0, c = 5.0 / 6.0;
   EXPECT_NEAR(hyp2f1(a, b, c, 1.0),
-              std::tgamma(c) * std::tgamma(c - a - b) / (std::tgamma(c - a) * std::tgamma(c - b)), 1e-13);
+              std::tgamma(c) * std::tgamma(c - a - b) / (std::tgamma(c - a) * std::tgamma(c - b)),
+              1e-13);
   EXPECT_NEAR(appendix_b_f(0.2), -0.44017082417812314, 1e-12);
   EXPECT_NEAR(appendix_b_f(0.8), 0.44017082417812314, 1e-12);  // odd about ½
   EXPECT_NEAR(appendix_b_f(0.0), -2.0, 1e-12);
@@ -29,13 +30,16 @@ TEST(IntervalTheory, HypergeometricAgainstClosedForms) {
 
 TEST(IntervalTheory, QuadratureAndNormalisation) {
   // tanh–sinh on integrable end singularities: ∫₀¹ y^(−1/2) = 2, ∫₀¹ [y(1−y)]^(−1/6) = B(5/6, 5/6)
-  EXPECT_NEAR(tanh_sinh([](double, double y, double) { return 1.0 / std::sqrt(y); }, 0.0, 1.0), 2.0, 1e-12);
+  EXPECT_NEAR(tanh_sinh([](double, double y, double) { return 1.0 / std::sqrt(y); }, 0.0, 1.0), 2.0,
+              1e-12);
   const double beta = std::pow(std::tgamma(5.0 / 6.0), 2) / std::tgamma(5.0 / 3.0);
-  EXPECT_NEAR(tanh_sinh([](double, double y, double w) { return std::pow(y * w, -1.0 / 6.0); }, 0.0, 1.0),
-              beta, 1e-11);
+  EXPECT_NEAR(
+      tanh_sinh([](double, double y, double w) { return std::pow(y * w, -1.0 / 6.0); }, 0.0, 1.0),
+      beta, 1e-11);
   // the arrival density is normalised (its constant comes from the oddness of F)
   const double total = tanh_sinh(
-      [](double u, double, double) { return u > 0.0 ? appendix_b_arrival_density(u) : 0.0; }, 0.0, 8.0);
+      [](double u, double, double) { return u > 0.0 ? appendix_b_arrival_density(u) : 0.0; }, 0.0,
+      8.0);
   EXPECT_NEAR(total, 1.0, 1e-6);
   // the mean-exit-time coefficient against an independent quadrature (scipy, 1.0190977852)
   EXPECT_NEAR(appendix_b_mean_exit_time_coefficient(), 1.0190977852392704, 1e-8);
@@ -79,8 +83,10 @@ TEST(IntervalTheory, WalkMatchesAppendixB) {
   }
   EXPECT_GT(used, 50);
   EXPECT_LT(chi2 / used, 1.5);
-  std::printf("[ measured ] appendix B: <tau> = %.4f ± %.4f (theory %.4f); arrival chi2_r %.2f over %d bins\n",
-              r.mean_exit_time, r.exit_time_err, c, chi2 / used, used);
+  std::printf(
+      "[ measured ] appendix B: <tau> = %.4f ± %.4f (theory %.4f); arrival chi2_r %.2f over %d "
+      "bins\n",
+      r.mean_exit_time, r.exit_time_err, c, chi2 / used, used);
 }
 
 }  // namespace

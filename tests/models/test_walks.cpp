@@ -56,8 +56,9 @@ TEST(Walks, DiscWalkStoppingIdentities) {
   EXPECT_NEAR(r.heating_residual, 0.0, 5.0 * r.heating_residual_err);
   EXPECT_NEAR(r.virial_residual, 0.0, 5.0 * r.virial_residual_err);
   EXPECT_NEAR(r.q.total(), static_cast<double>(r.samples), 0.5);
-  std::printf("[ measured ] disc l=1 (D_v=1): <tau> = %.4f ± %.4f, <v_x^2>_Q = %.4f, steps/walk %.0f\n",
-              r.mean_exit_time, r.exit_time_err, r.mean_v2, r.mean_exit_time / r.dt);
+  std::printf(
+      "[ measured ] disc l=1 (D_v=1): <tau> = %.4f ± %.4f, <v_x^2>_Q = %.4f, steps/walk %.0f\n",
+      r.mean_exit_time, r.exit_time_err, r.mean_v2, r.mean_exit_time / r.dt);
 }
 
 TEST(Walks, DiscWalkScalesAsLToTheOneThird) {
@@ -67,12 +68,13 @@ TEST(Walks, DiscWalkScalesAsLToTheOneThird) {
   const WalkResult a = disc_walk(unit_params(6000, 1e-3, 21), 1.0);
   const WalkResult b = disc_walk(unit_params(6000, 1e-3, 22), 8.0);
   const double rt = b.mean_exit_time / a.mean_exit_time;
-  const double rt_err = rt * std::hypot(a.exit_time_err / a.mean_exit_time, b.exit_time_err / b.mean_exit_time);
+  const double rt_err =
+      rt * std::hypot(a.exit_time_err / a.mean_exit_time, b.exit_time_err / b.mean_exit_time);
   EXPECT_NEAR(rt, 4.0, 5.0 * rt_err);
   // ⟨v²⟩_Q = E[Σv²Δt]/E[τ]: its scatter follows that of τ (≈ the same relative error)
   EXPECT_NEAR(b.mean_v2 / a.mean_v2, 4.0, 4.0 * 5.0 * rt_err / rt);
-  std::printf("[ measured ] tau(8)/tau(1) = %.4f ± %.4f, v2(8)/v2(1) = %.4f (exact 4)\n", rt, rt_err,
-              b.mean_v2 / a.mean_v2);
+  std::printf("[ measured ] tau(8)/tau(1) = %.4f ± %.4f, v2(8)/v2(1) = %.4f (exact 4)\n", rt,
+              rt_err, b.mean_v2 / a.mean_v2);
 }
 
 TEST(Walks, GaussianTailCoefficientNearThesisValue) {
@@ -99,7 +101,8 @@ TEST(Walks, IntervalWalkOfAppendixB) {
     EXPECT_NEAR(r->virial_residual, 0.0, 5.0 * r->virial_residual_err);
   }
   EXPECT_NEAR(c.arrival.total(), 10000.0, 5.0 * std::sqrt(20000 * 0.25));
-  EXPECT_LT(u.mean_exit_time, c.mean_exit_time - 5.0 * std::hypot(u.exit_time_err, c.exit_time_err));
+  EXPECT_LT(u.mean_exit_time,
+            c.mean_exit_time - 5.0 * std::hypot(u.exit_time_err, c.exit_time_err));
   // arrivals at the right end move right
   for (const auto& b : c.arrival.bins())
     if (b.x < -c.arrival.binning().width(0)) {

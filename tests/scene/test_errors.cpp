@@ -82,14 +82,14 @@ TEST(SceneErrors, NotFinite) {
 // the quench keys (drive.quench, quench_speed, quench_hold): type, range and spelling
 TEST(SceneErrors, QuenchKeys) {
   std::string t1 = edit(kFullScene, "quench = true", "quench = \"yes\"");
-  expect_contains(error_of(t1), {at(t1, "quench = \"yes\""), "'drive.quench'",
-                                 "expected a boolean"});
+  expect_contains(error_of(t1),
+                  {at(t1, "quench = \"yes\""), "'drive.quench'", "expected a boolean"});
   std::string t2 = edit(kFullScene, "quench_speed = 0.04", "quench_speed = 0");
   EXPECT_EQ(error_of(t2),
             at(t2, "quench_speed = 0") + " key 'drive.quench_speed': must be > 0 (got 0)");
   std::string t3 = edit(kFullScene, "quench_hold = 0.08", "quench_hold = -0.1");
-  expect_contains(error_of(t3), {at(t3, "quench_hold = -0.1"), "'drive.quench_hold'",
-                                 "(got -0.1)"});
+  expect_contains(error_of(t3),
+                  {at(t3, "quench_hold = -0.1"), "'drive.quench_hold'", "(got -0.1)"});
   std::string t4 = edit(kFullScene, "quench_hold = 0.08", "quench_hold = \"long\"");
   expect_contains(error_of(t4), {at(t4, "quench_hold ="), "expected a number"});
   std::string t5 = edit(kFullScene, "quench_speed = 0.04", "quench_sped = 0.04");
@@ -267,7 +267,8 @@ TEST(SceneErrors, NonAsciiOutsideStringsIsRefusedWithItsPosition) {
 // the name is a folder under runs/: "../x" or "a/b" would write elsewhere
 TEST(SceneErrors, NameMustBeOneFolder) {
   for (const char* bad : {"../escape", "a/b", ".hidden"}) {
-    const std::string text = edit(kFullScene, "name = \"pile\"", std::string("name = \"") + bad + "\"");
+    const std::string text =
+        edit(kFullScene, "name = \"pile\"", std::string("name = \"") + bad + "\"");
     expect_contains(error_of(text), {"scene.name", "plain folder name"});
   }
 }

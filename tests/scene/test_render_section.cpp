@@ -142,8 +142,7 @@ TEST(SceneRender, Defaults) {
   // an empty section records nothing either (a --set render.* creates one)
   EXPECT_FALSE(parse_scene_string(kBase + "[render]\n", "d.toml").render.enabled);
   // enabled: a 720p movie at 30 fps in real time, coloured by speed
-  const RenderSpec r =
-      parse_scene_string(kBase + "[render]\nenabled = true\n", "d.toml").render;
+  const RenderSpec r = parse_scene_string(kBase + "[render]\nenabled = true\n", "d.toml").render;
   EXPECT_TRUE(r.enabled);
   EXPECT_TRUE(r.movie);
   EXPECT_FALSE(r.frames);
@@ -182,8 +181,7 @@ TEST(SceneRender, ErrorsNameLineAndKey) {
   EXPECT_NE(error_of(edit(text, "[640, 482]", "[640]")).find("expected [width, height]"),
             std::string::npos);
   EXPECT_NE(error_of(edit(text, "[640, 482]", "[640, 4]")).find("16…8192"), std::string::npos);
-  EXPECT_NE(error_of(edit(text, "[640, 482]", "[640.5, 482]")).find("integer"),
-            std::string::npos);
+  EXPECT_NE(error_of(edit(text, "[640, 482]", "[640.5, 482]")).find("integer"), std::string::npos);
   EXPECT_NE(error_of(edit(text, "[0.0, 0.01, 0.2, 0.3]", "\"box\"")).find("expected \"fit\""),
             std::string::npos);
   EXPECT_NE(error_of(edit(text, "[0.0, 0.01, 0.2, 0.3]", "[0.2, 0, 0.1, 1]")).find("x1 > x0"),

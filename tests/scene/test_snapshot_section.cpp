@@ -91,9 +91,9 @@ TEST(SceneSnapshots, ErrorsNameLineAndKey) {
   EXPECT_NE(error_of(edit(text, "[\"xyz\"]", "[\"xyz\", \"xyz\"]")).find("twice"),
             std::string::npos);
   EXPECT_NE(error_of(edit(text, "[\"xyz\"]", "[]")).find("writes nothing"), std::string::npos);
-  EXPECT_NE(error_of(edit(text, "contacts = false", "contact = false"))
-                .find("did you mean 'contacts'"),
-            std::string::npos);
+  EXPECT_NE(
+      error_of(edit(text, "contacts = false", "contact = false")).find("did you mean 'contacts'"),
+      std::string::npos);
   // at the taps of a drive that has none
   const std::string g = error_of(edit(edit(text, "\"negative_g\"", "\"none\""), "taps = 3", ""));
   EXPECT_NE(g.find("t.toml:" + std::to_string(line_of(text, "at_taps"))), std::string::npos) << g;

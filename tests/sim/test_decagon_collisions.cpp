@@ -17,8 +17,8 @@ constexpr double kR = 0.009;  // big grain circumradius, m (paper)
 double grain_mass() { return 1.0 * ngon_area(10, kR); }  // ρ = 1 kg/m²
 
 struct Outcome {
-  double restitution;  // −(v_rel after · x̂)/(v_rel before · x̂)
-  double max_ke_ratio; // largest KE(t)/KE(0) seen
+  double restitution;   // −(v_rel after · x̂)/(v_rel before · x̂)
+  double max_ke_ratio;  // largest KE(t)/KE(0) seen
   double momentum_error;
 };
 
@@ -82,7 +82,8 @@ TEST(DecagonCollision, AnalyticAndFiniteDifferenceRateAgree) {
 
 // the same collision under every integrator at the paper's Δt agrees with Gear 6 at small Δt
 TEST(DecagonCollision, IntegratorsAgreeAtPaperStep) {
-  const double ref = collide(0.5, M_PI / 10, M_PI / 10, false, IntegratorKind::Gear6, 1e-6).restitution;
+  const double ref =
+      collide(0.5, M_PI / 10, M_PI / 10, false, IntegratorKind::Gear6, 1e-6).restitution;
   for (IntegratorKind k : {IntegratorKind::Gear6, IntegratorKind::VelocityVerlet,
                            IntegratorKind::PositionVerlet, IntegratorKind::SemiImplicitEuler}) {
     const Outcome o = collide(0.5, M_PI / 10, M_PI / 10, false, k, 5e-5);

@@ -12,9 +12,9 @@ namespace {
 
 using testing::TestWorld;
 
-constexpr double kR = 0.5;     // radius: Table 2.1's unit spacing is one diameter
-constexpr double kM = 1.0;     // kg (Table 2.1)
-constexpr double kKs = 5e5;    // N/m (thesis fig. 2.5b)
+constexpr double kR = 0.5;   // radius: Table 2.1's unit spacing is one diameter
+constexpr double kM = 1.0;   // kg (Table 2.1)
+constexpr double kKs = 5e5;  // N/m (thesis fig. 2.5b)
 
 // relative kinetic energy in the centre-of-mass frame of two equal masses
 double cm_energy(Vec2 v1, Vec2 v2) { return 0.25 * kM * norm2(v1 - v2); }
@@ -48,23 +48,24 @@ TEST_P(DiskCollision, HeadOnRealisesTargetRestitution) {
   EXPECT_NEAR(lost, 1.0 - eps * eps, 0.02 * eps * eps);
   // momentum: forces are equal and opposite, so only round-off remains. Position Verlet
   // carries velocity as a position difference over Δt, whose round-off is ~ε·|x|/Δt
-  const double tol = integ == IntegratorKind::PositionVerlet
-                         ? 8 * 2.2e-16 * (2 * kR + 1e-3) / (tc / 200) : 1e-12;
+  const double tol =
+      integ == IntegratorKind::PositionVerlet ? 8 * 2.2e-16 * (2 * kR + 1e-3) / (tc / 200) : 1e-12;
   EXPECT_NEAR(tw.momentum().x, p0.x, tol);
   EXPECT_NEAR(tw.momentum().y, p0.y, tol);
 }
 
 INSTANTIATE_TEST_SUITE_P(
     AllIntegrators, DiskCollision,
-    ::testing::Values(Case{IntegratorKind::VelocityVerlet, 0.1}, Case{IntegratorKind::VelocityVerlet, 0.3},
-                      Case{IntegratorKind::VelocityVerlet, 0.5}, Case{IntegratorKind::VelocityVerlet, 0.7},
-                      Case{IntegratorKind::VelocityVerlet, 0.9}, Case{IntegratorKind::VelocityVerlet, 0.99},
-                      Case{IntegratorKind::Gear6, 0.1}, Case{IntegratorKind::Gear6, 0.5},
-                      Case{IntegratorKind::Gear6, 0.9}, Case{IntegratorKind::Gear6, 0.99},
-                      Case{IntegratorKind::PositionVerlet, 0.1}, Case{IntegratorKind::PositionVerlet, 0.5},
-                      Case{IntegratorKind::PositionVerlet, 0.99},
-                      Case{IntegratorKind::SemiImplicitEuler, 0.1}, Case{IntegratorKind::SemiImplicitEuler, 0.5},
-                      Case{IntegratorKind::SemiImplicitEuler, 0.99}),
+    ::testing::Values(
+        Case{IntegratorKind::VelocityVerlet, 0.1}, Case{IntegratorKind::VelocityVerlet, 0.3},
+        Case{IntegratorKind::VelocityVerlet, 0.5}, Case{IntegratorKind::VelocityVerlet, 0.7},
+        Case{IntegratorKind::VelocityVerlet, 0.9}, Case{IntegratorKind::VelocityVerlet, 0.99},
+        Case{IntegratorKind::Gear6, 0.1}, Case{IntegratorKind::Gear6, 0.5},
+        Case{IntegratorKind::Gear6, 0.9}, Case{IntegratorKind::Gear6, 0.99},
+        Case{IntegratorKind::PositionVerlet, 0.1}, Case{IntegratorKind::PositionVerlet, 0.5},
+        Case{IntegratorKind::PositionVerlet, 0.99}, Case{IntegratorKind::SemiImplicitEuler, 0.1},
+        Case{IntegratorKind::SemiImplicitEuler, 0.5},
+        Case{IntegratorKind::SemiImplicitEuler, 0.99}),
     [](const auto& info) {
       return std::string(to_string(info.param.integ)) + "_eps" +
              std::to_string(static_cast<int>(std::lround(info.param.eps * 100)));
@@ -85,8 +86,8 @@ TEST_P(ObliqueCollision, LosesPredictedEnergyFraction) {
   const double m12 = kM / 2;
   const double tc = law::contact_time(kKs, m12, law::gamma_normal(eps, m12, kKs));
   TestWorld tw(build::two_body(ModelKind::S, ShapeKind::Disk, kR, kM, 0,
-                               build::disk_material(eps, eps, kKs),
-                               IntegratorKind::VelocityVerlet, tc / 200));
+                               build::disk_material(eps, eps, kKs), IntegratorKind::VelocityVerlet,
+                               tc / 200));
   tw.particle(0, 0, c.v1.x, c.v1.y).particle(c.x2.x, c.x2.y, 0, 0);
   tw.start();
   const Vec2 p0 = tw.momentum();

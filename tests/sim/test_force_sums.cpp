@@ -18,7 +18,6 @@ namespace {
 
 using testing::Threads;
 
-
 // the serial reference: every touching pair in key order, as the force loop once summed them
 void serial_sums(const World& w, const ContactSet& cs, std::vector<double>& fx,
                  std::vector<double>& fy) {
@@ -181,11 +180,11 @@ TEST(ForceSums, DiskPrefilterKeepsThePairs) {
     expect_same_disk_paths(w, on_wall);
   }
   {  // the 1D ring
-    World w = make_world(parse_scene_file(std::string(GS_SOURCE_DIR) + "/scenes/rfm1d_reference.toml"));
+    World w =
+        make_world(parse_scene_file(std::string(GS_SOURCE_DIR) + "/scenes/rfm1d_reference.toml"));
     place_particles(w);
     // every tenth disk's forward neighbour moved to overlap it by a quarter diameter
-    for (std::size_t i = 0; i + 1 < w.size(); i += 10)
-      w.s.x[i + 1] = w.s.x[i] + 1.5 * w.radius[i];
+    for (std::size_t i = 0; i + 1 < w.size(); i += 10) w.s.x[i + 1] = w.s.x[i] + 1.5 * w.radius[i];
     expect_same_disk_paths(w, w.size() / 10);
   }
 }
@@ -196,41 +195,42 @@ TEST(ForceSums, DiskPrefilterKeepsThePairs) {
 // (one thread) and the parallel one (two)
 TEST(ForceSums, LargestOverlapsAreTheRecordsMaxima) {
   for (const int threads : {1, 2})
-  for (const bool mixed : {false, true}) {
-    const Threads team(threads);
-    SceneSpec s = build::disk_gas(6000, 0.6, 0.6, 0.6, 9);
-    s.box.kind = BoxKind::Walls;
-    World w = make_world(s);
-    place_particles(w);
-    // grown by 30% (most disks touch, some the walls); mixed: every third 2% more
-    for (double& r : w.radius) r *= 1.3;
-    for (std::size_t i = 1; mixed && i < w.size(); i += 3) w.radius[i] *= 1.02;
-    w.max_radius *= 1.3 * 1.02;
-    auto bp = make_broadphase(BroadPhaseKind::CellGrid, w);
-    const std::vector<PairKey>& cand = bp->update(w);
+    for (const bool mixed : {false, true}) {
+      const Threads team(threads);
+      SceneSpec s = build::disk_gas(6000, 0.6, 0.6, 0.6, 9);
+      s.box.kind = BoxKind::Walls;
+      World w = make_world(s);
+      place_particles(w);
+      // grown by 30% (most disks touch, some the walls); mixed: every third 2% more
+      for (double& r : w.radius) r *= 1.3;
+      for (std::size_t i = 1; mixed && i < w.size(); i += 3) w.radius[i] *= 1.02;
+      w.max_radius *= 1.3 * 1.02;
+      auto bp = make_broadphase(BroadPhaseKind::CellGrid, w);
+      const std::vector<PairKey>& cand = bp->update(w);
 #ifdef _OPENMP
-    ASSERT_EQ(run_parallel(cand.size(), ContactModel::parallel_pairs_from(false, w.size())),
-              threads == 2);
+      ASSERT_EQ(run_parallel(cand.size(), ContactModel::parallel_pairs_from(false, w.size())),
+                threads == 2);
 #endif
-    ContactModel model(w);
-    ContactSet cs;
-    ForceBuffer f;
-    const ForceStats st = model.evaluate(w, cand, cs, f, w.scene.integrator.dt, bp->generation());
-    const auto N = static_cast<std::uint32_t>(w.size());
-    double h = 0.0, rel = 0.0;
-    std::size_t walls = 0;
-    for (const ContactRecord& r : cs.records) {
-      const std::uint32_t i = key_i(r.key), j = key_j(r.key);
-      walls += j >= N;
-      h = std::max(h, r.overlap);
-      rel = std::max(rel, r.overlap / (j >= N ? w.radius[i] : std::min(w.radius[i], w.radius[j])));
+      ContactModel model(w);
+      ContactSet cs;
+      ForceBuffer f;
+      const ForceStats st = model.evaluate(w, cand, cs, f, w.scene.integrator.dt, bp->generation());
+      const auto N = static_cast<std::uint32_t>(w.size());
+      double h = 0.0, rel = 0.0;
+      std::size_t walls = 0;
+      for (const ContactRecord& r : cs.records) {
+        const std::uint32_t i = key_i(r.key), j = key_j(r.key);
+        walls += j >= N;
+        h = std::max(h, r.overlap);
+        rel =
+            std::max(rel, r.overlap / (j >= N ? w.radius[i] : std::min(w.radius[i], w.radius[j])));
+      }
+      ASSERT_GT(cs.records.size(), w.size()) << "a packing: more contacts than disks";
+      ASSERT_GT(walls, 0u);
+      EXPECT_EQ(st.max_overlap, h) << threads << " threads, mixed radii: " << mixed;
+      EXPECT_EQ(st.max_overlap_rel, rel) << threads << " threads, mixed radii: " << mixed;
+      EXPECT_GT(rel, 0.1);  // grown by 30%: overlaps of a good part of a radius
     }
-    ASSERT_GT(cs.records.size(), w.size()) << "a packing: more contacts than disks";
-    ASSERT_GT(walls, 0u);
-    EXPECT_EQ(st.max_overlap, h) << threads << " threads, mixed radii: " << mixed;
-    EXPECT_EQ(st.max_overlap_rel, rel) << threads << " threads, mixed radii: " << mixed;
-    EXPECT_GT(rel, 0.1);  // grown by 30%: overlaps of a good part of a radius
-  }
 }
 
 // a dilute periodic gas of 10⁴ disks: its particle loops run on the team, its 10³–8·10³

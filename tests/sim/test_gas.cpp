@@ -66,8 +66,9 @@ TEST(HaffsLaw, DiluteDiskGasCoolsAtThePredictedRate) {
     sxx += (ts[k] - mt) * (ts[k] - mt);
   }
   const double measured = sxy / sxx;
-  std::printf("[ measured ] Haff slope of T^-1/2: %.4f, predicted %.4f (ratio %.3f); T fell %.2fx\n",
-              measured, slope, measured / slope, std::pow(ys.back() / ys.front(), 2));
+  std::printf(
+      "[ measured ] Haff slope of T^-1/2: %.4f, predicted %.4f (ratio %.3f); T fell %.2fx\n",
+      measured, slope, measured / slope, std::pow(ys.back() / ys.front(), 2));
   // Enskog theory neglects velocity correlations and the non-Gaussian cooling state (a few %);
   // 1000 grains give ~3% noise in T: 10% is a test that still fails for a wrong (1 − ε) or χ
   EXPECT_NEAR(measured / slope, 1.0, 0.10);

@@ -108,8 +108,10 @@ TEST(KickFusion, RingWithSymmetrisedNoiseFollowsTheOwnCorrection) {
   const double p0 = momentum(fused.world());
   step_both(fused, own, 2000);
   const double d = max_difference(fused.world(), own.world());
-  std::printf("[ ring ] fused against own correct(): max relative difference %.3e, momentum "
-              "change %.3e\n", d, momentum(fused.world()) - p0);
+  std::printf(
+      "[ ring ] fused against own correct(): max relative difference %.3e, momentum "
+      "change %.3e\n",
+      d, momentum(fused.world()) - p0);
   EXPECT_LT(d, 1e-9);
   // the symmetrised noise and the contacts conserve momentum (T.2.18) in the fused path too:
   // the change stays at the round-off of sums of 200 momenta ≲ 4e-6 kg·m/s (≈ 1e-21 per step),

@@ -12,8 +12,8 @@
 #include "measure/packing.hpp"
 #include "scene/parse.hpp"
 #include "sim/state_file.hpp"
-#include "world/prepare.hpp"
 #include "test_world.hpp"
+#include "world/prepare.hpp"
 
 namespace gs {
 namespace {
@@ -35,9 +35,10 @@ TEST(Pile, ThreeHundredDecagonsSettleToRestWithPlausiblePhi) {
   for (std::size_t i = 0; i < w.size(); ++i) top = std::max(top, w.s.y[i]);
   // a window a few grains from the walls and below the free surface
   const double phi = phi_in_rect(w, 0.04, 0.04, 0.20, top - 0.06);
-  std::printf("[ measured ] 300-decagon pile: phi = %.4f, max speed %.2e m/s, KE %.2e J, "
-              "height %.3f m, Z = %.2f\n",
-              phi, max_speed(w), w.kinetic_energy(), top, mean_coordination(w, sim.contacts()));
+  std::printf(
+      "[ measured ] 300-decagon pile: phi = %.4f, max speed %.2e m/s, KE %.2e J, "
+      "height %.3f m, Z = %.2f\n",
+      phi, max_speed(w), w.kinetic_energy(), top, mean_coordination(w, sim.contacts()));
   EXPECT_GT(phi, 0.78);
   EXPECT_LT(phi, 0.86);
   // at rest: the largest speed is three orders below the fall speed (√(2gh) ≈ 3 m/s from the

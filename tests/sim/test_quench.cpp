@@ -10,8 +10,8 @@
 #include "drive/protocol.hpp"
 #include "scene/parse.hpp"
 #include "sim/simulation.hpp"
-#include "world/prepare.hpp"
 #include "test_world.hpp"
+#include "world/prepare.hpp"
 
 namespace gs {
 namespace {
@@ -33,8 +33,7 @@ Outcome tap(std::vector<std::string> overrides) {
                    {"species[0].count=25", "species[1].count=35", "box.width=0.12",
                     "preparation.settle_time=0.6", "drive.period=1.5", "drive.taps=2"});
   const SceneSpec s =
-      parse_scene_file(std::string(GS_SOURCE_DIR) + "/scenes/tap_small_negative_g.toml",
-                       overrides);
+      parse_scene_file(std::string(GS_SOURCE_DIR) + "/scenes/tap_small_negative_g.toml", overrides);
   World w = make_world(s);
   place_particles(w);
   ProtocolClock clock(s);
@@ -59,7 +58,8 @@ TEST(Quench, OffOrNeverArmedLeavesTheTrajectoryBitwiseUnchanged) {
   const Outcome base = tap({});
   EXPECT_EQ(base.quenches, 0);
   // the quench's own keys while it is off
-  const Outcome keys = tap({"drive.quench=false", "drive.quench_speed=1e-9", "drive.quench_hold=0"});
+  const Outcome keys =
+      tap({"drive.quench=false", "drive.quench_speed=1e-9", "drive.quench_hold=0"});
   EXPECT_EQ(keys.hash, base.hash);
   EXPECT_EQ(keys.steps, base.steps);
   // on, but never armed (no grain is ever that slow for that long): its bookkeeping runs
@@ -74,11 +74,12 @@ TEST(Quench, OffOrNeverArmedLeavesTheTrajectoryBitwiseUnchanged) {
 TEST(Quench, OnEndsTheRelaxationsSoonerAndAtRest) {
   const Outcome off = tap({});
   const Outcome on = tap({"drive.quench=true"});
-  std::printf("[ measured ] 60 decagons, 2 taps: %lld steps without the quench (%lld early "
-              "ends), %lld with it (%lld early ends, %lld resets)\n",
-              static_cast<long long>(off.steps), static_cast<long long>(off.early_ends),
-              static_cast<long long>(on.steps), static_cast<long long>(on.early_ends),
-              static_cast<long long>(on.quenches));
+  std::printf(
+      "[ measured ] 60 decagons, 2 taps: %lld steps without the quench (%lld early "
+      "ends), %lld with it (%lld early ends, %lld resets)\n",
+      static_cast<long long>(off.steps), static_cast<long long>(off.early_ends),
+      static_cast<long long>(on.steps), static_cast<long long>(on.early_ends),
+      static_cast<long long>(on.quenches));
   EXPECT_GT(on.quenches, 0);
   EXPECT_EQ(on.early_ends, 2);
   EXPECT_LT(on.steps, off.steps);

@@ -88,7 +88,8 @@ void steps(Simulation& s, int n) {
 std::uint64_t expected_ahead(int n, int com, int check, int sort) {
   std::uint64_t k = 0;
   for (int s = 1; s < n; ++s)
-    k += (com == 0 || s % com != 0) && (check == 0 || s % check != 0) && (sort == 0 || s % sort != 0);
+    k += (com == 0 || s % com != 0) && (check == 0 || s % check != 0) &&
+         (sort == 0 || s % sort != 0);
   return k;
 }
 

@@ -34,8 +34,8 @@ double spring_sum(const Simulation& sim) {
 
 // the saved state's Simulation, as `gransim run` builds it
 Simulation start(const std::string& from) {
-  SceneSpec scene = parse_scene_string(std::string(kPile) + "from_state = \"" + from + "\"\n",
-                                       "fork.toml");
+  SceneSpec scene =
+      parse_scene_string(std::string(kPile) + "from_state = \"" + from + "\"\n", "fork.toml");
   const SavedState st = read_saved_state(scene);
   fit_scene_to_state(scene, st);
   World w = make_world(scene);

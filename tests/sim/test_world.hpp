@@ -26,7 +26,6 @@ struct Threads {
 #endif
 };
 
-
 /// FNV-1a over the bytes of the state arrays (positions, angles, velocities)
 inline std::uint64_t state_hash(const World& w) {
   std::uint64_t h = 1469598103934665603ULL;

@@ -54,10 +54,9 @@ PlannedSweep tapping_sweep(const std::string& name, const std::string& scene,
 }
 
 // an RFM sweep: `runs` runs of `seconds` each of `particles` disks at Δt = 1e-6 s
-PlannedSweep rfm_sweep(const std::string& name, const std::string& scene,
-                       const std::string& param, std::vector<std::string> sets,
-                       double particle_seconds, double longest_particle_seconds, int runs,
-                       double cost) {
+PlannedSweep rfm_sweep(const std::string& name, const std::string& scene, const std::string& param,
+                       std::vector<std::string> sets, double particle_seconds,
+                       double longest_particle_seconds, int runs, double cost) {
   PlannedSweep s;
   s.longest_run = longest_particle_seconds / 1e-6;
   s.runs = runs;
@@ -85,36 +84,36 @@ ReproducePlan tapping_plan(Budget b) {
   switch (b) {
     case Budget::Smoke: {
       // the 250-grain teaching pile at the fast scenes' step: proves the pipeline only
-      const std::vector<std::string> fast = {"output.discard_taps=1",
-                                             "integrator.dt=1.3333333333333333e-4",
-                                             "drive.quench=true"};
+      const std::vector<std::string> fast = {
+          "output.discard_taps=1", "integrator.dt=1.3333333333333333e-4", "drive.quench=true"};
       p.sweeps.push_back(tapping_sweep("negative_g", "tap_small_negative_g.toml", "drive.g_p",
                                        {2, 10, 20}, 21, 1.5, 250, dt, fast));
-      p.sweeps.push_back(tapping_sweep("rotating_g", "tap_small_rotating_g.toml", "drive.f",
-                                       {1, 2}, 21, 1.5, 250, dt, fast));
+      p.sweeps.push_back(tapping_sweep("rotating_g", "tap_small_rotating_g.toml", "drive.f", {1, 2},
+                                       21, 1.5, 250, dt, fast));
       p.purpose = "proves the pipeline on the 250-grain teaching pile; resolves no claim";
       break;
     }
     case Budget::Quick:
-      p.sweeps.push_back(tapping_sweep("negative_g", neg, "drive.g_p", {2, 6, 12, 20, 30}, 60,
-                                       3.0, 1184, dt));
       p.sweeps.push_back(
-          tapping_sweep("rotating_g", rot, "drive.f", {0.5, 2}, 50, 3.0, 1184, dt));
-      p.purpose = "the paper's pile, 50–60 taps per value: the shape of φ̄(g_p) and φ̄(f), the "
-                  "transient, the test square's halves";
+          tapping_sweep("negative_g", neg, "drive.g_p", {2, 6, 12, 20, 30}, 60, 3.0, 1184, dt));
+      p.sweeps.push_back(tapping_sweep("rotating_g", rot, "drive.f", {0.5, 2}, 50, 3.0, 1184, dt));
+      p.purpose =
+          "the paper's pile, 50–60 taps per value: the shape of φ̄(g_p) and φ̄(f), the "
+          "transient, the test square's halves";
       break;
     case Budget::Standard:
       p.sweeps.push_back(tapping_sweep("negative_g", neg, "drive.g_p",
                                        {2, 4, 6, 9, 12, 16, 20, 25, 30}, 250, 3.0, 1184, dt));
       p.sweeps.push_back(
           tapping_sweep("rotating_g", rot, "drive.f", {0.5, 0.75, 1.25, 2}, 200, 3.0, 1184, dt));
-      p.purpose = "the paper's pile, 200–250 taps per value: σ_φ, the overlapping histograms "
-                  "and the quadron fit";
+      p.purpose =
+          "the paper's pile, 200–250 taps per value: σ_φ, the overlapping histograms "
+          "and the quadron fit";
       break;
     case Budget::Full:
-      p.sweeps.push_back(tapping_sweep(
-          "negative_g", neg, "drive.g_p", {2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30},
-          3000, 3.0, 1184, dt));
+      p.sweeps.push_back(tapping_sweep("negative_g", neg, "drive.g_p",
+                                       {2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30},
+                                       3000, 3.0, 1184, dt));
       p.sweeps.push_back(tapping_sweep("rotating_g", rot, "drive.f",
                                        {0.25, 0.5, 0.75, 1, 1.25, 1.5, 1.75, 2}, 3000, 3.0, 1184,
                                        dt));
@@ -137,28 +136,28 @@ ReproducePlan rfm_plan(Budget b) {
       p.purpose = "proves the pipeline with runs of a fraction of a second; resolves no claim";
       break;
     case Budget::Quick:
-      p.purpose = "seconds of simulated time: the steady temperature and its start, the "
-                  "velocity tails, S(k) of a young clustered fluid, ξ₂ over N = 400…4000";
+      p.purpose =
+          "seconds of simulated time: the steady temperature and its start, the "
+          "velocity tails, S(k) of a young clustered fluid, ξ₂ over N = 400…4000";
       break;
     case Budget::Standard:
       t_ref = 5, t_sk = 20, t_ring = 40, sizes = {400, 630, 1000, 1580, 2500, 4000};
-      p.purpose = "tens of seconds: S(k) and the free paths of a developed clustered fluid, "
-                  "ξ_m over N = 400…4000";
+      p.purpose =
+          "tens of seconds: S(k) and the free paths of a developed clustered fluid, "
+          "ξ_m over N = 400…4000";
       break;
     case Budget::Full:
-      t_ref = 20, t_sk = 100, t_ring = 1020, sizes = {100, 158, 251, 398, 631, 1000, 1585, 2512,
-                                                        3981, 6310, 10000};
+      t_ref = 20, t_sk = 100, t_ring = 1020,
+      sizes = {100, 158, 251, 398, 631, 1000, 1585, 2512, 3981, 6310, 10000};
       p.purpose = "the thesis' own run lengths (1D: 1020 s per size up to N = 10⁴)";
       break;
   }
   const std::string d = "rfm.discard_time=" + secs(discard);
-  p.sweeps.push_back(rfm_sweep("reference", "rfm2d_reference.toml",
-                               "preparation.placement=square,hexagonal,uniform",
-                               {"scene.duration=" + secs(t_ref), d}, 3 * 2000 * t_ref,
-                               2000 * t_ref, 3, kDisk2dCost));
-  p.sweeps.push_back(rfm_sweep("structure", "rfm2d_structure.toml",
-                               "scene.duration=" + secs(t_sk), {d}, 3000 * t_sk, 3000 * t_sk, 1,
-                               kDisk2dCost));
+  p.sweeps.push_back(rfm_sweep(
+      "reference", "rfm2d_reference.toml", "preparation.placement=square,hexagonal,uniform",
+      {"scene.duration=" + secs(t_ref), d}, 3 * 2000 * t_ref, 2000 * t_ref, 3, kDisk2dCost));
+  p.sweeps.push_back(rfm_sweep("structure", "rfm2d_structure.toml", "scene.duration=" + secs(t_sk),
+                               {d}, 3000 * t_sk, 3000 * t_sk, 1, kDisk2dCost));
   double n_total = 0;
   for (double n : sizes) n_total += n;
   p.sweeps.push_back(rfm_sweep("ring", "rfm1d_reference.toml", "species[0].count=" + join(sizes),
@@ -179,10 +178,14 @@ Budget parse_budget(const std::string& word) {
 
 const char* budget_name(Budget b) {
   switch (b) {
-    case Budget::Smoke: return "smoke";
-    case Budget::Quick: return "quick";
-    case Budget::Standard: return "standard";
-    case Budget::Full: return "full";
+    case Budget::Smoke:
+      return "smoke";
+    case Budget::Quick:
+      return "quick";
+    case Budget::Standard:
+      return "standard";
+    case Budget::Full:
+      return "full";
   }
   return "?";
 }
@@ -195,7 +198,8 @@ double ReproducePlan::core_hours() const {
 
 double ReproducePlan::longest_run_hours() const {
   double h = 0.0;
-  for (const auto& w : sweeps) h = std::max(h, w.longest_run * w.seconds_per_particle_step / 3600.0);
+  for (const auto& w : sweeps)
+    h = std::max(h, w.longest_run * w.seconds_per_particle_step / 3600.0);
   return h;
 }
 

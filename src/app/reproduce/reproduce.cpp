@@ -35,7 +35,8 @@ std::string find_scenes_dir(const std::string& scene) {
     throw InputError(env, "GS_SCENES_DIR", "has no " + scene);
   }
   if (std::string d = find_data_dir("scenes", scene); !d.empty()) return d;
-  throw InputError(scene, "", "the shipped scenes are not beside the executable (set GS_SCENES_DIR)");
+  throw InputError(scene, "",
+                   "the shipped scenes are not beside the executable (set GS_SCENES_DIR)");
 }
 
 int mpi_rank() {
@@ -110,8 +111,8 @@ void write_plan_json(const ReproducePlan& p, const fs::path& out, const std::str
   j["projected_core_hours"] = p.core_hours();
   j["sweeps"] = json::array();
   for (const auto& s : p.sweeps)
-    j["sweeps"].push_back({{"name", s.name}, {"scene", s.scene}, {"params", s.params},
-                           {"sets", s.sets}});
+    j["sweeps"].push_back(
+        {{"name", s.name}, {"scene", s.scene}, {"params", s.params}, {"sets", s.sets}});
   std::ofstream o(out / "plan.json");
   o << j.dump(2) << '\n';
   if (!o) throw OutputError((out / "plan.json").string() + ": cannot be written");
@@ -140,8 +141,8 @@ int reproduce_command(const ReproduceOptions& opt) {
   if (root) lock = std::make_unique<DirLock>(out, "reproduce");
   fs::create_directories(dir / "sweeps", ec);
   if (ec) throw OutputError(out + ": cannot create the directory: " + ec.message());
-  std::string command = "gransim reproduce " + opt.study + " --budget " + opt.budget +
-                        " --out " + shell_quote(out);
+  std::string command =
+      "gransim reproduce " + opt.study + " --budget " + opt.budget + " --out " + shell_quote(out);
   if (root) write_plan_json(plan, dir, command);
 
   // the sweeps: completed runs are kept, interrupted ones resume from their checkpoints
@@ -205,10 +206,10 @@ int reproduce_command(const ReproduceOptions& opt) {
                      "the report script is not beside the executable (set GS_TOOLS_DIR)");
   char wall_text[32];
   std::snprintf(wall_text, sizeof wall_text, "%.0f", wall);
-  const std::string err = run_process({python_interpreter(), tools + "/reproduce_report.py",
-                                       "--study", plan.study, "--budget", opt.budget, "--wall",
-                                       wall_text, "--cores", std::to_string(cores), "--command",
-                                       command, out});
+  const std::string err =
+      run_process({python_interpreter(), tools + "/reproduce_report.py", "--study", plan.study,
+                   "--budget", opt.budget, "--wall", wall_text, "--cores", std::to_string(cores),
+                   "--command", command, out});
   if (!err.empty()) {
     std::fprintf(stderr, "reproduce: the report could not be written: %s\n", err.c_str());
     return kExitFailure;

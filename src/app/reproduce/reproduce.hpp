@@ -11,13 +11,13 @@ class App;
 namespace gs {
 
 struct ReproduceOptions {
-  std::string study;            ///< "tapping" or "rfm"
+  std::string study;             ///< "tapping" or "rfm"
   std::string budget = "quick";  ///< smoke, quick, standard, full
-  std::string out;              ///< default runs/reproduce-<study>-<budget>
-  int jobs = 0;                 ///< runs at a time (0: the number of cores)
-  bool run_full = false;        ///< the full budget runs only when asked
-  bool report_only = false;     ///< analyse and report what is there, start no run
-  bool quiet = false;           ///< no progress display
+  std::string out;               ///< default runs/reproduce-<study>-<budget>
+  int jobs = 0;                  ///< runs at a time (0: the number of cores)
+  bool run_full = false;         ///< the full budget runs only when asked
+  bool report_only = false;      ///< analyse and report what is there, start no run
+  bool quiet = false;            ///< no progress display
 };
 
 /// the exit code: 0 report written (or the full budget's projection printed), 2 bad input,

@@ -27,11 +27,11 @@ inline double contact_time(double ks, double m12, double gn) {
 
 /// parameters of the linear law for one pair of species
 struct DiskLawParams {
-  double ks = 5e5;      ///< normal spring stiffness, N/m
-  double gn = 0.0;      ///< normal dashpot, kg/s (from gamma_normal)
-  double gt = 0.0;      ///< tangential dashpot, kg/s (from gamma_tangential)
-  double mu = 0.0;      ///< sliding friction coefficient (T.2.7); 0 = off
-  bool clip = false;    ///< clip the attractive normal force to zero (off: T.2.6 exact)
+  double ks = 5e5;    ///< normal spring stiffness, N/m
+  double gn = 0.0;    ///< normal dashpot, kg/s (from gamma_normal)
+  double gt = 0.0;    ///< tangential dashpot, kg/s (from gamma_tangential)
+  double mu = 0.0;    ///< sliding friction coefficient (T.2.7); 0 = off
+  bool clip = false;  ///< clip the attractive normal force to zero (off: T.2.6 exact)
 };
 
 /// normal and tangential force magnitudes on j along n̂ and t̂ (i gets the opposite).
@@ -42,8 +42,7 @@ struct DiskForce {
 
 /// the linear law: δ > 0 overlap (m); vn = (v_i − v_j)·n̂ approach speed (m/s, > 0 approaching);
 /// vt = (v_i − v_j)·t̂ relative tangential speed (m/s).
-inline DiskForce linear_spring_dashpot(const DiskLawParams& p, double delta, double vn,
-                                       double vt) {
+inline DiskForce linear_spring_dashpot(const DiskLawParams& p, double delta, double vn, double vt) {
   DiskForce f;
   f.fn = p.ks * delta + p.gn * vn;  // spring (T.2.4) + dashpot (T.2.5)
   if (p.clip && f.fn < 0.0) f.fn = 0.0;

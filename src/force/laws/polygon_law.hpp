@@ -42,8 +42,8 @@ inline double cundall_strack_damped(const PolyLawParams& p, TangentialSpring& s,
   s.v_prev = v_par;
   return std::clamp(s.spring + damp_t * v_par, -cap, cap);
 }
-inline double cundall_strack(const PolyLawParams& p, TangentialSpring& s, double v_par,
-                             double F_n, double m_par, double dt) {
+inline double cundall_strack(const PolyLawParams& p, TangentialSpring& s, double v_par, double F_n,
+                             double m_par, double dt) {
   return cundall_strack_damped(p, s, v_par, F_n, std::sqrt((2.0 / 7.0) * p.E * m_par), dt);
 }
 

@@ -46,7 +46,8 @@ std::string shader_dir() {
   // beside the executable: the build tree (build/../shaders) or an install
   // (bin/../share/gransim/shaders), so a moved or installed binary finds its own
   std::error_code ec;
-  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec).parent_path();
+  const std::filesystem::path exe =
+      std::filesystem::read_symlink("/proc/self/exe", ec).parent_path();
   if (!ec)
     for (const auto& d : {exe / ".." / "shaders", exe / ".." / "share" / "gransim" / "shaders"})
       if (std::filesystem::exists(d / "common.glsl", ec)) return d.lexically_normal().string();
