@@ -12,8 +12,10 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 shorten() {  # the overrides that make SCENE a short run exercising the same code
   case $(sed -n '/^\[drive\]/,/^\[/p' "$1" | grep -m1 '^kind' | cut -d'"' -f2) in
-    negative_g|rotating_g)
+    negative_g)
       echo "--set preparation.settle_time=0.3 --set drive.taps=2 --set drive.period=0.3" ;;
+    rotating_g)
+      echo "--set preparation.settle_time=0.3 --set drive.taps=2 --set drive.f=5 --set drive.relax=0.1" ;;
     *) echo "--set scene.duration=$(awk '/^dt/ {print 300 * $3; exit}' "$1")" ;;
   esac
 }
