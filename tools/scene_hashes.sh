@@ -37,7 +37,7 @@ for scene in scenes/*.toml; do
   for threads in 1 2; do run_one "$scene" "$threads" scene; done
 done
 for scene in scenes/collision_decagons.toml scenes/bench_fluid_10k.toml; do
-  for kind in velocity_verlet gear6 euler; do
+  for kind in velocity_verlet gear6 position_verlet semi_implicit_euler; do
     for threads in 1 2; do run_one "$scene" "$threads" "$kind" --set integrator.kind=$kind; done
   done
 done
