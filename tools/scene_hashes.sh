@@ -28,7 +28,7 @@ run_one() {  # SCENE THREADS VARIANT [OVERRIDES...]
     echo "$(basename "$scene") $threads $variant (run failed: $(tail -1 "$out.log"))"
     return
   fi
-  (cd "$out" && find . -type f ! -name 'run.json' ! -name '*.log' ! -name 'progress*' \
+  (cd "$out" && find . -type f ! -name 'run.json' ! -name '*.gsck' ! -name '*.log' ! -name 'progress*' \
     ! -name '*.lock' | LC_ALL=C sort | while read -r f; do
       echo "$(basename "$scene") $threads $variant $f $(sha256sum <"$f" | cut -c1-16)"
     done)
