@@ -12,7 +12,20 @@ namespace {
 
 using ojson = nlohmann::ordered_json;
 
+// the fewest %g digits that read back as v: the text json_number made it from (nlohmann-json's
+// own shortest form is not always the shortest, 0.0521585 comes out as 0.052158499999999997)
+std::string float_text(double v) {
+  if (!std::isfinite(v)) return "null";
+  char text[32];
+  for (int digits = 1; digits <= 17; ++digits) {
+    std::snprintf(text, sizeof text, "%.*g", digits, v);
+    if (std::strtod(text, nullptr) == v) break;
+  }
+  return text;
+}
+
 std::string scalar_text(const ojson& v) {
+  if (v.is_number_float()) return float_text(v.get<double>());
   return v.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 

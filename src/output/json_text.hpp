@@ -10,14 +10,15 @@
 namespace gs {
 
 /// `v` as printf's %.*g with `digits` significant digits writes it: an integer when that text
-/// is one, else the double the text reads back as (nlohmann-json then writes the same digits;
-/// only values of 10^digits and more lose printf's exponent form); null when not finite
+/// is one, else the double the text reads back as (json_text writes it with the same digits;
+/// only whole values of 10^digits and more lose printf's exponent form); null when not finite
 nlohmann::ordered_json json_number(double v, int digits);
 
 /// the object `top` as text: each key on a line of its own, indented by two spaces; the arrays
 /// named in `row_keys` one element per line, indented by four ("[\n  ]" when empty); any other
-/// value on one line, objects as {"k": v, "k2": [a, b]}. Strings and numbers are nlohmann-json's
-/// (invalid UTF-8 replaced by U+FFFD). Ends with a newline.
+/// value on one line, objects as {"k": v, "k2": [a, b]}. Strings as nlohmann-json writes them
+/// (invalid UTF-8 replaced by U+FFFD), other numbers in %g form with the fewest digits that read
+/// back exactly, non-finite ones as null. Ends with a newline.
 std::string json_text(const nlohmann::ordered_json& top,
                       std::initializer_list<std::string_view> row_keys = {});
 

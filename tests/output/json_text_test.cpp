@@ -11,15 +11,24 @@ namespace {
 
 using ojson = nlohmann::ordered_json;
 
+// one number written as a file's row would hold it
+std::string written(const ojson& v) { return json_text({{"v", v}}); }
+std::string row(const std::string& text) { return "{\n  \"v\": " + text + "\n}\n"; }
+
 TEST(JsonText, NumbersKeepThePrintfDigits) {
-  EXPECT_EQ(json_number(12.345678, 6).dump(), "12.3457");
-  EXPECT_EQ(json_number(3.0, 6).dump(), "3");
-  EXPECT_EQ(json_number(0.0001, 6).dump(), "0.0001");
-  EXPECT_EQ(json_number(1.5e-5, 6).dump(), "1.5e-05");
-  EXPECT_EQ(json_number(-2.718281828459045, 10).dump(), "-2.718281828");
-  EXPECT_EQ(json_number(0.1 + 0.2, 10).dump(), "0.3");
+  EXPECT_EQ(written(json_number(12.345678, 6)), row("12.3457"));
+  EXPECT_EQ(written(json_number(3.0, 6)), row("3"));
+  EXPECT_EQ(written(json_number(0.0001, 6)), row("0.0001"));
+  EXPECT_EQ(written(json_number(1.5e-5, 6)), row("1.5e-05"));
+  EXPECT_EQ(written(json_number(-2.718281828459045, 10)), row("-2.718281828"));
+  EXPECT_EQ(written(json_number(0.1 + 0.2, 10)), row("0.3"));
+  EXPECT_EQ(written(json_number(1.081187006123e20, 10)), row("1.081187006e+20"));
+  // nlohmann-json's own shortest form of this one has 17 digits
+  EXPECT_EQ(written(json_number(0.05215849, 6)), row("0.0521585"));
+  EXPECT_EQ(written(0.1), row("0.1"));
   EXPECT_TRUE(json_number(std::nan(""), 6).is_null());
   EXPECT_TRUE(json_number(-INFINITY, 10).is_null());
+  EXPECT_EQ(written(std::nan("")), row("null"));
 }
 
 TEST(JsonText, RowsOnALineEachEverythingElseOnOne) {

@@ -16,6 +16,7 @@
 #include "models/cascade.hpp"
 #include "models/interval_theory.hpp"
 #include "models/walks.hpp"
+#include "output/json_text.hpp"
 #include "output/run_dir.hpp"
 
 namespace gs {
@@ -84,9 +85,10 @@ std::unique_ptr<DirLock> open_out(const Common& c) {
 // model.json: a flat list of headline numbers
 void write_model_json(const fs::path& out, const std::string& model,
                       const std::vector<std::pair<std::string, double>>& f) {
-  std::string js = "{\n  \"model\": \"" + model + "\"";
-  for (const auto& [k, v] : f) js += ",\n  \"" + k + "\": " + num(v);
-  write_file_atomic((out / "model.json").string(), js + "\n}\n");
+  nlohmann::ordered_json j;
+  j["model"] = model;
+  for (const auto& [k, v] : f) j[k] = json_number(v, 10);
+  write_file_atomic((out / "model.json").string(), json_text(j));
 }
 
 void finish(const Common& c, const fs::path& out) {

@@ -14,9 +14,11 @@
 #include "app/locations.hpp"
 #include "app/run/run_info.hpp"
 #include "app/study/study_problems.hpp"
+#include "app/study/study_tables.hpp"
 #include "app/subprocess.hpp"
 #include "app/version.hpp"
 #include "core/error.hpp"
+#include "output/json_text.hpp"
 #include "output/run_dir.hpp"
 
 #ifdef _OPENMP
@@ -26,62 +28,16 @@
 namespace gs {
 
 namespace fs = std::filesystem;
+using study_detail::bp_name;
+using study_detail::csv_row;
+using study_detail::kCsvHeader;
+using study_detail::num;
+using study_detail::stability_csv;
+using study_detail::StabilityRow;
+using study_detail::study_json;
+using study_detail::StudyRow;
 
 namespace {
-
-// one row of study.csv: the combination, its outcome, and the error against its reference
-struct StudyRow {
-  StudyCase c;
-  StudyOutcome o;
-  double error = NAN;
-  std::string error_kind;
-  double reference = NAN;  ///< the value the error is taken against
-  // the statistical problems: the spread (σ_φ, σ_T) against the reference's
-  double sd_reference = NAN;
-  double sd_error = NAN;       ///< |sd − sd_ref| (tapping), relative (rfm)
-  double sd_stat_error = NAN;  ///< 95% half-widths of both spreads in quadrature, same units
-};
-
-// one bar of the stability map
-struct StabilityRow {
-  StudyProblem problem;
-  IntegratorKind integrator;
-  std::string switches;
-  double max_stable = 0.0;      ///< largest stable Δt/t_c found (0: none)
-  double first_unstable = 0.0;  ///< first unstable Δt/t_c (0: none up to stability_max)
-  std::string message;
-};
-
-std::string num(double v) {
-  if (!std::isfinite(v)) return "nan";
-  char b[32];
-  std::snprintf(b, sizeof b, "%.6g", v);
-  return b;
-}
-
-std::string csv_text(const std::string& s) {
-  std::string o = "\"";
-  for (char c : s) {
-    if (c == '"') o += '"';
-    o += (c == '\n' || c == '\r') ? ' ' : c;
-  }
-  return o + "\"";
-}
-
-std::string json_text(const std::string& s) {
-  std::string o = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') o += '\\';
-    o += static_cast<unsigned char>(c) < 0x20 ? ' ' : c;
-  }
-  return o + "\"";
-}
-
-std::string json_num(double v) { return std::isfinite(v) ? num(v) : "null"; }
-
-std::string_view bp_name(BroadPhaseKind k) {
-  return k == BroadPhaseKind::Box2DTree ? "box2d_tree" : "cell_grid";
-}
 
 // the switch sets that matter for a problem (others would only repeat the same run)
 std::vector<StudySwitches> switch_sets(const StudySpec& s, StudyProblem p) {
@@ -201,86 +157,6 @@ void set_error(const StudySpec& s, StudyRow& r, const StudyOutcome& ref) {
     }
   }
   if (!r.o.stable) r.error = r.sd_error = NAN;
-}
-
-const char* kCsvHeader =
-    "problem,integrator,dt,dt_over_tc,broad_phase,switches,wall_s,particle_steps_per_s,error,"
-    "error_kind,stable,note,wall_per_sim_s,sim_time_s,particles,steps,tc,value,reference,"
-    "stat_error,final_ke,wall_per_tap_s,sd,sd_reference,sd_error,sd_stat_error,tau_int,samples\n";
-
-std::string csv_row(const StudyRow& r) {
-  const StudyOutcome& o = r.o;
-  const double ps = o.wall_s > 0 ? o.particles * static_cast<double>(o.steps) / o.wall_s : NAN;
-  const double per_sim = o.sim_time > 0 ? o.wall_s / o.sim_time : NAN;
-  std::ostringstream l;
-  l << to_string(r.c.problem) << ',' << to_string(r.c.integrator) << ',' << num(o.dt) << ','
-    << num(r.c.dt_over_tc) << ',' << bp_name(r.c.broad_phase) << ','
-    << study_switches_text(r.c.problem, r.c.switches) << ',' << num(o.wall_s) << ',' << num(ps)
-    << ',' << num(r.error) << ',' << r.error_kind << ',' << (o.stable ? "true" : "false") << ','
-    << csv_text(o.note) << ',' << num(per_sim) << ',' << num(o.sim_time) << ',' << o.particles
-    << ',' << o.steps << ',' << num(o.tc) << ',' << num(o.value) << ',' << num(r.reference) << ','
-    << num(o.stat_error) << ',' << num(o.final_ke) << ',' << num(o.wall_per_tap) << ',' << num(o.sd)
-    << ',' << num(r.sd_reference) << ',' << num(r.sd_error) << ',' << num(r.sd_stat_error) << ','
-    << num(o.tau_int) << ',' << o.samples << '\n';
-  return l.str();
-}
-
-// stability.csv and the stability part of study.json
-std::string stability_csv(const std::vector<StabilityRow>& rows) {
-  std::ostringstream c;
-  c << "problem,integrator,switches,max_stable_dt_over_tc,first_unstable_dt_over_tc,message\n";
-  for (const auto& r : rows)
-    c << to_string(r.problem) << ',' << to_string(r.integrator) << ',' << r.switches << ','
-      << num(r.max_stable) << ',' << num(r.first_unstable) << ',' << csv_text(r.message) << '\n';
-  return c.str();
-}
-
-std::string study_json(const StudySpec& s, const std::vector<StudyRow>& rows,
-                       const std::vector<StabilityRow>& stab, double wall) {
-  std::ostringstream j;
-  int threads = 1;
-#ifdef _OPENMP
-  threads = omp_get_max_threads();
-#endif
-  j << "{\n  \"program\": \"gransim\",\n  \"version\": "
-    << json_text(std::string(program_version()))
-    << ",\n  \"kind\": \"study\",\n  \"name\": " << json_text(s.name)
-    << ",\n  \"study_file\": " << json_text(s.file) << ",\n  \"threads\": " << threads
-    << ",\n  \"wall_time_s\": " << json_num(wall) << ",\n  \"rows\": [";
-  for (std::size_t k = 0; k < rows.size(); ++k) {
-    const StudyRow& r = rows[k];
-    const StudyOutcome& o = r.o;
-    j << (k ? ",\n" : "\n") << "    {\"problem\": \"" << to_string(r.c.problem)
-      << "\", \"integrator\": \"" << to_string(r.c.integrator) << "\", \"dt\": " << json_num(o.dt)
-      << ", \"dt_over_tc\": " << json_num(r.c.dt_over_tc) << ", \"broad_phase\": \""
-      << bp_name(r.c.broad_phase)
-      << "\", \"switches\": " << json_text(study_switches_text(r.c.problem, r.c.switches))
-      << ", \"wall_s\": " << json_num(o.wall_s) << ", \"sim_time_s\": " << json_num(o.sim_time)
-      << ", \"particles\": " << o.particles << ", \"steps\": " << o.steps
-      << ", \"value\": " << json_num(o.value) << ", \"reference\": " << json_num(r.reference)
-      << ", \"error\": " << json_num(r.error) << ", \"error_kind\": \"" << r.error_kind
-      << "\", \"stat_error\": " << json_num(o.stat_error)
-      << ", \"final_ke\": " << json_num(o.final_ke)
-      << ", \"wall_per_tap_s\": " << json_num(o.wall_per_tap) << ", \"sd\": " << json_num(o.sd)
-      << ", \"sd_reference\": " << json_num(r.sd_reference)
-      << ", \"sd_error\": " << json_num(r.sd_error)
-      << ", \"sd_stat_error\": " << json_num(r.sd_stat_error)
-      << ", \"tau_int\": " << json_num(o.tau_int) << ", \"samples\": " << o.samples
-      << ", \"stable\": " << (o.stable ? "true" : "false") << ", \"note\": " << json_text(o.note)
-      << "}";
-  }
-  j << "\n  ],\n  \"stability\": [";
-  for (std::size_t k = 0; k < stab.size(); ++k) {
-    const StabilityRow& r = stab[k];
-    j << (k ? ",\n" : "\n") << "    {\"problem\": \"" << to_string(r.problem)
-      << "\", \"integrator\": \"" << to_string(r.integrator)
-      << "\", \"switches\": " << json_text(r.switches)
-      << ", \"max_stable_dt_over_tc\": " << json_num(r.max_stable)
-      << ", \"first_unstable_dt_over_tc\": " << json_num(r.first_unstable)
-      << ", \"message\": " << json_text(r.message) << "}";
-  }
-  j << "\n  ]\n}\n";
-  return j.str();
 }
 
 // run tools/charts_study.py on the study directory; "" on success, else what went wrong

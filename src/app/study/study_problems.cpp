@@ -6,6 +6,7 @@
 #include <memory>
 #include <vector>
 
+#include "analysis/rfm_fit.hpp"
 #include "core/error.hpp"
 #include "geometry/polygon.hpp"
 #include "measure/packing.hpp"
@@ -145,29 +146,12 @@ void run_haff(Simulation& sim, const StudySizes& z, StudyOutcome& o) {
     sim.run(every);
     o.steps += every;
   }
-  // least squares line and the standard error of its slope
-  const double n = static_cast<double>(ts.size());
-  double mt = 0, my = 0;
-  for (std::size_t k = 0; k < ts.size(); ++k) {
-    mt += ts[k] / n;
-    my += ys[k] / n;
-  }
-  double sxy = 0, sxx = 0;
-  for (std::size_t k = 0; k < ts.size(); ++k) {
-    sxy += (ts[k] - mt) * (ys[k] - my);
-    sxx += (ts[k] - mt) * (ts[k] - mt);
-  }
-  const double b = sxy / sxx;
-  double ss = 0;
-  for (std::size_t k = 0; k < ts.size(); ++k) {
-    const double r = ys[k] - my - b * (ts[k] - mt);
-    ss += r * r;
-  }
-  const double se = n > 2 ? std::sqrt(ss / (n - 2) / sxx) : 0.0;
-  o.value = b / slope;
+  // the least-squares line through T^{-1/2}(t); unit weights take its error from the scatter
+  const rfm::LineFit fit = rfm::fit_line(ts, ys);
+  o.value = fit.b / slope;
   // the fit's error, and the ~1/√N fluctuation of T of N disks (samples are correlated, so
   // the fit alone understates it)
-  o.stat_error = std::max(se / slope, 1.0 / std::sqrt(static_cast<double>(z.haff_n)));
+  o.stat_error = std::max(fit.b_err / slope, 1.0 / std::sqrt(static_cast<double>(z.haff_n)));
   o.note = "T fell " + std::to_string(ys.back() * ys.back() / (ys.front() * ys.front())) + "x";
 }
 
