@@ -5,8 +5,8 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "app/render_input.hpp"
-#include "app/render_recorder.hpp"
+#include "app/render/render_input.hpp"
+#include "app/render/render_recorder.hpp"
 #include "output/png.hpp"
 #include "render/demo_scene.hpp"
 #include "render/renderer.hpp"

@@ -1,4 +1,4 @@
-// one benchmark iteration's steps, taken as `gransim run` takes them (app/run_loop.cpp): where
+// one benchmark iteration's steps, taken as `gransim run` takes them (app/run/run_loop.cpp): where
 // nothing looks at the state in between, several at once (Simulation::run: a disk step's kick
 // then predicts the next step); with an observer, as many as it lets pass (quiet_steps)
 #pragma once

@@ -54,11 +54,16 @@ if(FFMPEG_FOUND)
   endif()
 endif()
 
-gs_module(app DIRS app app/reproduce
-  DEPS gs_measure gs_view gs_render gs_output gs_analysis gs_models CLI11::CLI11 Threads::Threads
-  nlohmann_json::nlohmann_json)
+# per-particle files of a configuration (trajectory.xyz, VTK snapshots, contact CSVs): writers
+# of output/ that read the World, hence a library of their own above view/
+gs_module(particle_files DIRS output/particles DEPS gs_output gs_view)
+
+# app/ by capability: run, sweep, study, analyze, render, reproduce (each folder's README.md)
+gs_module(app DIRS app app/run app/sweep app/study app/analyze app/render app/reproduce
+  DEPS gs_measure gs_view gs_render gs_output gs_particle_files gs_analysis gs_models CLI11::CLI11
+  Threads::Threads nlohmann_json::nlohmann_json)
 # the scripts and scenes of the source tree, for a build tree that is not beside them
-set_property(SOURCE ${CMAKE_SOURCE_DIR}/src/app/run_info.cpp APPEND PROPERTY
+set_property(SOURCE ${CMAKE_SOURCE_DIR}/src/app/locations.cpp APPEND PROPERTY
   COMPILE_DEFINITIONS GS_SOURCE_DIR_OF_BUILD="${CMAKE_SOURCE_DIR}")
 if(TARGET gs_render_gl)
   target_link_libraries(gs_app PUBLIC gs_render_gl)
@@ -66,7 +71,7 @@ endif()
 if(TARGET gs_movie)
   target_link_libraries(gs_app PUBLIC gs_movie)
 endif()
-# MPI: `mpirun -np K gransim sweep …` spreads a sweep's runs over the ranks (app/sweep_mpi.cpp)
+# MPI: `mpirun -np K gransim sweep …` spreads a sweep's runs over the ranks (app/sweep/sweep_mpi.cpp)
 if(MPI_CXX_FOUND)
   target_link_libraries(gs_app PUBLIC MPI::MPI_CXX)
   target_compile_definitions(gs_app PUBLIC GS_HAVE_MPI=1)

@@ -7,8 +7,13 @@ import re, sys, pathlib
 root = pathlib.Path(sys.argv[1] if len(sys.argv) > 1 else '.')
 text = (root / 'cmake/modules.cmake').read_text()
 deps = {}
+# a module whose DIRS are other folders (output/particles) owns the files there
+owner = {}
 for m in re.finditer(r'gs_module\((\w+)(.*?)\)', text, re.S):
     deps[m.group(1)] = re.findall(r'gs_(\w+)', m.group(2).split('DEPS', 1)[-1])
+    dirs = re.search(r'DIRS\s+(.*?)(?:DEPS|$)', m.group(2), re.S)
+    for d in (dirs.group(1).split() if dirs else []):
+        owner.setdefault(tuple(d.split('/')), m.group(1))
 for extra in re.finditer(r'target_link_libraries\(gs_(\w+) PUBLIC ((?:gs_\w+\s*)+)', text):
     deps.setdefault(extra.group(1), []).extend(re.findall(r'gs_(\w+)', extra.group(2)))
 def closure(m, seen=None):
@@ -38,7 +43,7 @@ for f, top in files:
     if f.suffix not in ('.cpp', '.hpp'): continue
     rel = f.relative_to(root / top)
     if len(rel.parts) < 2 or rel.parts[0] not in deps: continue
-    mod = rel.parts[0]
+    mod = owner.get(tuple(rel.parts[:2]), rel.parts[0]) if top == 'src' else rel.parts[0]
     allowed = allowed_for(top, mod)
     for n, line in enumerate(f.read_text().splitlines(), 1):
         m = re.match(r'\s*#\s*include\s+"(\w+)/', line)

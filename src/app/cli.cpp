@@ -9,13 +9,13 @@
 #include <string>
 #include <vector>
 
-#include "app/analyze.hpp"
-#include "app/render_cmd.hpp"
+#include "app/analyze/analyze.hpp"
+#include "app/analyze/rfm_models.hpp"
+#include "app/render/render_cmd.hpp"
 #include "app/reproduce/reproduce.hpp"
-#include "app/rfm_models.hpp"
-#include "app/run.hpp"
-#include "app/study.hpp"
-#include "app/sweep.hpp"
+#include "app/run/run.hpp"
+#include "app/study/study.hpp"
+#include "app/sweep/sweep.hpp"
 #include "app/version.hpp"
 #include "core/error.hpp"
 
@@ -114,18 +114,18 @@ int run_cli(int argc, char** argv) {
       "--no-charts", [&](std::int64_t) { ao.charts = false; }, "write CSV/JSON only");
   analyze->add_flag("-q,--quiet", ao.quiet, "no summary table");
 
-  // study: speed against accuracy and the stability map (app/study.cpp)
+  // study: speed against accuracy and the stability map (app/study/study.cpp)
   StudyOptions sto;
   auto* study = add_study_command(app, sto);
 
-  // render and movie (app/render_cmd.cpp)
+  // render and movie (app/render/render_cmd.cpp)
   auto render_cmds = add_render_commands(app);
 
   // reproduce: a study's sweeps, analysis and report of claims (app/reproduce/)
   ReproduceOptions rpo;
   auto* reproduce = add_reproduce_command(app, rpo);
 
-  // model: the thesis' auxiliary models, run from their own callbacks (app/rfm_models.cpp)
+  // model: the thesis' auxiliary models, run from their own callbacks (app/analyze/rfm_models.cpp)
   add_model_command(app);
 
   // an unknown command word is named, with the nearest command

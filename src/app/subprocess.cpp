@@ -11,6 +11,7 @@
 #include <cstring>
 #include <filesystem>
 #include <sstream>
+#include <stdexcept>
 #include <utility>
 
 extern char** environ;
@@ -34,22 +35,45 @@ std::string on_path(const std::string& name) {
   return "";
 }
 
-// spawn argv (looked up on PATH), its stdout and/or stderr to /dev/null, and wait; the errno
-// of a failed start as {false, errno}, else {true, waitpid status}
-std::pair<bool, int> spawn_and_wait(const std::vector<std::string>& args, bool quiet_out,
-                                    bool quiet_err) {
+// start argv as `setup` says: {pid, 0}, or {-1, errno} when it cannot be started
+std::pair<pid_t, int> spawn(const std::vector<std::string>& args, const ChildSetup& setup) {
   std::vector<std::string> copy = args;
   std::vector<char*> argv;
   for (auto& a : copy) argv.push_back(a.data());
   argv.push_back(nullptr);
+  std::vector<std::string> env_copy;
+  std::vector<char*> envp;
+  if (setup.environment) {
+    env_copy = *setup.environment;
+    for (auto& e : env_copy) envp.push_back(e.data());
+    envp.push_back(nullptr);
+  }
   posix_spawn_file_actions_t fa;
   posix_spawn_file_actions_init(&fa);
-  if (quiet_out) posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
-  if (quiet_err) posix_spawn_file_actions_addopen(&fa, 2, "/dev/null", O_WRONLY, 0);
+  if (setup.stdin_null) posix_spawn_file_actions_addopen(&fa, 0, "/dev/null", O_RDONLY, 0);
+  if (!setup.log.empty()) {
+    posix_spawn_file_actions_addopen(&fa, 1, setup.log.c_str(),
+                                     O_WRONLY | O_CREAT | (setup.append_log ? O_APPEND : O_TRUNC),
+                                     0644);
+    posix_spawn_file_actions_adddup2(&fa, 1, 2);
+  }
+  if (setup.quiet_stdout) posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
+  if (setup.quiet_stderr) posix_spawn_file_actions_addopen(&fa, 2, "/dev/null", O_WRONLY, 0);
   pid_t pid = -1;
-  const int rc = posix_spawnp(&pid, argv[0], &fa, nullptr, argv.data(), environ);
+  const int rc = posix_spawnp(&pid, argv[0], &fa, nullptr, argv.data(),
+                              setup.environment ? envp.data() : environ);
   posix_spawn_file_actions_destroy(&fa);
-  if (rc != 0) return {false, rc};
+  return rc == 0 ? std::pair<pid_t, int>{pid, 0} : std::pair<pid_t, int>{-1, rc};
+}
+
+// start argv and wait: {false, errno} when it cannot be started, else {true, waitpid status}
+std::pair<bool, int> spawn_and_wait(const std::vector<std::string>& args, bool quiet_out,
+                                    bool quiet_err) {
+  ChildSetup setup;
+  setup.quiet_stdout = quiet_out;
+  setup.quiet_stderr = quiet_err;
+  const auto [pid, err] = spawn(args, setup);
+  if (pid < 0) return {false, err};
   int status = 0;
   while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
   }
@@ -57,6 +81,13 @@ std::pair<bool, int> spawn_and_wait(const std::vector<std::string>& args, bool q
 }
 
 }  // namespace
+
+pid_t start_process(const std::vector<std::string>& args, const ChildSetup& setup) {
+  if (args.empty()) throw std::runtime_error("nothing to start");
+  const auto [pid, err] = spawn(args, setup);
+  if (pid < 0) throw std::runtime_error("cannot start " + args[0] + ": " + std::strerror(err));
+  return pid;
+}
 
 bool python_has_charts(const std::string& python) {
   const auto [started, status] =

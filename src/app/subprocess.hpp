@@ -1,9 +1,27 @@
-// child processes of the application: the Python chart and report scripts
+// child processes of the application, every one started here: the Python chart and report
+// scripts, and a sweep's runs (this binary again, its output into a log file)
 #pragma once
+#include <sys/types.h>
+
 #include <string>
 #include <vector>
 
 namespace gs {
+
+/// where a child's standard streams go and what environment it gets
+struct ChildSetup {
+  bool stdin_null = false;    ///< read from /dev/null (else ours)
+  bool quiet_stdout = false;  ///< standard output to /dev/null
+  bool quiet_stderr = false;  ///< standard error to /dev/null
+  std::string log;            ///< when set: standard output and error into this file
+  bool append_log = false;    ///< append to `log` (else truncate it)
+  /// the environment as NAME=value entries; null: ours
+  const std::vector<std::string>* environment = nullptr;
+};
+
+/// start argv[0] (looked up on PATH unless it holds a '/') with argv, without waiting; its
+/// process id. Throws std::runtime_error naming the program when it cannot be started.
+pid_t start_process(const std::vector<std::string>& argv, const ChildSetup& setup);
 
 /// the interpreter for the scripts: $GS_PYTHON; else `python3` on PATH when it imports numpy and
 /// matplotlib (the user's own environment); else /usr/bin/python3 (Debian's, where

@@ -376,7 +376,7 @@ void RfmObserver::finish(const Simulation& sim) {
   write_json(sim);
 }
 
-// rfm.json: the system and a summary, one top-level field per line (app/run_info.hpp reads it)
+// rfm.json: the system and a summary, one top-level field per line (app/run/run_info.hpp reads it)
 void RfmObserver::write_json(const Simulation& sim) const {
   const World& w = sim.world();
   const MaterialSpec& mat = w.materials[w.species[0].material];

@@ -157,7 +157,8 @@ struct HealthSpec {
 };
 
 /// [output.snapshots]: the configuration (and its contact forces) at chosen times and at every
-/// tap's measurement, written to DIR/snapshots/ (app/snapshot_observer.cpp, docs/scene-format.md)
+/// tap's measurement, written to DIR/snapshots/ (app/render/snapshot_observer.cpp,
+/// docs/scene-format.md)
 struct SnapshotSpec {
   bool given = false;         ///< the scene has the table (it is then written back)
   double every_time = 0.0;    ///< s between snapshots from t = 0 (0 = off)

@@ -11,9 +11,9 @@
 #include <fstream>
 #include <sstream>
 
-#include "app/trajectory.hpp"
 #include "binary.hpp"
 #include "geometry/polygon.hpp"
+#include "output/particles/trajectory.hpp"
 #include "output/png.hpp"
 #include "scene/parse.hpp"
 #include "sim/state_file.hpp"

@@ -12,9 +12,9 @@
 #include <fstream>
 
 #include "analysis/rfm_csv.hpp"
-#include "app/rfm_analyze.hpp"
-#include "app/run.hpp"
-#include "app/run_info.hpp"
+#include "app/analyze/rfm_analyze.hpp"
+#include "app/run/run.hpp"
+#include "app/run/run_info.hpp"
 
 namespace gs {
 namespace {

@@ -10,7 +10,7 @@
 #include <filesystem>
 
 #include "analysis/rfm_csv.hpp"
-#include "app/run_info.hpp"
+#include "app/run/run_info.hpp"
 
 namespace gs {
 namespace {

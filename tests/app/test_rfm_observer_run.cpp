@@ -15,8 +15,8 @@
 #include <vector>
 
 #include "analysis/rfm_csv.hpp"
-#include "app/run.hpp"
-#include "app/run_info.hpp"
+#include "app/run/run.hpp"
+#include "app/run/run_info.hpp"
 #include "measure/rfm_io.hpp"
 #include "measure/rfm_observer.hpp"
 #include "scene/parse.hpp"

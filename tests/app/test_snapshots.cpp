@@ -10,8 +10,8 @@
 #include <map>
 #include <sstream>
 
-#include "app/snapshot_files.hpp"
 #include "binary.hpp"
+#include "output/particles/snapshot_files.hpp"
 #include "scene/parse.hpp"
 #include "sim/simulation.hpp"
 #include "view/render_world.hpp"

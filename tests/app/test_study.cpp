@@ -14,8 +14,8 @@
 #include <string>
 #include <vector>
 
-#include "app/study.hpp"
-#include "app/study_problems.hpp"
+#include "app/study/study.hpp"
+#include "app/study/study_problems.hpp"
 #include "binary.hpp"
 
 namespace gs {

@@ -27,7 +27,7 @@ struct Outcome {
 };
 
 // 60 decagons of the small tapping scene, 2 taps of 1.5 s, early rest on; the loop of
-// `gransim run` (app/run_loop.cpp) without its files
+// `gransim run` (app/run/run_loop.cpp) without its files
 Outcome tap(std::vector<std::string> overrides) {
   overrides.insert(overrides.end(),
                    {"species[0].count=25", "species[1].count=35", "box.width=0.12",

@@ -25,12 +25,15 @@ class CheckIncludes(unittest.TestCase):
             (d / 'cmake').mkdir()
             (d / 'cmake' / 'modules.cmake').write_text(
                 'gs_module(core DEPS Eigen3::Eigen)\ngs_module(geometry DEPS gs_core)\n'
-                'gs_module(sim DEPS gs_geometry)\ngs_module(app DEPS gs_sim)\n')
+                'gs_module(sim DEPS gs_geometry)\ngs_module(app DEPS gs_sim)\n'
+                'gs_module(shapes DIRS geometry/shapes DEPS gs_sim)\n')
             (d / 'tests').mkdir()
             (d / 'tests' / 'CMakeLists.txt').write_text('gs_test(geometry DEPS gs_geometry)\n')
             for folder, text in {'src/geometry/a.cpp': '#include "core/x.hpp"\n',
                                  'src/geometry/b.hpp': '#include <vector>\n#include "sim/s.hpp"\n',
                                  'src/app/c.cpp': '#include "geometry/b.hpp"\n',
+                                 # a folder of its own module (DIRS) may use what that module links
+                                 'src/geometry/shapes/d.cpp': '#include "sim/s.hpp"\n',
                                  'tests/geometry/t.cpp': '#include "app/c.hpp"\n'}.items():
                 (d / folder).parent.mkdir(parents=True, exist_ok=True)
                 (d / folder).write_text(text)
@@ -40,6 +43,7 @@ class CheckIncludes(unittest.TestCase):
             self.assertIn('tests/geometry/t.cpp:1: geometry includes app/', r.stdout)
             self.assertNotIn('a.cpp', r.stdout)
             self.assertNotIn('c.cpp', r.stdout)
+            self.assertNotIn('d.cpp', r.stdout)
 
 
 if __name__ == '__main__':

@@ -11,11 +11,12 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
-#include "app/analyze.hpp"
+#include "app/analyze/analyze.hpp"
+#include "app/locations.hpp"
 #include "app/reproduce/plan.hpp"
-#include "app/run_info.hpp"
+#include "app/run/run_info.hpp"
 #include "app/subprocess.hpp"
-#include "app/sweep.hpp"
+#include "app/sweep/sweep.hpp"
 #include "core/error.hpp"
 #include "output/run_dir.hpp"
 

@@ -1,0 +1,128 @@
+// `gransim analyze --series … / --manifest …`: φ series that are not gransim runs (an
+// experiment's, another simulator's), described on the command line or in a small CSV
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "app/analyze/analyze.hpp"
+#include "core/error.hpp"
+#include "core/input_file.hpp"
+
+namespace gs {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string trim(const std::string& s) {
+  const auto a = s.find_first_not_of(" \t\r");
+  const auto b = s.find_last_not_of(" \t\r");
+  return a == std::string::npos ? "" : s.substr(a, b - a + 1);
+}
+
+std::vector<std::string> split(const std::string& line, char sep) {
+  std::vector<std::string> out;
+  std::stringstream ss(line);
+  std::string cell;
+  while (std::getline(ss, cell, sep)) out.push_back(trim(cell));
+  if (!line.empty() && line.back() == sep) out.emplace_back();
+  return out;
+}
+
+double number(const std::string& text, const std::string& where, const std::string& key) {
+  char* end = nullptr;
+  errno = 0;
+  const double v = std::strtod(text.c_str(), &end);
+  if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE || !std::isfinite(v))
+    throw InputError(where, key, "not a finite number: '" + text + "'");
+  return v;
+}
+
+void check_file(const std::string& file, const std::string& where, const std::string& key) {
+  // a FIFO, a device or a huge file is named as such
+  try {
+    check_input_file(file, "series file");
+  } catch (const InputError& e) {
+    throw InputError(where, key, e.what());
+  }
+}
+
+}  // namespace
+
+std::vector<PlainSeries> plain_series(const AnalyzeOptions& opt, double& test_area) {
+  std::vector<PlainSeries> out;
+  // --series PROTOCOL:CONTROL:FILE
+  for (const auto& text : opt.series) {
+    const auto a = text.find(':'), b = a == std::string::npos ? a : text.find(':', a + 1);
+    if (b == std::string::npos || a == 0)
+      throw InputError("--series " + text, "--series", "expected PROTOCOL:CONTROL:FILE");
+    PlainSeries p;
+    p.protocol = text.substr(0, a);
+    p.control = number(text.substr(a + 1, b - a - 1), "--series " + text, "CONTROL");
+    p.file = text.substr(b + 1);
+    check_file(p.file, "--series " + text, "FILE");
+    out.push_back(p);
+  }
+  // --manifest: a CSV with a header naming file, protocol, control and optionally label and
+  // test_area; files are relative to the manifest
+  if (!opt.manifest.empty()) {
+    check_input_file(opt.manifest, "manifest");
+    std::ifstream in(opt.manifest);
+    if (!in) throw InputError(opt.manifest, "--manifest", "cannot be read (not a regular file)");
+    const fs::path base = fs::path(opt.manifest).parent_path();
+    std::string line;
+    std::vector<std::string> head;
+    int lineno = 0;
+    int c_file = -1, c_proto = -1, c_control = -1, c_label = -1, c_area = -1;
+    while (std::getline(in, line)) {
+      ++lineno;
+      if (lineno == 1 && line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3);
+      if (trim(line).empty() || trim(line)[0] == '#') continue;
+      const std::string where = opt.manifest + ":" + std::to_string(lineno);
+      const auto cells = split(line, ',');
+      if (head.empty()) {
+        head = cells;
+        for (std::size_t i = 0; i < head.size(); ++i) {
+          const int k = static_cast<int>(i);
+          if (head[i] == "file") c_file = k;
+          if (head[i] == "protocol") c_proto = k;
+          if (head[i] == "control") c_control = k;
+          if (head[i] == "label") c_label = k;
+          if (head[i] == "test_area") c_area = k;
+        }
+        for (const auto& [c, name] : {std::pair{c_file, "file"}, std::pair{c_proto, "protocol"},
+                                      std::pair{c_control, "control"}})
+          if (c < 0) throw InputError(where, name, std::string("missing column '") + name + "'");
+        continue;
+      }
+      auto cell = [&](int c) -> std::string {
+        if (c >= static_cast<int>(cells.size()))
+          throw InputError(where, head[static_cast<std::size_t>(c)], "row has no value here");
+        return cells[static_cast<std::size_t>(c)];
+      };
+      PlainSeries p;
+      p.file = (base / cell(c_file)).string();
+      p.protocol = cell(c_proto);
+      if (p.protocol.empty()) throw InputError(where, "protocol", "is empty");
+      p.control = number(cell(c_control), where, "control");
+      if (c_label >= 0) p.label = cell(c_label);
+      if (c_area >= 0 && !cell(c_area).empty()) {
+        const double a = number(cell(c_area), where, "test_area");
+        if (test_area > 0.0 && std::abs(a - test_area) > 1e-12 * a)
+          throw InputError(where, "test_area",
+                           "differs from the other rows' (one test region for the study)");
+        test_area = a;
+      }
+      check_file(p.file, where, "file");
+      out.push_back(p);
+    }
+    if (head.empty()) throw InputError(opt.manifest, "--manifest", "no header row");
+  }
+  if (out.empty()) throw InputError("", "--series", "no series given");
+  return out;
+}
+
+}  // namespace gs

@@ -1,0 +1,202 @@
+// `gransim run` and `gransim resume`: set up a session (new, or from the newest checkpoint)
+// and hand it to the run loop (app/run/run_loop.cpp)
+#include "app/run/run.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <optional>
+#include <sstream>
+
+#include "app/run/observers.hpp"
+#include "app/run/run_bounds.hpp"
+#include "app/run/run_info.hpp"
+#include "app/run/run_session.hpp"
+#include "app/version.hpp"
+#include "core/error.hpp"
+#include "output/run_dir.hpp"
+#include "scene/names.hpp"
+#include "scene/parse.hpp"
+#include "sim/saved_state.hpp"
+#include "sim/stability.hpp"
+#include "world/prepare.hpp"
+
+namespace gs {
+namespace {
+
+std::atomic<bool> g_stop{false};
+extern "C" void on_stop_signal(int) { g_stop = true; }
+
+// x rounded down to three significant digits: a suggested limit that, printed and passed back,
+// is itself within the limit
+std::string default_out(const std::string& name) {
+  char buf[32];
+  const std::time_t now = std::time(nullptr);
+  std::strftime(buf, sizeof buf, "%Y%m%d-%H%M%S", std::localtime(&now));
+  return "runs/" + (name.empty() ? std::string("run") : name) + "-" + buf;
+}
+
+void print_banner(const SceneSpec& scene, const Simulation& sim, const ProtocolClock& clock) {
+  const double dt = scene.integrator.dt;
+  const auto nsteps = static_cast<long long>(std::llround(clock.nominal_duration() / dt));
+  const std::string sorted =
+      sim.sort_every() > 0 ? ", sorted every " + std::to_string(sim.sort_every()) + " steps" : "";
+  std::fprintf(
+      stderr, "gransim %s: %s, %zu particles, %lld steps of %g s (%s, %s%s), contact time %.3g s\n",
+      program_version().data(), scene.name.c_str(), sim.world().size(), nsteps, dt,
+      std::string(to_string(scene.integrator.kind)).c_str(), sim.broadphase().name(),
+      sorted.c_str(), sim.model().min_contact_time());
+  if (is_tapping(scene.drive))
+    std::fprintf(
+        stderr, "gransim: %s, settle %g s, then %d taps of T = %g s (excitation %g s)%s%s\n",
+        std::string(scene_name(scene.drive.kind)).c_str(), scene.prep.settle_time, scene.drive.taps,
+        drive_period(scene.drive), excitation_length(scene.drive),
+        scene.drive.early_rest ? ", early rest on" : "", scene.drive.quench ? ", quench on" : "");
+}
+
+constexpr const char* kResumeAdvice =
+    "a resume continues the run with the scene it was started with: restore scene.toml (or "
+    "remove it), or start a new run with `gransim run` on the edited scene";
+
+ByteReader extra(const Checkpoint& c, const std::string& key) {
+  const auto it = c.extras.entries.find(key);
+  if (it == c.extras.entries.end())
+    throw InputError(c.path, "",
+                     "checkpoint has no '" + key + "' entry: it was not written by `gransim run`");
+  return ByteReader{it->second, 0, c.path + " [" + key + "]"};
+}
+
+// a resume continues the run as its checkpoint recorded it: a scene.toml edited since (a key
+// changed by hand, hoping the rest of the run would use it) is refused, not silently ignored
+void check_scene_unchanged(const std::string& dir, const Checkpoint& c) {
+  const std::string path = dir + "/scene.toml";
+  const auto text = read_text_file(path);
+  if (!text) return;  // removed: the checkpoint holds the scene
+  const std::string recorded = scene_to_toml(parse_scene_string(c.scene_toml, c.path));
+  std::string now;
+  try {
+    now = scene_to_toml(parse_scene_string(*text, path));
+  } catch (const InputError& e) {
+    throw InputError(path, "",
+                     std::string("edited since the run started, and no longer a valid "
+                                 "scene (") +
+                         e.what() + "); " + kResumeAdvice);
+  }
+  if (now == recorded) return;
+  std::istringstream a(recorded), b(now);
+  std::string la, lb;
+  while (std::getline(a, la) && std::getline(b, lb) && la == lb) {
+  }
+  throw InputError(path, "",
+                   "edited since the run started (the checkpoint's scene has '" + la +
+                       "', this file '" + lb + "'); " + kResumeAdvice);
+}
+
+}  // namespace
+
+bool stop_requested() { return g_stop.load(); }
+void install_stop_handlers() {
+  std::signal(SIGINT, on_stop_signal);
+  std::signal(SIGTERM, on_stop_signal);
+}
+
+int run_command(const RunOptions& opt) {
+  // scene and run directory are checked before any work is done
+  SceneSpec scene = parse_scene_file(opt.scene, opt.sets);
+  if (opt.allow_unstable) scene.health.allow_unstable = true;
+  // the grains: placed, or taken from a saved state (which also sets the counts left out)
+  std::optional<SavedState> saved;
+  if (!scene.prep.from_state.empty()) {
+    saved = read_saved_state(scene);
+    fit_scene_to_state(scene, *saved);
+  }
+  // counts and sizes derived from the scene, before anything is allocated or placed
+  check_run_bounds(scene, ProtocolClock(scene).nominal_duration());
+  World world = make_world(scene);
+  if (saved)
+    place_saved_state(world, *saved);
+  else
+    place_particles(world);
+  // the protocol clock starts after preparation.settle_time (constant gravity until then); it
+  // is set before the first force evaluation so the initial accelerations see settling gravity
+  ProtocolClock clock(scene);
+  clock.start(world);
+  Simulation sim(std::move(world));
+  const bool history = saved && take_saved_history(sim, *saved);
+  check_time_step(sim);
+  const std::string out = opt.out.empty() ? default_out(scene.name) : opt.out;
+  const DirLock lock(out, "run");
+  prepare_run_dir(out, opt.force);
+  write_file_atomic(out + "/scene.toml", scene_to_toml(scene));
+
+  RunSession rs;
+  rs.scene = scene;
+  rs.scene_file = scene.path;
+  rs.out = out;
+  rs.quiet = opt.quiet;
+  rs.sim = &sim;
+  rs.clock = &clock;
+  rs.series = CsvWriter(out + "/series.csv", series_columns());
+  print_banner(scene, sim, clock);
+  if (saved && !opt.quiet)
+    std::fprintf(stderr, "gransim: %zu grains from %s%s\n", saved->size(), saved->path.c_str(),
+                 history ? " (with its integrator history and contact springs)"
+                 : saved->checkpoint
+                     ? " (another integrator, time step or model: positions and velocities only)"
+                     : "");
+  rs.observers = make_observers(scene);
+  for (auto& o : rs.observers) o->start(sim, out);
+  write_series_row(rs);  // the prepared state is the first row
+  return run_session(rs);
+}
+
+int resume_command(const ResumeOptions& opt) {
+  // a completed run has nothing to continue
+  if (run_status(opt.dir) == "completed") {
+    std::fprintf(stderr, "gransim: %s is a completed run; nothing to resume\n", opt.dir.c_str());
+    return kExitOk;
+  }
+  if (std::error_code ec; !std::filesystem::is_directory(opt.dir, ec))
+    throw InputError(opt.dir, "DIR", "not a run directory (it does not exist)");
+  const DirLock lock(opt.dir, "resume");
+  const Checkpoint c = newest_valid_checkpoint(opt.dir);
+  check_scene_unchanged(opt.dir, c);
+  Simulation sim = restore_simulation(c);
+  SceneSpec scene = sim.world().scene;
+  ProtocolClock clock(scene);
+  ByteReader ck = extra(c, "run/clock");
+  clock.load(ck);
+  ByteReader run = extra(c, "run/session");
+  RunSession rs;
+  rs.wall_before = run.f64("wall time");
+  rs.wall_settled = run.f64("settling wall time");
+  rs.sessions = static_cast<int>(run.i64("sessions")) + 1;
+  const double ref = run.f64("energy reference"), slack = run.f64("energy slack");
+  sim.set_energy_yardstick(ref, slack);
+  rs.scene = scene;
+  rs.scene_file =
+      c.extras.entries.count("run/scene_file") ? c.extras.entries.at("run/scene_file") : c.path;
+  rs.out = opt.dir;
+  rs.quiet = opt.quiet;
+  rs.sim = &sim;
+  rs.clock = &clock;
+  // rows written after the checkpoint are dropped; the run writes them again, identically
+  truncate_outputs(opt.dir, c);
+  rs.series = CsvWriter::append(opt.dir + "/series.csv", series_columns().size());
+  print_banner(scene, sim, clock);
+  std::fprintf(stderr, "gransim: resuming %s from %s (t = %g s, step %lld)\n", opt.dir.c_str(),
+               c.path.c_str(), sim.world().s.t, static_cast<long long>(sim.world().s.step));
+  rs.observers = make_observers(scene);
+  for (auto& o : rs.observers) {
+    ByteReader in = extra(c, std::string("observer/") + o->name());
+    o->resume(sim, opt.dir, in);
+    if (!in.at_end()) in.fail(in.pos, "observer state has trailing bytes");
+  }
+  return run_session(rs);
+}
+
+}  // namespace gs
