@@ -307,6 +307,10 @@ TEST(Resume, InterruptedSweepResumesItsRuns) {
   ASSERT_TRUE(o.exited);
   ASSERT_EQ(o.code, 4) << o.output;
   EXPECT_GT(list_size(tmp / "run" / "g_p=4"), 0u);
+  // the stopped runs are said to be interrupted, not failed, in the message and the manifest
+  EXPECT_NE(o.output.find("g_p=4: interrupted (exit 4"), std::string::npos) << o.output;
+  EXPECT_EQ(o.output.find("failed"), std::string::npos) << o.output;
+  EXPECT_NE(slurp(tmp / "run" / "sweep.json").find("\"interrupted\""), std::string::npos);
   const Outcome r = run_binary(sweep(tmp / "run"), tmp / "r.log", env);
   ASSERT_EQ(r.code, 0) << r.output;
   for (const char* run : {"g_p=4", "g_p=8"})

@@ -22,7 +22,7 @@ struct Job {
   std::string dir;                ///< OUT/<name>
   double nominal = 0.0;           ///< simulated time it needs, s
   std::string expected;           ///< the scene.toml the run writes (scene_to_toml)
-  std::string state = "pending";  ///< pending, skipped, running, completed, failed
+  std::string state = "pending";  ///< pending, skipped, running, completed, interrupted, failed
   bool resume = false;            ///< an interrupted run with a checkpoint: `gransim resume` it
   int exit_code = -1;
   pid_t pid = -1;  ///< a child of this process (-1: none, or on another rank)

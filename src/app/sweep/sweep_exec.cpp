@@ -168,7 +168,8 @@ int run_jobs(SweepPlan& plan, int width, int threads, RemoteSlots* remote) {
     j.wall = wall;
     j.exit_code = code;
     j.pid = -1;
-    j.state = code == kExitOk ? "completed" : "failed";
+    // a run stopped by a signal has checkpointed and resumes: it has not failed
+    j.state = code == kExitOk ? "completed" : code == kExitInterrupted ? "interrupted" : "failed";
     done_work += j.nominal;
     worst = worse_exit(worst, code);
     if (!opt.quiet || code != kExitOk)
@@ -244,7 +245,7 @@ int run_jobs(SweepPlan& plan, int width, int threads, RemoteSlots* remote) {
         now += std::min(last_series_time(j.dir, j.spawned), j.nominal);
         ++active;
       }
-      finished += j.state == "completed" || j.state == "failed";
+      finished += j.state == "completed" || j.state == "failed" || j.state == "interrupted";
     }
     progress.update(now, std::to_string(finished) + "/" + std::to_string(pending) + " runs done, " +
                              std::to_string(active) + " running");
