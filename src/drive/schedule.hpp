@@ -71,6 +71,13 @@ inline bool excitation_starts_next(const DriveSpec& d, double t, double dt) {
   return now.settling || !now.exciting || now.tap != next.tap;
 }
 
+/// the tap boundary the step from t to t + dt crosses (where a Trigger's tap condition looks):
+/// the taps done before the excitation it enters, or −1 when it enters none
+inline std::int64_t tap_boundary(const DriveSpec& d, double t, double dt) {
+  if (!excitation_starts_next(d, t, dt)) return -1;
+  return drive_phase(d, t + dt).tap;
+}
+
 /// how many of the steps after t certainly end before the step after which
 /// excitation_starts_next() holds (the start of the protocol or of the next period), three
 /// fewer than the time left allows (round-off); 0 close to it. No tapping: a large number

@@ -14,7 +14,6 @@
 #include "core/error.hpp"
 #include "core/permute.hpp"
 #include "measure/rfm_io.hpp"
-#include "output/run_dir.hpp"
 #include "sim/simulation.hpp"
 
 namespace gs {
@@ -63,13 +62,17 @@ std::string json_number(double v) {
 
 }  // namespace
 
-RfmObserver::RfmObserver(const SceneSpec& scene) : spec_(scene.rfm), scene_(scene) {}
+RfmObserver::RfmObserver(const SceneSpec& scene, const RecordSink& records)
+    : spec_(scene.rfm),
+      sampling_(Trigger::every_steps(scene.rfm.sample_every)),
+      scene_(scene),
+      records_(&records) {}
 
 void RfmObserver::start(const Simulation& sim, const std::string& run_dir) {
   setup(sim, run_dir);
   // the series of every sample, transient included
-  series_ = CsvWriter(dir_ + "/rfm_series.csv", {"t", "step", "T", "T_x", "T_y", "v_mean_x",
-                                                 "v_mean_y", "contacts", "steady"});
+  series_ = records_->create(dir_ + "/rfm_series.csv", {"t", "step", "T", "T_x", "T_y", "v_mean_x",
+                                                        "v_mean_y", "contacts", "steady"});
   after_step(sim);  // the prepared state is the first sample (step 0)
 }
 
@@ -166,7 +169,7 @@ void RfmObserver::save(ByteWriter& out) const {
 
 void RfmObserver::resume(const Simulation& sim, const std::string& run_dir, ByteReader& in) {
   setup(sim, run_dir);
-  series_ = CsvWriter::append(dir_ + "/rfm_series.csv", 9);
+  series_ = records_->append(dir_ + "/rfm_series.csv", 9);
   steady_ = in.u8("rfm: steady flag") != 0;
   t_steady_ = in.f64("rfm: steady start");
   v_max_ = in.f64("rfm: velocity range");
@@ -209,13 +212,13 @@ void RfmObserver::after_step(const Simulation& sim) {
   if (sim.order_generation() != order_seen_) follow_order(sim);
   if (!steady_ && w.s.t >= spec_.discard_time - 0.5 * sim.dt()) begin_steady(sim);
   if (steady_) track_contacts(sim);
-  if (w.s.step % spec_.sample_every == 0) sample(sim);
+  if (sampling_.at_step(w.s.step)) sample(sim);
 }
 
 std::int64_t RfmObserver::quiet_steps(const Simulation& sim) const {
   if (steady_) return 0;  // free paths: the contacts are followed at every step
   const World& w = sim.world();
-  std::int64_t q = spec_.sample_every - 1 - w.s.step % spec_.sample_every;
+  std::int64_t q = sampling_.steps_to_next(w.s.step) - 1;
   // the steps before the transient can end (t ≥ discard_time − Δt/2), two fewer for round-off
   const double left = (spec_.discard_time - 0.5 * sim.dt() - w.s.t) / sim.dt();
   if (left < static_cast<double>(q) + 2.0)
@@ -305,8 +308,8 @@ void RfmObserver::sample(const Simulation& sim) {
   tx /= static_cast<double>(n_);
   ty = dim_ == 2 ? ty / static_cast<double>(n_) : 0.0;
   const double temp = tx + ty;  // T = (1/N) Σ |v − ⟨v⟩|² (T.2.19)
-  series_.row({w.s.t, static_cast<double>(w.s.step), temp, tx, ty, mean.x, mean.y,
-               static_cast<double>(sim.contacts().keys.size()), steady_ ? 1.0 : 0.0});
+  series_->row({w.s.t, static_cast<double>(w.s.step), temp, tx, ty, mean.x, mean.y,
+                static_cast<double>(sim.contacts().keys.size()), steady_ ? 1.0 : 0.0});
   if (!steady_) return;
 
   times_.push_back(w.s.t);
@@ -337,7 +340,7 @@ void RfmObserver::sample(const Simulation& sim) {
 }
 
 void RfmObserver::finish(const Simulation& sim) {
-  series_ = CsvWriter();  // flushed row by row; close
+  series_.reset();  // flushed row by row; close
   namespace fs = std::filesystem;
   const fs::path d(dir_);
   // T(t) with block means (T.2.20)
@@ -427,12 +430,12 @@ void RfmObserver::write_json(const Simulation& sim) const {
   js << "{\n  \"model\": \"rfm\",\n  \"scene\": \"" << name << "\"";
   for (const auto& [k, v] : f) js << ",\n  \"" << k << "\": " << json_number(v);
   js << "\n}\n";
-  write_file_atomic(dir_ + "/rfm.json", js.str());
+  records_->document(dir_ + "/rfm.json", js.str());
 }
 
-std::unique_ptr<Observer> make_rfm_observer(const SceneSpec& scene) {
+std::unique_ptr<Observer> make_rfm_observer(const SceneSpec& scene, const RecordSink& records) {
   if (!scene.rfm.enabled) return nullptr;
-  return std::make_unique<RfmObserver>(scene);
+  return std::make_unique<RfmObserver>(scene, records);
 }
 
 }  // namespace gs

@@ -25,7 +25,8 @@
 #include "analysis/rfm_hist.hpp"
 #include "analysis/rfm_moments.hpp"
 #include "analysis/rfm_sk.hpp"
-#include "output/csv.hpp"
+#include "core/records.hpp"
+#include "core/trigger.hpp"
 #include "scene/spec.hpp"
 #include "sim/observer.hpp"
 
@@ -33,7 +34,8 @@ namespace gs {
 
 class RfmObserver : public Observer {
  public:
-  explicit RfmObserver(const SceneSpec& scene);
+  /// the series goes to `records` (output/'s CSV files in a run)
+  RfmObserver(const SceneSpec& scene, const RecordSink& records);
   void start(const Simulation& sim, const std::string& run_dir) override;
   void after_step(const Simulation& sim) override;
   /// until the next sample or the transient's end; none once the contacts are followed
@@ -65,6 +67,7 @@ class RfmObserver : public Observer {
   void write_json(const Simulation& sim) const;
 
   RfmSpec spec_;
+  Trigger sampling_;  ///< every rfm.sample_every steps
   SceneSpec scene_;
   std::string dir_;
   int dim_ = 2;
@@ -76,7 +79,8 @@ class RfmObserver : public Observer {
   bool steady_ = false;             ///< past discard_time
   double t_steady_ = 0.0;           ///< when the steady part began, s
 
-  CsvWriter series_;
+  const RecordSink* records_;
+  std::unique_ptr<RecordTable> series_;
   std::vector<double> times_, temps_;
   rfm::MomentSeries moments_{12}, comp_moments_{12};
   rfm::Histogram vel_, post_, paths_;
@@ -97,6 +101,6 @@ class RfmObserver : public Observer {
 };
 
 /// an RfmObserver when the scene asks for one ([rfm] enabled; default for the random force)
-std::unique_ptr<Observer> make_rfm_observer(const SceneSpec& scene);
+std::unique_ptr<Observer> make_rfm_observer(const SceneSpec& scene, const RecordSink& records);
 
 }  // namespace gs

@@ -6,8 +6,8 @@
 
 namespace gs {
 
-TapObserver::TapObserver(const SceneSpec& scene, double segregation_dh)
-    : scene_(scene), dh_(segregation_dh) {}
+TapObserver::TapObserver(const SceneSpec& scene, const RecordSink& records, double segregation_dh)
+    : scene_(scene), dh_(segregation_dh), records_(&records) {}
 
 std::vector<std::string> TapObserver::columns(const SceneSpec& scene) {
   std::vector<std::string> c{"tap",       "t",     "phi", "phi_left", "phi_right", "kinetic_energy",
@@ -20,15 +20,15 @@ std::vector<std::string> TapObserver::columns(const SceneSpec& scene) {
 
 void TapObserver::start(const Simulation& sim, const std::string& run_dir) {
   const World& w = sim.world();
-  taps_ = CsvWriter(run_dir + "/taps.csv", columns(scene_));
+  taps_ = records_->create(run_dir + "/taps.csv", columns(scene_));
   // segregation: n(h) per species on a grid up to the box height
   grid_ = height_grid(w.Ly, dh_);
   std::vector<std::string> cols{"tap", "t"};
   for (auto& n : cumulative_count_names(w, grid_)) cols.push_back(n);
-  seg_ = CsvWriter(run_dir + "/segregation.csv", cols);
+  seg_ = records_->create(run_dir + "/segregation.csv", cols);
   origin_seen_ = w.scene.drive.clock_origin;
   // the prepared state is tap 0 when the first excitation starts with the first step
-  if (excitation_starts_next(w.scene.drive, w.s.t, sim.dt())) measure(sim);
+  if (at_taps_.fires({w.s.step, tap_boundary(w.scene.drive, w.s.t, sim.dt())})) measure(sim);
 }
 
 void TapObserver::save(ByteWriter& out) const {
@@ -41,9 +41,9 @@ void TapObserver::save(ByteWriter& out) const {
 void TapObserver::resume(const Simulation& sim, const std::string& run_dir, ByteReader& in) {
   const World& w = sim.world();
   grid_ = height_grid(w.Ly, dh_);
-  taps_ = CsvWriter::append(run_dir + "/taps.csv", columns(scene_).size());
+  taps_ = records_->append(run_dir + "/taps.csv", columns(scene_).size());
   seg_ =
-      CsvWriter::append(run_dir + "/segregation.csv", 2 + cumulative_count_names(w, grid_).size());
+      records_->append(run_dir + "/segregation.csv", 2 + cumulative_count_names(w, grid_).size());
   origin_seen_ = in.f64("taps: clock origin");
   early_ = in.u8("taps: early flag") != 0;
   relax_end_ = in.f64("taps: relaxation end");
@@ -61,7 +61,7 @@ void TapObserver::after_step(const Simulation& sim) {
     relax_end_ = drive_phase(before, w.s.t).t_in + 0.5 * sim.dt();
     origin_seen_ = d.clock_origin;
   }
-  if (excitation_starts_next(d, w.s.t, sim.dt())) measure(sim);
+  if (at_taps_.fires({w.s.step, tap_boundary(d, w.s.t, sim.dt())})) measure(sim);
 }
 
 std::int64_t TapObserver::quiet_steps(const Simulation& sim) const {
@@ -71,8 +71,8 @@ std::int64_t TapObserver::quiet_steps(const Simulation& sim) const {
 
 void TapObserver::finish(const Simulation& /*sim*/) {
   // rows are flushed as they are written; close the files
-  taps_ = CsvWriter();
-  seg_ = CsvWriter();
+  taps_.reset();
+  seg_.reset();
 }
 
 // one row: the tap count is the number of the excitation about to start
@@ -90,17 +90,17 @@ void TapObserver::measure(const Simulation& sim) {
   row.insert(row.end(), m.z_species.begin(), m.z_species.end());
   row.insert(row.end(),
              {m.coordination, m.S[0], m.S[1], m.S[2], m.S[3], relax_end, early_ ? 1.0 : 0.0});
-  taps_.row(row);
+  taps_->row(row);
   std::vector<double> seg{tap, w.s.t};
   for (double n : cumulative_counts(w, grid_)) seg.push_back(n);
-  seg_.row(seg);
+  seg_->row(seg);
   early_ = false;
   ++rows_;
 }
 
-std::unique_ptr<Observer> make_tap_observer(const SceneSpec& scene) {
+std::unique_ptr<Observer> make_tap_observer(const SceneSpec& scene, const RecordSink& records) {
   if (!is_tapping(scene.drive)) return nullptr;
-  return std::make_unique<TapObserver>(scene);
+  return std::make_unique<TapObserver>(scene, records);
 }
 
 }  // namespace gs

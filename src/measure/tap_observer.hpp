@@ -3,7 +3,8 @@
 #pragma once
 #include <memory>
 
-#include "output/csv.hpp"
+#include "core/records.hpp"
+#include "core/trigger.hpp"
 #include "scene/spec.hpp"
 #include "sim/observer.hpp"
 
@@ -11,8 +12,9 @@ namespace gs {
 
 class TapObserver : public Observer {
  public:
-  /// segregation_dh: spacing of the fixed height grid of n(h), m
-  explicit TapObserver(const SceneSpec& scene, double segregation_dh = 0.01);
+  /// rows go to `records` (output/'s CSV files in a run); segregation_dh: spacing of the fixed
+  /// height grid of n(h), m
+  TapObserver(const SceneSpec& scene, const RecordSink& records, double segregation_dh = 0.01);
   void start(const Simulation& sim, const std::string& run_dir) override;
   void after_step(const Simulation& sim) override;
   /// until just before the next excitation starts (when it measures)
@@ -32,15 +34,17 @@ class TapObserver : public Observer {
 
   SceneSpec scene_;
   double dh_;
-  CsvWriter taps_, seg_;
+  const RecordSink* records_;
+  std::unique_ptr<RecordTable> taps_, seg_;
   std::vector<double> grid_;
-  double origin_seen_ = 0.0;  ///< clock origin at the previous step, s
-  bool early_ = false;        ///< the current relaxation was ended early
-  double relax_end_ = 0.0;    ///< when it ended, time within its period, s
+  Trigger at_taps_ = Trigger::every_taps(1);  ///< one row at every tap boundary
+  double origin_seen_ = 0.0;                  ///< clock origin at the previous step, s
+  bool early_ = false;                        ///< the current relaxation was ended early
+  double relax_end_ = 0.0;                    ///< when it ended, time within its period, s
   long rows_ = 0;
 };
 
 /// a TapObserver for tapping scenes (negative g, rotating g); null otherwise
-std::unique_ptr<Observer> make_tap_observer(const SceneSpec& scene);
+std::unique_ptr<Observer> make_tap_observer(const SceneSpec& scene, const RecordSink& records);
 
 }  // namespace gs

@@ -4,9 +4,9 @@
 #include <cstring>
 #include <sstream>
 
+#include "core/atomic_file.hpp"
 #include "core/bytes.hpp"
 #include "core/error.hpp"
-#include "output/run_dir.hpp"
 #include "scene/parse.hpp"
 #include "world/prepare.hpp"
 
