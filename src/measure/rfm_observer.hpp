@@ -32,10 +32,22 @@
 
 namespace gs {
 
+/// what the RFM observer needs of a scene, taken once: the [rfm] section, the noise strength
+/// and the scene's name and path (rfm.json, messages)
+struct RfmSettings {
+  RfmSpec rfm;
+  double D = 0.0;          ///< drive.D, m²/s³
+  std::string scene_name;  ///< scene.name
+  std::string scene_path;  ///< the scene file, for messages
+  static RfmSettings from(const SceneSpec& scene);
+};
+
 class RfmObserver : public Observer {
  public:
   /// the series goes to `records` (output/'s CSV files in a run)
-  RfmObserver(const SceneSpec& scene, const RecordSink& records);
+  RfmObserver(const RfmSettings& settings, const RecordSink& records);
+  RfmObserver(const SceneSpec& scene, const RecordSink& records)
+      : RfmObserver(RfmSettings::from(scene), records) {}
   void start(const Simulation& sim, const std::string& run_dir) override;
   void after_step(const Simulation& sim) override;
   /// until the next sample or the transient's end; none once the contacts are followed
@@ -66,9 +78,8 @@ class RfmObserver : public Observer {
   void sample(const Simulation& sim);
   void write_json(const Simulation& sim) const;
 
-  RfmSpec spec_;
+  RfmSettings set_;
   Trigger sampling_;  ///< every rfm.sample_every steps
-  SceneSpec scene_;
   std::string dir_;
   int dim_ = 2;
   std::size_t n_ = 0;
