@@ -10,6 +10,7 @@
 
 #include "measure/rfm_observer.hpp"
 #include "one_thread.hpp"
+#include "output/csv.hpp"
 #include "run_steps.hpp"
 #include "scene/parse.hpp"
 #include "sim/simulation.hpp"
@@ -49,7 +50,7 @@ void BM_Rfm2DReferenceStep(benchmark::State& st) {
     std::filesystem::create_directories(dir);
     SceneSpec s = sim->world().scene;
     s.rfm.discard_time = 0.0;
-    obs = std::make_unique<RfmObserver>(s);
+    obs = std::make_unique<RfmObserver>(s, csv_records());
     obs->start(*sim, dir);
   }
   std::int64_t steps = 0;
@@ -70,7 +71,7 @@ void BM_Rfm1DRingStep(benchmark::State& st) {
     std::filesystem::create_directories(dir);
     SceneSpec s = sim->world().scene;
     s.rfm.discard_time = 0.0;
-    obs = std::make_unique<RfmObserver>(s);
+    obs = std::make_unique<RfmObserver>(s, csv_records());
     obs->start(*sim, dir);
   }
   std::int64_t steps = 0;

@@ -9,8 +9,9 @@ gs_module(contact DEPS gs_broadphase)
 # force laws (force/laws/) are header-only pure functions; force/ is the loop over contacts
 gs_module(force DEPS gs_contact)
 gs_module(drive DEPS gs_world)
-gs_module(sim DEPS gs_force gs_integrate gs_drive gs_output)
-# measure: read-only observers
+gs_module(sim DEPS gs_force gs_integrate gs_drive nlohmann_json::nlohmann_json)
+# measure: read-only observers; they hand their rows to a RecordSink (core/records.hpp) and never
+# use output/ (the run gives them its CSV writer)
 gs_module(measure DEPS gs_sim gs_analysis)
 gs_module(analysis DEPS gs_core nlohmann_json::nlohmann_json)
 if(FFTW3_FOUND)

@@ -189,19 +189,20 @@ void bind_scene_sim(py::module_& m) {
             const double dt = s.sim->dt();
             auto at = [&] {
               const World& ww = s.sim->world();
-              return excitation_starts_next(ww.scene.drive, ww.s.t, dt) &&
-                     drive_phase(ww.scene.drive, ww.s.t + dt).tap == k;
+              return excitation_starts_next(ww.scene.drive, ww.clock_origin, ww.s.t, dt) &&
+                     drive_phase(ww.scene.drive, ww.clock_origin, ww.s.t + dt).tap == k;
             };
-            const DrivePhase p = drive_phase(d, w.s.t + dt);
+            const DrivePhase p = drive_phase(d, w.clock_origin, w.s.t + dt);
             if (k < 0 || (!p.settling && p.tap > k) || (!p.settling && p.tap == k && !at()))
               throw InputError("run_to_tap", "k",
                                "tap " + std::to_string(k) + " is past (the pile is in period " +
                                    std::to_string(p.tap) + ")");
             while (!at()) {
               const World& ww = s.sim->world();
-              const std::int64_t m = s.clock->watches_steps()
-                                         ? 1
-                                         : 1 + steps_before_excitation(ww.scene.drive, ww.s.t, dt);
+              const std::int64_t m =
+                  s.clock->watches_steps()
+                      ? 1
+                      : 1 + steps_before_excitation(ww.scene.drive, ww.clock_origin, ww.s.t, dt);
               s.advance(std::max<std::int64_t>(1, m));
             }
             return tap_dict(s.sim->world(),
@@ -217,7 +218,7 @@ void bind_scene_sim(py::module_& m) {
           [](const PySim& s, const py::object& rect) {
             const World& w = s.sim->world();
             const auto r = rect_or_scene(w, rect);
-            const DrivePhase p = drive_phase(w.scene.drive, w.s.t + s.sim->dt());
+            const DrivePhase p = drive_phase(w.scene.drive, w.clock_origin, w.s.t + s.sim->dt());
             return tap_dict(w, measure_tap(w, s.sim->contacts(), r.data()), p.settling ? 0 : p.tap);
           },
           py::arg("rect") = py::none(), "the per-tap measurement of the pile now")
@@ -248,7 +249,7 @@ void bind_scene_sim(py::module_& m) {
           "tap",
           [](const PySim& s) {
             const World& w = s.sim->world();
-            const DrivePhase p = drive_phase(w.scene.drive, w.s.t + s.sim->dt());
+            const DrivePhase p = drive_phase(w.scene.drive, w.clock_origin, w.s.t + s.sim->dt());
             return p.settling ? -1L : p.tap;
           },
           "the period the next step is in (taps completed before it); -1 while settling")

@@ -4,42 +4,41 @@
 
 namespace gs {
 
-ProtocolClock::ProtocolClock(const SceneSpec& scene)
-    : drive_(scene.drive),
-      settle_(scene.prep.settle_time),
-      duration_(scene.duration),
-      dt_(scene.integrator.dt) {
-  drive_.clock_origin = 0.0;
+ProtocolSettings ProtocolSettings::from(const SceneSpec& scene) {
+  return {scene.drive, scene.prep.settle_time, scene.duration, scene.integrator.dt};
 }
+
+ProtocolClock::ProtocolClock(const ProtocolSettings& settings) : set_(settings) {}
 
 void ProtocolClock::start(World& w) const {
   // half a step past the settling time: phase boundaries fall between steps
-  w.scene.drive.clock_origin = settle_ + 0.5 * dt_;
+  w.clock_origin = set_.settle_time + 0.5 * set_.dt;
 }
 
 // at rest: every grain slower than rest_speed and the total kinetic energy below rest_energy
 bool ProtocolClock::at_rest(const World& w) const {
-  const double v2max = drive_.rest_speed * drive_.rest_speed;
+  const double v2max = set_.drive.rest_speed * set_.drive.rest_speed;
   for (std::size_t i = 0; i < w.size(); ++i)
     if (w.s.vx[i] * w.s.vx[i] + w.s.vy[i] * w.s.vy[i] >= v2max) return false;
-  return w.kinetic_energy() < drive_.rest_energy;
+  return w.kinetic_energy() < set_.drive.rest_energy;
 }
 
 ClockEvent ProtocolClock::after_step(World& w) {
-  if ((!drive_.early_rest && !drive_.quench) || !is_tapping(drive_)) return ClockEvent::None;
-  DriveSpec& d = w.scene.drive;
-  const double t = w.s.t;
-  const DrivePhase p = drive_phase(d, t);
+  if ((!set_.drive.early_rest && !set_.drive.quench) || !is_tapping(set_.drive))
+    return ClockEvent::None;
+  const DriveSpec& d = set_.drive;
+  const double dt = set_.dt, t = w.s.t;
+  const DrivePhase p = drive_phase(d, w.clock_origin, t);
   // only inside a relaxation, and not when the next step starts an excitation anyway
-  if (p.settling || p.exciting || excitation_starts_next(d, t, dt_)) {
+  if (p.settling || p.exciting || excitation_starts_next(d, w.clock_origin, t, dt)) {
     rest_since_ = -1.0;
     quench_reset();
     return ClockEvent::None;
   }
   // the quench looks at the step as the dynamics left it; its reset waits for the caller
-  const bool peak = drive_.quench && quench_peak(w, p.tap);
+  const bool peak = set_.drive.quench && quench_peak(w, p.tap);
   const ClockEvent quench = peak ? ClockEvent::Quench : ClockEvent::None;
-  if (!drive_.early_rest) return quench;
+  if (!set_.drive.early_rest) return quench;
   if (!at_rest(w)) {
     rest_since_ = -1.0;
     return quench;
@@ -48,12 +47,12 @@ ClockEvent ProtocolClock::after_step(World& w) {
     rest_since_ = t;
     rest_tap_ = p.tap;
   }
-  if (t - rest_since_ < drive_.rest_hold) return quench;
+  if (t - rest_since_ < set_.drive.rest_hold) return quench;
   // end the relaxation: t becomes half a step before the start of the next period
   const double T = drive_period(d);
-  const double origin = t - static_cast<double>(p.tap + 1) * T + 0.5 * dt_;
-  saved_ += d.clock_origin - origin;  // the protocol time t − origin jumps forward by this
-  d.clock_origin = origin;
+  const double origin = t - static_cast<double>(p.tap + 1) * T + 0.5 * dt;
+  saved_ += w.clock_origin - origin;  // the protocol time t − origin jumps forward by this
+  w.clock_origin = origin;
   ++early_ends_;
   rest_since_ = -1.0;
   // the next step is an excitation: no reset of this step's velocities
@@ -79,7 +78,7 @@ bool ProtocolClock::quench_peak(const World& w, long tap) {
     quench_tap_ = tap;
   }
   const double ke = w.kinetic_energy();
-  const double v2max = drive_.quench_speed * drive_.quench_speed;
+  const double v2max = set_.drive.quench_speed * set_.drive.quench_speed;
   bool slow = true;
   for (std::size_t i = 0; i < w.size() && slow; ++i)
     slow = w.s.vx[i] * w.s.vx[i] + w.s.vy[i] * w.s.vy[i] < v2max;
@@ -88,7 +87,7 @@ bool ProtocolClock::quench_peak(const World& w, long tap) {
     quenching_ = false;
   } else {
     if (slow_since_ < 0.0) slow_since_ = w.s.t;
-    quenching_ = w.s.t - slow_since_ >= drive_.quench_hold;
+    quenching_ = w.s.t - slow_since_ >= set_.drive.quench_hold;
   }
   // kinetic damping (Cundall): at a peak the caller zeroes every velocity, the energy with it
   if (quenching_ && ke_rising_ && ke < last_ke_) {
@@ -103,15 +102,15 @@ bool ProtocolClock::quench_peak(const World& w, long tap) {
 }
 
 bool ProtocolClock::done(const World& w) const {
-  if (drive_.taps <= 0 || !is_tapping(drive_)) return false;
-  const DrivePhase next = drive_phase(w.scene.drive, w.s.t + dt_);
-  return !next.settling && next.tap >= drive_.taps;
+  if (set_.drive.taps <= 0 || !is_tapping(set_.drive)) return false;
+  const DrivePhase next = drive_phase(set_.drive, w.clock_origin, w.s.t + set_.dt);
+  return !next.settling && next.tap >= set_.drive.taps;
 }
 
 double ProtocolClock::nominal_duration() const {
-  if (drive_.taps > 0 && is_tapping(drive_))
-    return settle_ + static_cast<double>(drive_.taps) * drive_period(drive_);
-  return settle_ + duration_;
+  if (set_.drive.taps > 0 && is_tapping(set_.drive))
+    return set_.settle_time + static_cast<double>(set_.drive.taps) * drive_period(set_.drive);
+  return set_.settle_time + set_.duration;
 }
 
 void ProtocolClock::save(ByteWriter& out) const {

@@ -20,10 +20,22 @@ enum class ClockEvent : std::uint8_t {
               ///< (Simulation::zero_velocities), before the observers see the step
 };
 
-/// the protocol clock of one run; it writes World::scene.drive.clock_origin
+/// what the protocol clock needs of a scene, taken once (Jolt's *Settings): the drive, the
+/// settling time, the run's length and the time step
+struct ProtocolSettings {
+  DriveSpec drive;
+  double settle_time = 0.0;  ///< preparation.settle_time, s
+  double duration = 0.0;     ///< scene.duration (used when drive.taps = 0), s
+  double dt = 0.0;           ///< integrator.dt, s
+  static ProtocolSettings from(const SceneSpec& scene);
+};
+
+/// the protocol clock of one run; the only writer of World::clock_origin
 class ProtocolClock {
  public:
-  explicit ProtocolClock(const SceneSpec& scene);
+  explicit ProtocolClock(const ProtocolSettings& settings);
+  explicit ProtocolClock(const SceneSpec& scene) : ProtocolClock(ProtocolSettings::from(scene)) {}
+  const ProtocolSettings& settings() const { return set_; }
 
   /// start the protocol clock after preparation.settle_time. The origin sits half a step past
   /// the settling time so that no step time falls on a phase boundary: every pulse lasts
@@ -43,7 +55,9 @@ class ProtocolClock {
 
   /// does after_step() look at every step (early rest or quench in a tapping protocol)? If
   /// not, a run may call it after a batch of steps only
-  bool watches_steps() const { return (drive_.early_rest || drive_.quench) && is_tapping(drive_); }
+  bool watches_steps() const {
+    return (set_.drive.early_rest || set_.drive.quench) && is_tapping(set_.drive);
+  }
 
   /// the number of full taps done: after this step the next one would start tap `taps`
   /// (only when drive.taps > 0)
@@ -62,8 +76,8 @@ class ProtocolClock {
   /// velocity resets of the quench so far
   std::int64_t quench_events() const { return quenches_; }
 
-  /// checkpoint: the early-rest and quench state (the clock origin itself lives in the
-  /// World's scene). Checkpoints written before the quench existed load with it idle
+  /// checkpoint: the early-rest and quench state (the clock origin itself is World state, saved
+  /// with it). Checkpoints written before the quench existed load with it idle
   void save(ByteWriter& out) const;
   void load(ByteReader& in);
 
@@ -73,10 +87,7 @@ class ProtocolClock {
   bool quench_peak(const World& w, long tap);
   void quench_reset();
 
-  DriveSpec drive_;           ///< the scene's drive (clock origin 0)
-  double settle_ = 0.0;       ///< settling time before the protocol, s
-  double duration_ = 0.0;     ///< scene.duration (used when drive.taps = 0), s
-  double dt_ = 0.0;           ///< time step, s
+  ProtocolSettings set_;
   double rest_since_ = -1.0;  ///< time from which the pile has been at rest, s (−1: not)
   long rest_tap_ = -1;        ///< the tap whose relaxation rest_since_ belongs to
   std::int64_t early_ends_ = 0;

@@ -14,7 +14,6 @@
 #include "core/error.hpp"
 #include "core/permute.hpp"
 #include "measure/rfm_io.hpp"
-#include "output/run_dir.hpp"
 #include "sim/simulation.hpp"
 
 namespace gs {
@@ -63,13 +62,20 @@ std::string json_number(double v) {
 
 }  // namespace
 
-RfmObserver::RfmObserver(const SceneSpec& scene) : spec_(scene.rfm), scene_(scene) {}
+RfmSettings RfmSettings::from(const SceneSpec& scene) {
+  return {scene.rfm, scene.drive.D, scene.name, scene.path};
+}
+
+RfmObserver::RfmObserver(const RfmSettings& settings, const RecordSink& records)
+    : set_(settings),
+      sampling_(Trigger::every_steps(settings.rfm.sample_every)),
+      records_(&records) {}
 
 void RfmObserver::start(const Simulation& sim, const std::string& run_dir) {
   setup(sim, run_dir);
   // the series of every sample, transient included
-  series_ = CsvWriter(dir_ + "/rfm_series.csv", {"t", "step", "T", "T_x", "T_y", "v_mean_x",
-                                                 "v_mean_y", "contacts", "steady"});
+  series_ = records_->create(dir_ + "/rfm_series.csv", {"t", "step", "T", "T_x", "T_y", "v_mean_x",
+                                                        "v_mean_y", "contacts", "steady"});
   after_step(sim);  // the prepared state is the first sample (step 0)
 }
 
@@ -81,34 +87,34 @@ void RfmObserver::setup(const Simulation& sim, const std::string& run_dir) {
   box_ = w.Lx;
   box_y_ = dim_ == 2 ? w.Ly : 0.0;
   if (w.box == BoxKind::Walls)
-    throw InputError(scene_.path, "rfm.enabled",
+    throw InputError(set_.scene_path, "rfm.enabled",
                      "the RFM measurements need a periodic box or a ring (box.kind = \"periodic\" "
                      "or \"ring\")");
   // one disk size: reduced coordinates (T.3.16) and l₀ (T.4.7) assume equal diameters
   diameter_ = 2.0 * w.max_radius;
   for (std::size_t i = 0; i < n_; ++i)
     if (std::abs(2.0 * w.radius[i] - diameter_) > 1e-12 * diameter_)
-      throw InputError(scene_.path, "species",
+      throw InputError(set_.scene_path, "species",
                        "the RFM measurements need disks of one size (docs/physics.md §5)");
   if (dim_ == 1) l_reduced_ = rfm::reduced_length(box_, static_cast<long>(n_), diameter_);
 
   // structure (2D, square box): S(k) up to |n| ≈ 1.2 L/d (past the first peak), g(R) to L/4
   structure_ = dim_ == 2 && std::abs(box_ - box_y_) <= 1e-12 * box_;
   if (structure_) {
-    sk_nmax_ = spec_.sk_nmax > 0 ? spec_.sk_nmax
-                                 : std::clamp(static_cast<int>(1.2 * box_ / diameter_), 4, 96);
+    sk_nmax_ = set_.rfm.sk_nmax > 0 ? set_.rfm.sk_nmax
+                                    : std::clamp(static_cast<int>(1.2 * box_ / diameter_), 4, 96);
     sk_.emplace(box_, sk_nmax_);
-    gr_.emplace(box_, spec_.gr_rmax > 0 ? spec_.gr_rmax : 0.25 * box_, spec_.gr_bins);
+    gr_.emplace(box_, set_.rfm.gr_rmax > 0 ? set_.rfm.gr_rmax : 0.25 * box_, set_.rfm.gr_bins);
   }
   // 1D gaps in units of L′ on log bins (the −ln R view of thesis §3.3.2)
-  if (dim_ == 1) gaps_.emplace(rfm::Binning::log(spec_.gap_min, 1.0, spec_.gap_bins));
+  if (dim_ == 1) gaps_.emplace(rfm::Binning::log(set_.rfm.gap_min, 1.0, set_.rfm.gap_bins));
   // free paths on log bins from far below a diameter to the box (1D: to L′)
-  const double lmin = spec_.path_min > 0 ? spec_.path_min : 1e-4 * diameter_;
-  const double lmax = spec_.path_max > 0 ? spec_.path_max : (dim_ == 1 ? l_reduced_ : box_);
+  const double lmin = set_.rfm.path_min > 0 ? set_.rfm.path_min : 1e-4 * diameter_;
+  const double lmax = set_.rfm.path_max > 0 ? set_.rfm.path_max : (dim_ == 1 ? l_reduced_ : box_);
   if (!(lmax > lmin))
-    throw InputError(scene_.path, "rfm.path_max",
+    throw InputError(set_.scene_path, "rfm.path_max",
                      "free-path range is empty (path_max <= path_min)");
-  paths_ = rfm::free_path_histogram(lmin, lmax, spec_.path_bins);
+  paths_ = rfm::free_path_histogram(lmin, lmax, set_.rfm.path_bins);
 
   last_touch_.assign(n_, std::numeric_limits<std::int64_t>::min() / 2);
   leave_x_.assign(n_, 0.0);
@@ -166,7 +172,7 @@ void RfmObserver::save(ByteWriter& out) const {
 
 void RfmObserver::resume(const Simulation& sim, const std::string& run_dir, ByteReader& in) {
   setup(sim, run_dir);
-  series_ = CsvWriter::append(dir_ + "/rfm_series.csv", 9);
+  series_ = records_->append(dir_ + "/rfm_series.csv", 9);
   steady_ = in.u8("rfm: steady flag") != 0;
   t_steady_ = in.f64("rfm: steady start");
   v_max_ = in.f64("rfm: velocity range");
@@ -207,17 +213,17 @@ void RfmObserver::resume(const Simulation& sim, const std::string& run_dir, Byte
 void RfmObserver::after_step(const Simulation& sim) {
   const World& w = sim.world();
   if (sim.order_generation() != order_seen_) follow_order(sim);
-  if (!steady_ && w.s.t >= spec_.discard_time - 0.5 * sim.dt()) begin_steady(sim);
+  if (!steady_ && w.s.t >= set_.rfm.discard_time - 0.5 * sim.dt()) begin_steady(sim);
   if (steady_) track_contacts(sim);
-  if (w.s.step % spec_.sample_every == 0) sample(sim);
+  if (sampling_.at_step(w.s.step)) sample(sim);
 }
 
 std::int64_t RfmObserver::quiet_steps(const Simulation& sim) const {
   if (steady_) return 0;  // free paths: the contacts are followed at every step
   const World& w = sim.world();
-  std::int64_t q = spec_.sample_every - 1 - w.s.step % spec_.sample_every;
+  std::int64_t q = sampling_.steps_to_next(w.s.step) - 1;
   // the steps before the transient can end (t ≥ discard_time − Δt/2), two fewer for round-off
-  const double left = (spec_.discard_time - 0.5 * sim.dt() - w.s.t) / sim.dt();
+  const double left = (set_.rfm.discard_time - 0.5 * sim.dt() - w.s.t) / sim.dt();
   if (left < static_cast<double>(q) + 2.0)
     q = std::max<std::int64_t>(0, std::min(q, static_cast<std::int64_t>(std::floor(left)) - 2));
   return q;
@@ -228,7 +234,7 @@ void RfmObserver::begin_steady(const Simulation& sim) {
   const World& w = sim.world();
   steady_ = true;
   t_steady_ = w.s.t;
-  v_max_ = spec_.v_max;
+  v_max_ = set_.rfm.v_max;
   if (v_max_ <= 0) {
     Vec2 mean;
     const auto v = com_velocities(w, mean);
@@ -241,8 +247,8 @@ void RfmObserver::begin_steady(const Simulation& sim) {
 }
 
 void RfmObserver::make_velocity_histograms() {
-  vel_ = rfm::velocity_histogram(v_max_, spec_.v_bins);
-  post_ = rfm::velocity_histogram(v_max_, spec_.v_bins);
+  vel_ = rfm::velocity_histogram(v_max_, set_.rfm.v_bins);
+  post_ = rfm::velocity_histogram(v_max_, set_.rfm.v_bins);
 }
 
 // contact counts from the contact keys, O(contacts): leaving (count → 0) starts a free path
@@ -305,8 +311,8 @@ void RfmObserver::sample(const Simulation& sim) {
   tx /= static_cast<double>(n_);
   ty = dim_ == 2 ? ty / static_cast<double>(n_) : 0.0;
   const double temp = tx + ty;  // T = (1/N) Σ |v − ⟨v⟩|² (T.2.19)
-  series_.row({w.s.t, static_cast<double>(w.s.step), temp, tx, ty, mean.x, mean.y,
-               static_cast<double>(sim.contacts().keys.size()), steady_ ? 1.0 : 0.0});
+  series_->row({w.s.t, static_cast<double>(w.s.step), temp, tx, ty, mean.x, mean.y,
+                static_cast<double>(sim.contacts().keys.size()), steady_ ? 1.0 : 0.0});
   if (!steady_) return;
 
   times_.push_back(w.s.t);
@@ -315,7 +321,8 @@ void RfmObserver::sample(const Simulation& sim) {
     moments_.add_speeds(v);
     comp_moments_.add_components(v);
     rfm::add_components(vel_, v);
-    if (structure_ && (temps_.size() - 1) % static_cast<std::size_t>(spec_.structure_every) == 0) {
+    if (structure_ &&
+        (temps_.size() - 1) % static_cast<std::size_t>(set_.rfm.structure_every) == 0) {
       // positions brought into the cell (g(R) uses the minimum image of wrapped points)
       std::vector<Vec2> r(n_);
       for (std::size_t i = 0; i < n_; ++i)
@@ -337,23 +344,24 @@ void RfmObserver::sample(const Simulation& sim) {
 }
 
 void RfmObserver::finish(const Simulation& sim) {
-  series_ = CsvWriter();  // flushed row by row; close
+  series_.reset();  // flushed row by row; close
   namespace fs = std::filesystem;
   const fs::path d(dir_);
   // T(t) with block means (T.2.20)
   if (!temps_.empty()) {
     const std::size_t len =
-        std::max<std::size_t>(1, temps_.size() / static_cast<std::size_t>(spec_.blocks));
+        std::max<std::size_t>(1, temps_.size() / static_cast<std::size_t>(set_.rfm.blocks));
     const rfm::BlockAverage b = rfm::block_average(temps_, len);
     rfm::write_temperature_csv(d / "temperature.csv", times_, temps_, &b);
   } else {
     rfm::write_temperature_csv(d / "temperature.csv", times_, temps_);
   }
   // velocity moments m = 1…12 with block errors
-  rfm::write_moments_csv(d / "moments.csv", moments_.mean(), block_errors(moments_, spec_.blocks));
+  rfm::write_moments_csv(d / "moments.csv", moments_.mean(),
+                         block_errors(moments_, set_.rfm.blocks));
   if (dim_ == 2)
     rfm::write_moments_csv(d / "moments_components.csv", comp_moments_.mean(),
-                           block_errors(comp_moments_, spec_.blocks));
+                           block_errors(comp_moments_, set_.rfm.blocks));
   // histograms: raw counts for the analysis, and chart-ready densities
   if (steady_) {
     rfm::write_histogram_raw(d / "hist_velocity.csv", vel_);
@@ -371,7 +379,7 @@ void RfmObserver::finish(const Simulation& sim) {
   if (gaps_ && gaps_->moments().snapshots() > 0) {
     rfm::write_gh_csv(d / "gh.csv", *gaps_);
     rfm::write_moments_csv(d / "gap_moments.csv", gaps_->moments().mean(),
-                           block_errors(gaps_->moments(), spec_.blocks));
+                           block_errors(gaps_->moments(), set_.rfm.blocks));
   }
   write_json(sim);
 }
@@ -383,7 +391,7 @@ void RfmObserver::write_json(const Simulation& sim) const {
   double t_mean = kNaN, t_err = kNaN;
   if (!temps_.empty()) {
     const std::size_t len =
-        std::max<std::size_t>(1, temps_.size() / static_cast<std::size_t>(spec_.blocks));
+        std::max<std::size_t>(1, temps_.size() / static_cast<std::size_t>(set_.rfm.blocks));
     const rfm::BlockAverage b = rfm::block_average(temps_, len);
     t_mean = b.mean;
     t_err = b.block_means.size() >= 2 ? b.error : kNaN;
@@ -403,10 +411,10 @@ void RfmObserver::write_json(const Simulation& sim) const {
       {"eps_n", mat.eps_n},
       {"eps_t", mat.eps_t},
       {"ks", mat.ks},
-      {"D", w.scene.drive.D},
+      {"D", set_.D},
       {"dt", sim.dt()},
-      {"sample_every", spec_.sample_every},
-      {"discard_time", spec_.discard_time},
+      {"sample_every", set_.rfm.sample_every},
+      {"discard_time", set_.rfm.discard_time},
       {"t_steady", steady_ ? t_steady_ : kNaN},
       {"t_end", w.s.t},
       {"samples", static_cast<double>(temps_.size())},
@@ -422,17 +430,17 @@ void RfmObserver::write_json(const Simulation& sim) const {
   };
   std::ostringstream js;
   std::string name;
-  for (char c : w.scene.name)
+  for (char c : set_.scene_name)
     if (c != '"' && c != '\\' && static_cast<unsigned char>(c) >= 0x20) name += c;
   js << "{\n  \"model\": \"rfm\",\n  \"scene\": \"" << name << "\"";
   for (const auto& [k, v] : f) js << ",\n  \"" << k << "\": " << json_number(v);
   js << "\n}\n";
-  write_file_atomic(dir_ + "/rfm.json", js.str());
+  records_->document(dir_ + "/rfm.json", js.str());
 }
 
-std::unique_ptr<Observer> make_rfm_observer(const SceneSpec& scene) {
+std::unique_ptr<Observer> make_rfm_observer(const SceneSpec& scene, const RecordSink& records) {
   if (!scene.rfm.enabled) return nullptr;
-  return std::make_unique<RfmObserver>(scene);
+  return std::make_unique<RfmObserver>(scene, records);
 }
 
 }  // namespace gs

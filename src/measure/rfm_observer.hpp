@@ -25,15 +25,29 @@
 #include "analysis/rfm_hist.hpp"
 #include "analysis/rfm_moments.hpp"
 #include "analysis/rfm_sk.hpp"
-#include "output/csv.hpp"
+#include "core/records.hpp"
+#include "core/trigger.hpp"
 #include "scene/spec.hpp"
 #include "sim/observer.hpp"
 
 namespace gs {
 
+/// what the RFM observer needs of a scene, taken once: the [rfm] section, the noise strength
+/// and the scene's name and path (rfm.json, messages)
+struct RfmSettings {
+  RfmSpec rfm;
+  double D = 0.0;          ///< drive.D, m²/s³
+  std::string scene_name;  ///< scene.name
+  std::string scene_path;  ///< the scene file, for messages
+  static RfmSettings from(const SceneSpec& scene);
+};
+
 class RfmObserver : public Observer {
  public:
-  explicit RfmObserver(const SceneSpec& scene);
+  /// the series goes to `records` (output/'s CSV files in a run)
+  RfmObserver(const RfmSettings& settings, const RecordSink& records);
+  RfmObserver(const SceneSpec& scene, const RecordSink& records)
+      : RfmObserver(RfmSettings::from(scene), records) {}
   void start(const Simulation& sim, const std::string& run_dir) override;
   void after_step(const Simulation& sim) override;
   /// until the next sample or the transient's end; none once the contacts are followed
@@ -64,8 +78,8 @@ class RfmObserver : public Observer {
   void sample(const Simulation& sim);
   void write_json(const Simulation& sim) const;
 
-  RfmSpec spec_;
-  SceneSpec scene_;
+  RfmSettings set_;
+  Trigger sampling_;  ///< every rfm.sample_every steps
   std::string dir_;
   int dim_ = 2;
   std::size_t n_ = 0;
@@ -76,7 +90,8 @@ class RfmObserver : public Observer {
   bool steady_ = false;             ///< past discard_time
   double t_steady_ = 0.0;           ///< when the steady part began, s
 
-  CsvWriter series_;
+  const RecordSink* records_;
+  std::unique_ptr<RecordTable> series_;
   std::vector<double> times_, temps_;
   rfm::MomentSeries moments_{12}, comp_moments_{12};
   rfm::Histogram vel_, post_, paths_;
@@ -97,6 +112,6 @@ class RfmObserver : public Observer {
 };
 
 /// an RfmObserver when the scene asks for one ([rfm] enabled; default for the random force)
-std::unique_ptr<Observer> make_rfm_observer(const SceneSpec& scene);
+std::unique_ptr<Observer> make_rfm_observer(const SceneSpec& scene, const RecordSink& records);
 
 }  // namespace gs

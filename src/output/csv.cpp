@@ -6,8 +6,11 @@
 
 #include <cerrno>
 #include <cstring>
+#include <memory>
 #include <stdexcept>
+#include <utility>
 
+#include "core/atomic_file.hpp"
 #include "core/error.hpp"
 
 namespace gs {
@@ -74,6 +77,38 @@ void CsvWriter::row(const std::vector<double>& values) {
     throw OutputError(path_ + ": write failed: " + std::strerror(e) +
                       " (every complete row is kept)");
   }
+}
+
+namespace {
+
+class CsvTable final : public RecordTable {
+ public:
+  explicit CsvTable(CsvWriter w) : w_(std::move(w)) {}
+  void row(const std::vector<double>& values) override { w_.row(values); }
+
+ private:
+  CsvWriter w_;
+};
+
+class CsvRecords final : public RecordSink {
+ public:
+  std::unique_ptr<RecordTable> create(const std::string& path,
+                                      const std::vector<std::string>& columns) const override {
+    return std::make_unique<CsvTable>(CsvWriter(path, columns));
+  }
+  std::unique_ptr<RecordTable> append(const std::string& path, std::size_t columns) const override {
+    return std::make_unique<CsvTable>(CsvWriter::append(path, columns));
+  }
+  void document(const std::string& path, const std::string& contents) const override {
+    write_file_atomic(path, contents);
+  }
+};
+
+}  // namespace
+
+const RecordSink& csv_records() {
+  static const CsvRecords records;
+  return records;
 }
 
 }  // namespace gs

@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include "core/records.hpp"
+
 namespace gs {
 
 class CsvWriter {
@@ -27,5 +29,9 @@ class CsvWriter {
   std::string path_;
   std::size_t ncol_ = 0;
 };
+
+/// the observers' tables as append-only CSV files (CsvWriter) and their documents written
+/// atomically: what a run hands its observers
+const RecordSink& csv_records();
 
 }  // namespace gs

@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "core/atomic_file.hpp"  // write_file_atomic, for the run directory's summaries
+
 namespace gs {
 
 /// make `dir` ready for a new run: create it, or accept it if empty; a non-empty directory is
@@ -37,8 +39,5 @@ std::string run_dir_of(const std::string& file);
 void check_output_file(const std::string& out, const std::vector<std::string>& inputs,
                        const std::string& flag,
                        const std::function<bool(const std::filesystem::path&)>& own);
-
-/// write a whole small file atomically (temporary file, fsync, rename)
-void write_file_atomic(const std::string& path, const std::string& contents);
 
 }  // namespace gs

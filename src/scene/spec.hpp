@@ -144,10 +144,6 @@ struct DriveSpec {
   double quench_hold = 0.3;    ///< s
   // taps
   int taps = 0;  ///< number of taps (0 = run for duration)
-  /// run-time protocol clock, not a scene key: the schedules run on t − clock_origin and give
-  /// plain gravity before it (settling). The run sets it after preparation.settle_time and
-  /// moves it back when a relaxation ends early (drive/protocol.hpp), s
-  double clock_origin = 0.0;
 };
 
 struct HealthSpec {

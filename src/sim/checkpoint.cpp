@@ -4,9 +4,9 @@
 #include <cstring>
 #include <sstream>
 
+#include "core/atomic_file.hpp"
 #include "core/bytes.hpp"
 #include "core/error.hpp"
-#include "output/run_dir.hpp"
 #include "scene/parse.hpp"
 #include "world/prepare.hpp"
 
@@ -18,7 +18,7 @@ std::string encode_checkpoint(const Simulation& sim, const CheckpointExtras& ext
   const State& s = w.s;
   ByteWriter p;
   p.str(scene_to_toml(w.scene));
-  p.f64(w.scene.drive.clock_origin);
+  p.f64(w.clock_origin);
   p.f64(s.t);
   p.i64(s.step);
   p.u64(w.size());
@@ -69,7 +69,6 @@ void write_checkpoint(const Simulation& sim, const CheckpointExtras& extras,
 Simulation restore_simulation(const Checkpoint& c) {
   const std::string where = c.path + " (embedded scene)";
   SceneSpec scene = parse_scene_string(c.scene_toml, where);
-  scene.drive.clock_origin = c.clock_origin;
   if (c.integrator != static_cast<std::uint8_t>(scene.integrator.kind))
     throw InputError(c.path, "integrator.kind", "checkpoint history is for another integrator");
   // the World's constants from the scene, the particles from the file
@@ -119,6 +118,7 @@ Simulation restore_simulation(const Checkpoint& c) {
   w.inv_mass = c.inv_mass;
   w.inv_inertia = c.inv_inertia;
   w.s = c.s;
+  w.clock_origin = c.clock_origin;
   // the constructor evaluates forces (and contacts) afresh; the stored history then replaces
   // what that evaluation produced, so the next step sees exactly the saved state
   Simulation sim(std::move(w));

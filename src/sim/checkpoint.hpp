@@ -31,7 +31,7 @@ struct CheckpointExtras {
 struct Checkpoint {
   std::string path;           ///< file it was read from (for messages)
   std::string scene_toml;     ///< scene_to_toml of the World's scene
-  double clock_origin = 0.0;  ///< drive.clock_origin (a run-time value, not a scene key), s
+  double clock_origin = 0.0;  ///< World::clock_origin (run state, not a scene key), s
   // per-particle constants (kept, not recomputed, so nothing depends on re-derivation)
   std::vector<std::int32_t> sp;
   std::vector<double> radius, mass, inv_mass, inv_inertia;

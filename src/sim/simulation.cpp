@@ -285,7 +285,7 @@ void Simulation::compute_accelerations(std::int64_t index, std::span<const Chann
                                        bool ahead) {
   const std::size_t n = w_.size();
   const std::vector<PairKey>& cand = broad_->update(w_);
-  gravity_ = gravity_at(w_.scene.drive, w_.s.t);
+  gravity_ = gravity_at(w_.scene.drive, w_.clock_origin, w_.s.t);
   State& s = w_.s;
   const bool noise = w_.scene.drive.kind == DriveKind::RandomForce;
   const bool ring = w_.box == BoxKind::Ring1D;  // x only: no ay (and no torques, disks)

@@ -10,9 +10,9 @@
 #include <sstream>
 #include <vector>
 
+#include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/input_file.hpp"
-#include "output/run_dir.hpp"
 
 namespace gs {
 

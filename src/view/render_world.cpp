@@ -153,7 +153,7 @@ FrameInfo frame_info(const World& w, Vec2 gravity) {
   info.gravity = gravity;
   const DriveSpec& d = w.scene.drive;
   if (is_tapping(d)) {
-    const DrivePhase ph = drive_phase(d, w.s.t);
+    const DrivePhase ph = drive_phase(d, w.clock_origin, w.s.t);
     info.settling = ph.settling;
     info.exciting = ph.exciting;
     if (!ph.settling) info.tap = ph.tap + 1;

@@ -66,6 +66,10 @@ struct World {
   std::vector<std::uint32_t> id;
   // mutable state
   State s;
+  /// the protocol clock's origin, run state (not a setting): a tapping protocol's schedule
+  /// runs on t − clock_origin and gives plain gravity before it (settling). Only the protocol
+  /// clock moves it (drive/protocol.hpp); checkpoints save it; it outlives clear_particles, s
+  double clock_origin = 0.0;
 
   std::size_t size() const { return s.size(); }
   bool polygons() const { return scene.model.kind == ModelKind::P; }

@@ -35,9 +35,10 @@ std::uint64_t state_hash(const World& w) {
   return h;
 }
 
-std::unique_ptr<Simulation> start(const SceneSpec& s) {
+std::unique_ptr<Simulation> start(const SceneSpec& s, double clock_origin = 0.0) {
   World w = make_world(s);
   place_particles(w);
+  w.clock_origin = clock_origin;
   return std::make_unique<Simulation>(std::move(w));
 }
 
@@ -49,11 +50,12 @@ fs::path temp_file(const std::string& name) {
 
 // run n + m straight; run n, checkpoint to disk, restore, run m: same hash and contacts
 void expect_bitwise_continuation(const SceneSpec& s, std::int64_t n, std::int64_t m,
-                                 const std::string& tag, bool need_contacts = true) {
-  auto straight = start(s);
+                                 const std::string& tag, bool need_contacts = true,
+                                 double clock_origin = 0.0) {
+  auto straight = start(s, clock_origin);
   straight->run(n + m);
 
-  auto first = start(s);
+  auto first = start(s, clock_origin);
   first->run(n);
   CheckpointExtras ex;
   ex.entries["taps.csv.offset"] = "1234";
@@ -66,6 +68,7 @@ void expect_bitwise_continuation(const SceneSpec& s, std::int64_t n, std::int64_
   EXPECT_EQ(c.extras.entries, ex.entries);
   Simulation resumed = restore_simulation(c);
   EXPECT_EQ(resumed.world().s.step, n);
+  EXPECT_EQ(resumed.world().clock_origin, clock_origin) << tag;
   resumed.run(m);
   EXPECT_EQ(state_hash(resumed.world()), state_hash(straight->world())) << tag;
   EXPECT_EQ(resumed.contacts().keys, straight->contacts().keys) << tag;
@@ -103,18 +106,29 @@ TEST(Checkpoint, DiskGasWithRandomForceContinuesBitwise) {
   expect_bitwise_continuation(s, 1550, 700, "rfm", false);
 }
 
-// gravity schedules are functions of t (and the run-time clock origin, which is stored)
+// gravity schedules are functions of t and the protocol clock's origin, run state the
+// checkpoint stores
 TEST(Checkpoint, RotatingAndNegativeGravityContinueBitwise) {
   SceneSpec s = pile(IntegratorKind::VelocityVerlet);
   s.drive.kind = DriveKind::RotatingG;
   s.drive.f = 10.0;
   s.drive.relax = 0.0;
-  s.drive.clock_origin = 0.05;
-  expect_bitwise_continuation(s, 2500, 1500, "rotating");
+  expect_bitwise_continuation(s, 2500, 1500, "rotating", true, 0.05);
   s.drive.kind = DriveKind::NegativeG;
   s.drive.t1 = 0.02;
   s.drive.period = 0.1;
-  expect_bitwise_continuation(s, 2500, 1500, "negative");
+  expect_bitwise_continuation(s, 2500, 1500, "negative", true, 0.05);
+}
+
+// a checkpoint an earlier build wrote (the fuzz seed of a tapping run) gives its clock origin
+// back as run state; the scene it embeds has no such key
+TEST(Checkpoint, EarlierCheckpointsGiveTheClockOriginBack) {
+  const Checkpoint c =
+      read_checkpoint(std::string(GS_SOURCE_DIR) + "/fuzz/corpus/checkpoint/run_tapping.gsck");
+  EXPECT_NE(c.clock_origin, 0.0);  // (early rest moved it back past 0)
+  EXPECT_EQ(c.scene_toml.find("clock_origin"), std::string::npos);
+  const Simulation sim = restore_simulation(c);
+  EXPECT_EQ(sim.world().clock_origin, c.clock_origin);
 }
 
 // every header field and every byte of the payload is checked

@@ -174,7 +174,7 @@ TEST(RenderWorld, OverlaysFollowTheRenderSection) {
 TEST(RenderWorld, TapNumberAndPhaseFromTheProtocolClock) {
   // negative g with T = 2 s, t1 = 0.01 s, the clock started at 0.5 s (after settling)
   World w = world_of(kScene, {"drive.kind=negative_g", "drive.period=2.0", "drive.t1=0.01"});
-  w.scene.drive.clock_origin = 0.5;
+  w.clock_origin = 0.5;
   w.s.t = 0.2;
   FrameInfo a = frame_info(w, {});
   EXPECT_TRUE(a.settling);

@@ -19,6 +19,7 @@
 #include "app/run/run_info.hpp"
 #include "measure/rfm_io.hpp"
 #include "measure/rfm_observer.hpp"
+#include "output/csv.hpp"
 #include "scene/parse.hpp"
 #include "sim/simulation.hpp"
 #include "world/prepare.hpp"
@@ -228,7 +229,7 @@ TEST(RfmObserver, QuietStepsLoseNothing) {
     return Simulation(std::move(w));
   };
   Simulation every = sim_of(), quiet = sim_of();
-  RfmObserver obs_every(s), obs_quiet(s);
+  RfmObserver obs_every(s, csv_records()), obs_quiet(s, csv_records());
   obs_every.start(every, (dir / "every").string());
   obs_quiet.start(quiet, (dir / "quiet").string());
   const std::int64_t steps = 12000;

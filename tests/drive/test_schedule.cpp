@@ -41,16 +41,16 @@ void expect_g(Vec2 g, double gx, double gy) {
 TEST(NegativeG, HandValuesAtThePhaseBoundaries) {
   const DriveSpec d = negative_g(6.0, 0.1, 3.0);
   const double eps = 1e-9;
-  expect_g(gravity_at(d, 0.0), 0.0, 6.0 * kG);  // the pulse starts at t̃ = 0
-  expect_g(gravity_at(d, 0.05), 0.0, 58.86);
-  expect_g(gravity_at(d, 0.1 - eps), 0.0, 58.86);
-  expect_g(gravity_at(d, 0.1 + eps), 0.0, -kG);  // relaxation
-  expect_g(gravity_at(d, 2.9), 0.0, -kG);
-  expect_g(gravity_at(d, 3.0 - eps), 0.0, -kG);
-  expect_g(gravity_at(d, 3.0 + eps), 0.0, 58.86);  // the next period
-  expect_g(gravity_at(d, 3.1 + eps), 0.0, -kG);
-  expect_g(gravity_at(d, 3000.05), 0.0, 58.86);  // tap 1000
-  const DrivePhase p = drive_phase(d, 7.25);
+  expect_g(gravity_at(d, 0.0, 0.0), 0.0, 6.0 * kG);  // the pulse starts at t̃ = 0
+  expect_g(gravity_at(d, 0.0, 0.05), 0.0, 58.86);
+  expect_g(gravity_at(d, 0.0, 0.1 - eps), 0.0, 58.86);
+  expect_g(gravity_at(d, 0.0, 0.1 + eps), 0.0, -kG);  // relaxation
+  expect_g(gravity_at(d, 0.0, 2.9), 0.0, -kG);
+  expect_g(gravity_at(d, 0.0, 3.0 - eps), 0.0, -kG);
+  expect_g(gravity_at(d, 0.0, 3.0 + eps), 0.0, 58.86);  // the next period
+  expect_g(gravity_at(d, 0.0, 3.1 + eps), 0.0, -kG);
+  expect_g(gravity_at(d, 0.0, 3000.05), 0.0, 58.86);  // tap 1000
+  const DrivePhase p = drive_phase(d, 0.0, 7.25);
   EXPECT_EQ(p.tap, 2);
   EXPECT_NEAR(p.t_in, 1.25, 1e-12);
   EXPECT_FALSE(p.exciting);
@@ -65,43 +65,41 @@ TEST(RotatingG, HandValuesOverOneTurn) {
   const DriveSpec d = rotating_g(0.5, 3.0);
   EXPECT_DOUBLE_EQ(drive_period(d), 5.0);
   EXPECT_DOUBLE_EQ(excitation_length(d), 2.0);
-  expect_g(gravity_at(d, 0.0), 0.0, -kG);  // ωt̃ = 0: down
-  expect_g(gravity_at(d, 0.5), kG, 0.0);   // ωt̃ = π/2: (sin, −cos) = (1, 0)
-  expect_g(gravity_at(d, 1.0), 0.0, kG);   // π: up (the printed window ω/2π = 0.5 s
-                                           // would already have stopped the turn)
-  expect_g(gravity_at(d, 1.5), -kG, 0.0);  // 3π/2
-  const Vec2 g = gravity_at(d, 0.25);      // π/4
+  expect_g(gravity_at(d, 0.0, 0.0), 0.0, -kG);  // ωt̃ = 0: down
+  expect_g(gravity_at(d, 0.0, 0.5), kG, 0.0);   // ωt̃ = π/2: (sin, −cos) = (1, 0)
+  expect_g(gravity_at(d, 0.0, 1.0), 0.0, kG);   // π: up (the printed window ω/2π = 0.5 s
+                                                // would already have stopped the turn)
+  expect_g(gravity_at(d, 0.0, 1.5), -kG, 0.0);  // 3π/2
+  const Vec2 g = gravity_at(d, 0.0, 0.25);      // π/4
   EXPECT_NEAR(g.x, kG * std::sqrt(0.5), 1e-12);
   EXPECT_NEAR(g.y, -kG * std::sqrt(0.5), 1e-12);
-  expect_g(gravity_at(d, 2.0 + 1e-9), 0.0, -kG);  // relaxation
-  expect_g(gravity_at(d, 4.99), 0.0, -kG);
-  expect_g(gravity_at(d, 5.5), kG, 0.0);  // the next turn, tap 1
+  expect_g(gravity_at(d, 0.0, 2.0 + 1e-9), 0.0, -kG);  // relaxation
+  expect_g(gravity_at(d, 0.0, 4.99), 0.0, -kG);
+  expect_g(gravity_at(d, 0.0, 5.5), kG, 0.0);  // the next turn, tap 1
   // |g| is 9.81 all along the turn
   for (double t = 0.0; t < 2.0; t += 0.0137)
-    EXPECT_NEAR(std::hypot(gravity_at(d, t).x, gravity_at(d, t).y), kG, 1e-12);
+    EXPECT_NEAR(std::hypot(gravity_at(d, 0.0, t).x, gravity_at(d, 0.0, t).y), kG, 1e-12);
 }
 
 // before the clock origin the pile settles under plain gravity; the protocol runs on t − origin
 TEST(Schedule, SettlingBeforeTheProtocolClock) {
-  DriveSpec d = negative_g(6.0, 0.1, 3.0);
-  d.clock_origin = 2.0;
-  EXPECT_TRUE(drive_phase(d, 1.999).settling);
-  expect_g(gravity_at(d, 0.05), 0.0, -kG);  // would be a pulse without the settling time
-  expect_g(gravity_at(d, 1.999), 0.0, -kG);
-  expect_g(gravity_at(d, 2.05), 0.0, 58.86);
-  expect_g(gravity_at(d, 2.15), 0.0, -kG);
-  EXPECT_EQ(drive_phase(d, 5.05).tap, 1);
-  DriveSpec r = rotating_g(1.0, 3.0);
-  r.clock_origin = 1.0;
-  expect_g(gravity_at(r, 0.25), 0.0, -kG);  // settling, not a quarter turn
-  expect_g(gravity_at(r, 1.25), kG, 0.0);
+  const DriveSpec d = negative_g(6.0, 0.1, 3.0);
+  const double origin = 2.0;
+  EXPECT_TRUE(drive_phase(d, origin, 1.999).settling);
+  expect_g(gravity_at(d, origin, 0.05), 0.0, -kG);  // would be a pulse without the settling time
+  expect_g(gravity_at(d, origin, 1.999), 0.0, -kG);
+  expect_g(gravity_at(d, origin, 2.05), 0.0, 58.86);
+  expect_g(gravity_at(d, origin, 2.15), 0.0, -kG);
+  EXPECT_EQ(drive_phase(d, origin, 5.05).tap, 1);
+  const DriveSpec r = rotating_g(1.0, 3.0);
+  expect_g(gravity_at(r, 1.0, 0.25), 0.0, -kG);  // settling, not a quarter turn
+  expect_g(gravity_at(r, 1.0, 1.25), kG, 0.0);
   // constant gravity ignores the clock; its direction is (gx, gy) normalised
   DriveSpec c;
   c.kind = DriveKind::Gravity;
   c.gx = 3.0;
   c.gy = -4.0;
-  c.clock_origin = 10.0;
-  expect_g(gravity_at(c, 1.0), 0.6 * kG, -0.8 * kG);
+  expect_g(gravity_at(c, 10.0, 1.0), 0.6 * kG, -0.8 * kG);
 }
 
 // the clock origin half a step past the settling time: every pulse lasts exactly t1/Δt force
@@ -121,8 +119,8 @@ TEST(ProtocolClock, PulsesLastExactlyT1OverDtAndTriggersFireOncePerTap) {
     double first_trigger = -1.0;
     for (long n = 0; n <= steps; ++n) {
       const double t = static_cast<double>(n) * dt;
-      if (gravity_at(w.scene.drive, t).y > 0) ++pulse_evals;
-      if (excitation_starts_next(w.scene.drive, t, dt)) {
+      if (gravity_at(w.scene.drive, w.clock_origin, t).y > 0) ++pulse_evals;
+      if (excitation_starts_next(w.scene.drive, w.clock_origin, t, dt)) {
         if (triggers++ == 0) first_trigger = t;
       }
     }
@@ -181,11 +179,11 @@ TEST(ProtocolClock, EarlyRestEndsARelaxationAfterTheHoldTime) {
   EXPECT_NEAR(ended_at, 1.1, 1.5 * dt);
   EXPECT_EQ(clock.early_ends(), 1);
   EXPECT_NEAR(clock.time_saved(), 3.0 - ended_at, 1e-9);
-  const DrivePhase now = drive_phase(w.scene.drive, w.s.t);
+  const DrivePhase now = drive_phase(w.scene.drive, w.clock_origin, w.s.t);
   EXPECT_EQ(now.tap, 0);
   EXPECT_NEAR(now.t_in, 3.0 - dt / 2, 1e-9);
-  EXPECT_TRUE(excitation_starts_next(w.scene.drive, w.s.t, dt));
-  EXPECT_GT(gravity_at(w.scene.drive, w.s.t + dt).y, 0.0);  // the next pulse
+  EXPECT_TRUE(excitation_starts_next(w.scene.drive, w.clock_origin, w.s.t, dt));
+  EXPECT_GT(gravity_at(w.scene.drive, w.clock_origin, w.s.t + dt).y, 0.0);  // the next pulse
   EXPECT_FALSE(clock.done(w));
   EXPECT_NEAR(clock.progress(w), 3.0, 1e-9);  // counts the skipped rest as done
 }
@@ -198,7 +196,7 @@ TEST(ProtocolClock, EarlyRestNeedsTheWholeHoldInsideARelaxation) {
     World w = one_grain(s);
     ProtocolClock clock(s);
     clock.start(w);
-    const double dt = s.integrator.dt, origin = w.scene.drive.clock_origin;
+    const double dt = s.integrator.dt, origin = w.clock_origin;
     int ends = 0;
     for (long n = 1; n <= 1000; ++n) {
       w.s.t = static_cast<double>(n) * dt;
@@ -207,7 +205,7 @@ TEST(ProtocolClock, EarlyRestNeedsTheWholeHoldInsideARelaxation) {
       ends += clock.after_step(w) == ClockEvent::RestEnded;
     }
     EXPECT_EQ(ends, 0);
-    EXPECT_EQ(w.scene.drive.clock_origin, origin);
+    EXPECT_EQ(w.clock_origin, origin);
   }
 }
 
@@ -343,7 +341,7 @@ TEST(ProtocolClock, DoneAfterTheLastTapIsMeasured) {
   EXPECT_FALSE(clock.done(w));
   w.s.t = 6.0;
   EXPECT_TRUE(clock.done(w));
-  EXPECT_TRUE(excitation_starts_next(w.scene.drive, w.s.t, s.integrator.dt));
+  EXPECT_TRUE(excitation_starts_next(w.scene.drive, w.clock_origin, w.s.t, s.integrator.dt));
 }
 
 }  // namespace
@@ -356,10 +354,9 @@ TEST(GravitySchedule, NoGravityForNoneAndRandomForce) {
   for (DriveKind k : {DriveKind::None, DriveKind::RandomForce}) {
     DriveSpec d;
     d.kind = k;
-    d.clock_origin = 0.5;
     for (double t : {0.0, 0.25, 0.5, 1.0}) {
-      EXPECT_EQ(gravity_at(d, t).x, 0.0);
-      EXPECT_EQ(gravity_at(d, t).y, 0.0);
+      EXPECT_EQ(gravity_at(d, 0.5, t).x, 0.0);
+      EXPECT_EQ(gravity_at(d, 0.5, t).y, 0.0);
     }
   }
 }

@@ -15,6 +15,7 @@
 #include "analysis/rfm_csv.hpp"
 #include "broadphase/broadphase.hpp"
 #include "core/rng.hpp"
+#include "measure/memory_records.hpp"
 #include "measure/rfm_observer.hpp"
 #include "scene/parse.hpp"
 #include "sim/simulation.hpp"
@@ -74,7 +75,8 @@ TEST(RfmRing, ElasticGasHasUniformPointGaps) {
   place_particles(w);
   Simulation sim(std::move(w));
   const fs::path dir = temp_dir("ring");
-  RfmObserver obs(s);
+  test::MemoryRecords records;
+  RfmObserver obs(s, records);
   obs.start(sim, dir.string());
   const auto steps = static_cast<std::int64_t>(std::llround(0.6 / s.integrator.dt));
   std::vector<double> x0(sim.world().s.x);
@@ -94,6 +96,14 @@ TEST(RfmRing, ElasticGasHasUniformPointGaps) {
 
   const double n = 200.0;
   ASSERT_GE(obs.samples(), 190);
+  // the series went to the record sink, one row per sample (transient included), never to a
+  // file of the observer's own; the summary is a document of the sink
+  const auto& series = *records.tables.at((dir / "rfm_series.csv").string());
+  EXPECT_EQ(series.rows.size(), static_cast<std::size_t>(steps / 1000 + 1));
+  EXPECT_GE(series.rows.size(), static_cast<std::size_t>(obs.samples()));
+  EXPECT_FALSE(fs::exists(dir / "rfm_series.csv"));
+  EXPECT_EQ(records.documents.count((dir / "rfm.json").string()), 1u);
+  EXPECT_FALSE(fs::exists(dir / "rfm.json"));
   const rfm::CsvTable m = rfm::read_csv(dir / "gap_moments.csv");
   const auto& mom = m.column.at("moment");
   const auto& err = m.column.at("error");

@@ -45,6 +45,24 @@ class CheckIncludes(unittest.TestCase):
             self.assertNotIn('c.cpp', r.stdout)
             self.assertNotIn('d.cpp', r.stdout)
 
+    def test_measure_may_not_use_output(self):
+        # the real module graph: observers hand rows to a RecordSink, output/ writes them
+        with tempfile.TemporaryDirectory() as d:
+            d = pathlib.Path(d)
+            for f in ('cmake/modules.cmake', 'tests/CMakeLists.txt'):
+                (d / f).parent.mkdir(parents=True, exist_ok=True)
+                (d / f).write_text((ROOT / f).read_text())
+            for f, text in {'src/measure/a.cpp': '#include "output/csv.hpp"\n',
+                            'src/measure/b.cpp': '#include "core/records.hpp"\n',
+                            'src/sim/c.cpp': '#include "output/run_dir.hpp"\n'}.items():
+                (d / f).parent.mkdir(parents=True, exist_ok=True)
+                (d / f).write_text(text)
+            r = check(d)
+            self.assertEqual(r.returncode, 1)
+            self.assertIn('src/measure/a.cpp:1: measure includes output/', r.stdout)
+            self.assertIn('src/sim/c.cpp:1: sim includes output/', r.stdout)
+            self.assertNotIn('b.cpp', r.stdout)
+
 
 if __name__ == '__main__':
     unittest.main()

@@ -67,7 +67,7 @@ Snapshot read_checkpoint_file(const fs::path& file, const SnapshotRequest&) {
   const Checkpoint c = read_checkpoint(file.string());
   Simulation sim = restore_simulation(c);
   Snapshot s{sim.world(), file.string(), "checkpoint", sim.gravity(), {}};
-  const DrivePhase p = drive_phase(s.world.scene.drive, s.world.s.t);
+  const DrivePhase p = drive_phase(s.world.scene.drive, s.world.clock_origin, s.world.s.t);
   if (is_tapping(s.world.scene.drive) && !p.settling) s.tap = p.tap;
   return s;
 }

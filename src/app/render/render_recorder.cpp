@@ -51,7 +51,7 @@ class FrameRecorder final : public Observer {
                        {"frame", "t", "step", "tap", "gx", "gy"});
     // the initial state is frame 0 of the time and step schedules
     const World& w = sim.world();
-    prev_ = drive_phase(w.scene.drive, w.s.t);
+    prev_ = drive_phase(w.scene.drive, w.clock_origin, w.s.t);
     if (spec_.schedule == RenderSchedule::Time || spec_.schedule == RenderSchedule::Steps)
       if (due(sim)) capture(sim);
   }
@@ -85,7 +85,7 @@ class FrameRecorder final : public Observer {
     open_outputs(dir, "movie_from_" + std::to_string(count_) + ".mp4");
     index_ = CsvWriter::append((fs::path(dir) / kFrameIndexFile).string(), 6);
     const World& w = sim.world();
-    prev_ = drive_phase(w.scene.drive, w.s.t);
+    prev_ = drive_phase(w.scene.drive, w.clock_origin, w.s.t);
   }
 
  private:
@@ -116,7 +116,7 @@ class FrameRecorder final : public Observer {
     const double t = w.s.t, half = 0.5 * sim.dt();
     // the protocol phase: does this step begin an excitation?
     const DriveSpec& d = w.scene.drive;
-    const DrivePhase now = drive_phase(d, t);
+    const DrivePhase now = drive_phase(d, w.clock_origin, t);
     const bool begins = is_tapping(d) && !now.settling && now.exciting &&
                         (prev_.settling || !prev_.exciting || prev_.tap != now.tap);
     prev_ = now;
@@ -144,7 +144,7 @@ class FrameRecorder final : public Observer {
       case RenderSchedule::Rest: {
         // the first step of an excitation, and the last step before the next one
         if (t + half < spec_.start) return false;
-        const bool rest = excitation_starts_next(d, t, sim.dt());
+        const bool rest = excitation_starts_next(d, w.clock_origin, t, sim.dt());
         return rest || (spec_.schedule == RenderSchedule::Taps && begins);
       }
     }

@@ -13,6 +13,7 @@
 #include "app/run/run_session.hpp"
 #include "app/version.hpp"
 #include "core/error.hpp"
+#include "core/trigger.hpp"
 #include "output/run_dir.hpp"
 #include "scene/names.hpp"
 #include "sim/state_file.hpp"
@@ -110,10 +111,12 @@ int run_session(RunSession& rs) {
     return sim.world().s.step + std::llround(clock.time_saved() / dt) >= nsteps;
   };
   auto settling = [&] {
-    return drive_phase(sim.world().scene.drive, sim.world().s.t + dt).settling;
+    return drive_phase(sim.world().scene.drive, sim.world().clock_origin, sim.world().s.t + dt)
+        .settling;
   };
   auto taps_done = [&]() -> long {
-    const DrivePhase p = drive_phase(sim.world().scene.drive, sim.world().s.t + dt);
+    const DrivePhase p =
+        drive_phase(sim.world().scene.drive, sim.world().clock_origin, sim.world().s.t + dt);
     return is_tapping(scene.drive) && !p.settling ? p.tap : 0;
   };
   install_stop_handlers();
@@ -124,11 +127,13 @@ int run_session(RunSession& rs) {
     return rs.wall_before + std::chrono::duration<double>(Clock::now() - t0).count();
   };
   if (rs.wall_settled < 0 && !settling()) rs.wall_settled = wall_now();
-  auto last_checkpoint = Clock::now();
-  auto checkpoint = [&] {
-    write_run_checkpoint(rs, wall_now());
-    last_checkpoint = Clock::now();
-  };
+  // periodic checkpoints: every output.checkpoint_steps steps, every output.checkpoint_taps
+  // taps of a counted protocol, every output.checkpoint_minutes of this session's wall clock
+  Trigger checkpoints = Trigger::every_steps(out.checkpoint_steps)
+                            .or_every_taps(by_taps ? out.checkpoint_taps : 0)
+                            .or_every_minutes(out.checkpoint_minutes);
+  checkpoints.start(wall_now());
+  auto checkpoint = [&] { write_run_checkpoint(rs, wall_now()); };
   // how many steps may run at once before anything outside the simulation looks at its state
   // (Simulation::run: a disk step's kick then predicts the next step): up to the next series
   // row, step checkpoint, observer's look, sort, progress check, the next tap or the end. One
@@ -142,9 +147,10 @@ int run_session(RunSession& rs) {
       if (every > 0) m = std::min(m, every - step % every);
     };
     // taps: the clock's end, the tap checkpoints and the tap measurement are at excitations
-    m = std::min(m, 1 + steps_before_excitation(sim.world().scene.drive, sim.world().s.t, dt));
+    m = std::min(m, 1 + steps_before_excitation(sim.world().scene.drive, sim.world().clock_origin,
+                                                sim.world().s.t, dt));
     to_next(out.series_every);
-    to_next(out.checkpoint_steps);
+    m = std::min(m, checkpoints.steps_to_next(step));
     if (sim.sort_every() > 0) m = std::min(m, sim.sort_every());  // observers see each sort
     for (const auto& o : rs.observers) m = std::min(m, 1 + o->quiet_steps(sim));
     return std::max<std::int64_t>(m, 1);
@@ -167,17 +173,12 @@ int run_session(RunSession& rs) {
       const std::int64_t step = sim.world().s.step;
       if (step % out.series_every == 0) write_series_row(rs);
       // checkpoints between two steps, after every output of this step is written
-      bool due = out.checkpoint_steps > 0 && step % out.checkpoint_steps == 0;
-      if (out.checkpoint_taps > 0 && by_taps && !settling() &&
-          excitation_starts_next(sim.world().scene.drive, sim.world().s.t, dt) &&
-          taps_done() % out.checkpoint_taps == 0)
-        due = true;
+      const bool due = checkpoints.fires(
+          {step,
+           tap_boundary(sim.world().scene.drive, sim.world().clock_origin, sim.world().s.t, dt),
+           wall_now()});
       if (since_check >= kProgressEvery) {
         since_check = 0;
-        if (out.checkpoint_minutes > 0 &&
-            std::chrono::duration<double>(Clock::now() - last_checkpoint).count() >=
-                60.0 * out.checkpoint_minutes)
-          due = true;
         progress.update(
             clock.progress(sim.world()),
             by_taps ? "tap " + std::to_string(taps_done()) + "/" + std::to_string(scene.drive.taps)

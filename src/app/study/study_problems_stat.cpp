@@ -95,9 +95,9 @@ void run_tapping(const StudySizes& z, const StudyCase& c, StudyOutcome& o) {
     ++o.steps;
     if (clock.after_step(sim.world()) == ClockEvent::Quench) sim.zero_velocities();
     const World& cw = sim.world();
-    if (!excitation_starts_next(cw.scene.drive, cw.s.t, o.dt)) continue;
+    if (!excitation_starts_next(cw.scene.drive, cw.clock_origin, cw.s.t, o.dt)) continue;
     // the row of tap k: the pile after k pulses (k = 0: settled); the first `discard` dropped
-    const long k = drive_phase(cw.scene.drive, cw.s.t + o.dt).tap;
+    const long k = drive_phase(cw.scene.drive, cw.clock_origin, cw.s.t + o.dt).tap;
     if (k == 0) wall_settled = seconds_since(w0);
     ++measured;
     if (k > z.tap_discard) phis.push_back(measure_tap(cw, sim.contacts(), s.output.test_rect).phi);
