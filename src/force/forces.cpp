@@ -231,7 +231,7 @@ std::size_t ContactModel::parallel_pairs_from(bool polygons, std::size_t n) {
 // either way, so the forces are bitwise the same on any number of threads, serial or parallel.
 ForceStats ContactModel::evaluate(const World& w, const std::vector<PairKey>& cand, ContactSet& cs,
                                   ForceBuffer& f, double dt, std::uint64_t generation,
-                                  RangeFn after) {
+                                  RangeFn after, StageClock* clock) {
   const std::size_t n = w.size();
   const std::size_t ncand = cand.size();
   const bool poly = w.polygons();
@@ -250,7 +250,7 @@ ForceStats ContactModel::evaluate(const World& w, const std::vector<PairKey>& ca
     const bool from_touching = !poly && few_touched(cs, ncand);
     const bool reindex = !from_touching && (generation == 0 || generation != indexed_generation_ ||
                                             n != indexed_n_ || ncand != indexed_count_);
-    st = evaluate_parallel(w, cand, cs, f, dt, reindex, from_touching, placed, after);
+    st = evaluate_parallel(w, cand, cs, f, dt, reindex, from_touching, placed, after, clock);
     if (reindex) {
       indexed_generation_ = generation;
       indexed_n_ = n;
@@ -263,6 +263,7 @@ ForceStats ContactModel::evaluate(const World& w, const std::vector<PairKey>& ca
       if (!placed) place_shapes(w, 0, n);
     }
     st = evaluate_serial(w, cand, cs, f, dt);
+    if (clock) clock->lap(Stage::NarrowPhase);  // the serial loop sums each pair as it goes
     if (after) parallel_ranges(n, kParallelMinCheap, after);
   }
   cs.keys.swap(new_keys_);
@@ -404,7 +405,7 @@ void ContactModel::note_touched(ForceBuffer& f, std::size_t n) {
 ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<PairKey>& cand,
                                            const ContactSet& cs, ForceBuffer& f, double dt,
                                            bool reindex, bool from_touching, bool placed,
-                                           RangeFn after) {
+                                           RangeFn after, StageClock* clock) {
   const std::size_t n = w.size();
   const std::size_t ncand = cand.size();
   const bool poly = w.polygons();
@@ -529,6 +530,7 @@ ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<Pai
     if (from_touching) {  // the sums read every thread's compacted pairs
 #pragma omp barrier
     }
+    if (clock && tid == 0) clock->lap(Stage::NarrowPhase);
     const double tp1 = wall_seconds();  // (the barrier's wait is no particle's work)
     if (from_touching) {
       sums_from_touching(w, f, p_begin, p_end);
@@ -554,6 +556,7 @@ ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<Pai
         if (poly) f.tq[p] = tq;
       }
     }
+    if (clock && tid == 0) clock->lap(Stage::Laws);
     if (after) after(p_begin, p_end);
     t_particles += wall_seconds() - tp1;
     if (planned) {

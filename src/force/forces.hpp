@@ -7,6 +7,7 @@
 #include "contact/contact_set.hpp"
 #include "core/balance.hpp"
 #include "core/parallel.hpp"
+#include "core/stage_clock.hpp"
 #include "force/laws/disk_law.hpp"
 #include "force/laws/polygon_law.hpp"
 #include "geometry/prepared.hpp"
@@ -55,8 +56,11 @@ class ContactModel {
   /// thread that summed them (each thread its own range, the ranges of parallel_ranges over
   /// the particles, as the integrators' loops): what depends on a particle's force alone, such
   /// as its acceleration, is then computed where the force and the integrator's data are.
+  /// `clock`, if given, gets the first thread's laps: Stage::NarrowPhase once the pairs are
+  /// done and the contact set is made, Stage::Laws once its particles' forces are summed.
   ForceStats evaluate(const World& w, const std::vector<PairKey>& candidates, ContactSet& cs,
-                      ForceBuffer& f, double dt, std::uint64_t generation = 0, RangeFn after = {});
+                      ForceBuffer& f, double dt, std::uint64_t generation = 0, RangeFn after = {},
+                      StageClock* clock = nullptr);
   /// polygons: place particles [b, e) at their current state for the next evaluate(), from
   /// inside this evaluate()'s `after` (the pairs are done by then), once the caller has
   /// predicted the next step there (Simulation::run); every particle once, then
@@ -87,7 +91,7 @@ class ContactModel {
                              ForceBuffer& f, double dt);
   ForceStats evaluate_parallel(const World& w, const std::vector<PairKey>& cand,
                                const ContactSet& cs, ForceBuffer& f, double dt, bool reindex,
-                               bool from_touching, bool placed, RangeFn after);
+                               bool from_touching, bool placed, RangeFn after, StageClock* clock);
   void sums_from_touching(const World& w, ForceBuffer& f, std::size_t b, std::size_t e) const;
   /// did few of the candidates touch last step (a gas: under a third)? Then the disk loops
   /// take their sparse ways (the serial one's selection pass, the parallel one's sums)

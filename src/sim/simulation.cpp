@@ -30,7 +30,8 @@ Simulation::Simulation(World w, BroadPhaseKind bp)
   sort_every_ = resolved_sort_every(w_);
   set_kick_fusion(true);
   // forces at the initial state start the integrator
-  compute_accelerations(w_.s.step);
+  drive();
+  compute_accelerations(w_.s.step, broad_->update(w_));
   auto ch = channels();
   integ_->init(ch, dt_);
   // the energy yardstick of the blow-up check: 5% of the start's kinetic + elastic energy, or
@@ -277,24 +278,35 @@ void accelerate_ring_noise(const AccelArrays& a, std::size_t n, bool kick,
   });
 }
 
+// a lap of the step's clock, where there is one
+void lap(StageClock* clock, Stage s) {
+  if (clock != nullptr) clock->lap(s);
+}
+
 }  // namespace
 
-// broad phase → narrow phase and laws → body forces → accelerations at the current state, in
-// one pass over the particles
-void Simulation::compute_accelerations(std::int64_t index, std::span<const Channel> correct,
-                                       bool ahead) {
-  const std::size_t n = w_.size();
-  const std::vector<PairKey>& cand = broad_->update(w_);
+// the drive at the current time: gravity of the moment, the random force's streams
+void Simulation::drive() {
   gravity_ = gravity_at(w_.scene.drive, w_.s.t);
-  State& s = w_.s;
+  const std::size_t n = w_.size();
   const bool noise = w_.scene.drive.kind == DriveKind::RandomForce;
-  const bool ring = w_.box == BoxKind::Ring1D;  // x only: no ay (and no torques, disks)
-  const bool spin = w_.polygons();              // polygons: contact torques
-  if (noise && noise_keys_.size() != n) {       // each particle's stream follows its label
+  if (noise && noise_keys_.size() != n) {  // each particle's stream follows its label
     const std::vector<std::uint64_t> by_label = random_force_keys(w_.scene.prep.seed, n);
     noise_keys_.resize(n);
     for (std::size_t k = 0; k < n; ++k) noise_keys_[k] = by_label[w_.id[k]];
   }
+}
+
+// narrow phase → laws (contact forces summed, body forces, accelerations) → correct, at the
+// current (predicted) state, in one pass over the particles; `clock`: the stages' laps
+void Simulation::compute_accelerations(std::int64_t index, const std::vector<PairKey>& cand,
+                                       std::span<const Channel> correct, bool ahead,
+                                       StageClock* clock) {
+  const std::size_t n = w_.size();
+  State& s = w_.s;
+  const bool noise = w_.scene.drive.kind == DriveKind::RandomForce;
+  const bool ring = w_.box == BoxKind::Ring1D;  // x only: no ay (and no torques, disks)
+  const bool spin = w_.polygons();              // polygons: contact torques
   forces_.tq.resize(spin ? n : 0);  // evaluate() sizes the buffers too; the arrays below need them
   forces_.fx.resize(n);
   forces_.fy.resize(n);
@@ -341,29 +353,38 @@ void Simulation::compute_accelerations(std::int64_t index, std::span<const Chann
     constexpr bool kNz = decltype(nz)::value, kRg = decltype(rg)::value;
     [[maybe_unused]] constexpr bool kSp = decltype(sp)::value;
     if constexpr (kNz && kRg) {
-      stats_ = model_.evaluate(w_, cand, contacts_, forces_, dt_, broad_->generation());
+      stats_ = model_.evaluate(w_, cand, contacts_, forces_, dt_, broad_->generation(), {}, clock);
       accelerate_ring_noise(a, n, kick, kick_, ring_pre_);
+      lap(clock, Stage::Laws);
       if (!correct.empty() && !kick) integ_->correct(correct, dt_);
     } else {
       auto after = [&](std::size_t b, std::size_t e) {
+        StageClock* const own = team_thread() == 0 ? clock : nullptr;  // the first thread laps
         if constexpr (!kSp) {
-          if (kick) {
+          if (kick) {  // laws and correction in one pass over each block (counted as correct)
             if (accelerate_kick<kNz, kRg>(a, b, e)) moved.store(true, std::memory_order_relaxed);
+            lap(own, Stage::Correct);
             return;
           }
         }
         accelerate<kNz, kRg, kSp>(a, b, e);
+        lap(own, Stage::Laws);
         if (!correct.empty()) integ_->correct_range(correct, b, e);
-        if (ahead) {
-          integ_->predict_range(correct, b, e);
-          if constexpr (kSp) model_.place_ahead(w_, b, e);  // the next step's polygons
+        if (ahead) integ_->predict_range(correct, b, e);
+        lap(own, Stage::Correct);
+        if constexpr (kSp) {
+          if (ahead) {  // the next step's polygons, placed while their state is at hand
+            model_.place_ahead(w_, b, e);
+            lap(own, Stage::NarrowPhase);
+          }
         }
       };
-      stats_ =
-          model_.evaluate(w_, cand, contacts_, forces_, dt_, broad_->generation(), RangeFn(after));
+      stats_ = model_.evaluate(w_, cand, contacts_, forces_, dt_, broad_->generation(),
+                               RangeFn(after), clock);
       if (ahead && kSp) model_.placed_ahead();
       if (skin.x0 != nullptr) broad_->set_moved(moved.load());
     }
+    lap(clock, Stage::Correct);
   };
   if (noise) {
     if (ring)
@@ -418,29 +439,40 @@ bool Simulation::sorts_before(std::int64_t step) const {
   return sort_every_ > 0 && step > 0 && step % sort_every_ == 0;
 }
 
+// one step, stage by stage; the stages' wall times go to profile()
 void Simulation::advance(bool then_predict) {
-  if (sorts_before(w_.s.step)) sort_particles();
+  StageClock clock(profile_);
+  if (sorts_before(w_.s.step)) sort_particles();  // between steps: slots in cell order
+  clock.lap(Stage::Health);
+  // the step ends at t + Δt: the drive of that moment
+  w_.s.t = static_cast<double>(w_.s.step + 1) * dt_;
+  drive();
+  clock.lap(Stage::Drive);
+  // positions and velocities at t + Δt, unless the last step's correction predicted them
   auto ch = channels();
-  // predict positions and velocities at t + Δt (unless the last step's kick did), evaluate
-  // forces there, correct (each particle by the thread that summed its force, inside the force
-  // pass) and, ahead, predict the next step there too
   if (ahead_)
     ++ahead_steps_;
   else
     integ_->predict(ch, dt_);
   ahead_ = false;
-  const bool ahead = then_predict && may_predict_ahead(w_.s.step);
-  w_.s.t = static_cast<double>(w_.s.step + 1) * dt_;
   integ_->check_correct(ch, dt_);  // here: nothing may throw inside the force pass
-  compute_accelerations(w_.s.step + 1, ch, ahead);
+  clock.lap(Stage::Predict);
+  const std::vector<PairKey>& candidates = broad_->update(w_);
+  clock.lap(Stage::BroadPhase);
+  // narrow phase → laws → correct: each particle corrected by the thread that summed its
+  // force and, with the next step following at once, predicted for it too (`ahead`)
+  const bool ahead = then_predict && may_predict_ahead(w_.s.step);
+  compute_accelerations(w_.s.step + 1, candidates, ch, ahead, &clock);
   ++w_.s.step;
   ahead_ = ahead;
-  // 2D drift control: remove the centre-of-mass velocity every K steps
+  // constraints and health: drift removal every K steps, the periodic health check
   if (removes_drift_after(w_.s.step)) remove_com_velocity(w_);
   if (checks_health_after(w_.s.step)) {
     health_check();
     w_.rewrap();  // periodic: keep |x| within 32 box lengths (image shifts fit in 8 bits)
   }
+  clock.lap(Stage::Health);
+  ++profile_.steps;
 }
 
 // every grain at rest where it is; the channels' velocities through the integrator (which keeps

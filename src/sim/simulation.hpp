@@ -7,6 +7,7 @@
 
 #include "broadphase/broadphase.hpp"
 #include "contact/contact_set.hpp"
+#include "core/stage_clock.hpp"
 #include "force/forces.hpp"
 #include "integrate/integrator.hpp"
 #include "world/world.hpp"
@@ -84,6 +85,9 @@ class Simulation {
   bool kick_fused() const { return fused_; }
   /// how many steps so far took their prediction from the previous step's kick (run())
   std::uint64_t steps_predicted_ahead() const { return ahead_steps_; }
+  /// wall time per stage of the steps so far (or since clear_profile())
+  const StepProfile& profile() const { return profile_; }
+  void clear_profile() { profile_ = {}; }
   /// does anything drive the system (gravity, pulses, noise)?
   bool driven() const;
   /// can the mechanical energy only decrease (no drive, or constant gravity)?
@@ -95,8 +99,11 @@ class Simulation {
   // integrator's corrector too, each particle right after its acceleration, on the thread
   // that computed it (Integrator::correct_range; check_correct() done by the caller)
   // (`ahead`: and, after the kick, the next step's prediction: may_predict_ahead())
-  void compute_accelerations(std::int64_t index, std::span<const Channel> correct = {},
-                             bool ahead = false);
+  void compute_accelerations(std::int64_t index, const std::vector<PairKey>& candidates,
+                             std::span<const Channel> correct = {}, bool ahead = false,
+                             StageClock* clock = nullptr);
+  /// the drive stage at the current time: gravity_, the random force's stream keys
+  void drive();
   /// one step; `then_predict`: the next step follows at once (run())
   void advance(bool then_predict);
   bool may_predict_ahead(std::int64_t from) const;
@@ -139,6 +146,7 @@ class Simulation {
     std::vector<std::uint64_t> keys;
     World::PermuteScratch world;
   } sort_scratch_;
+  StepProfile profile_;
   double energy_ref_ = 0.0;    ///< mechanical energy at the start, J (undriven/constant g)
   double energy_slack_ = 0.0;  ///< growth tolerated before it counts as a blow-up, J
 };
