@@ -22,22 +22,15 @@ Vec2 image_pos(const World& w, std::uint32_t j, std::uint32_t image) {
   return {w.s.x[j] + image_sx(image) * w.Lx, w.s.y[j] + image_sy(image) * w.Ly};
 }
 
-// the first index of ascending `keys` not below `key` (std::lower_bound), found by a short
-// forward scan from `hint` when the hint lies at or just before it
-std::size_t history_index(const std::vector<PairKey>& keys, PairKey key, std::size_t hint) {
-  const std::size_t n = keys.size();
-  if (hint <= n && (hint == 0 || keys[hint - 1] < key)) {
-    for (int step = 0; step < 4; ++step, ++hint)
-      if (hint == n || !(keys[hint] < key)) return hint;
-    return static_cast<std::size_t>(std::lower_bound(keys.begin() + hint, keys.end(), key) -
-                                    keys.begin());
-  }
-  return static_cast<std::size_t>(std::lower_bound(keys.begin(), keys.end(), key) - keys.begin());
-}
-
 }  // namespace
 
-ContactModel::ContactModel(const World& w) : nsp_(w.species.size()) {
+ContactSettings contact_settings(const SceneSpec& scene) {
+  return {scene.model.hdot_finite_difference, scene.model.rocking_damping,
+          scene.model.clip_attractive};
+}
+
+ContactModel::ContactModel(const World& w, const ContactSettings& settings)
+    : nsp_(w.species.size()) {
   const std::size_t stride = nsp_ + 1;
   poly_.resize(nsp_ * stride);
   poly_pc_.resize(nsp_ * stride);
@@ -50,8 +43,8 @@ ContactModel::ContactModel(const World& w) : nsp_(w.species.size()) {
       throw std::logic_error("ContactModel: grain " + std::to_string(i) +
                              " has a radius, mass or inertia other than its species'");
   }
-  hdot_fd_ = w.scene.model.hdot_finite_difference;
-  rocking_ = w.scene.model.rocking_damping;
+  hdot_fd_ = settings.hdot_finite_difference;
+  rocking_ = settings.rocking_damping;
   min_contact_time_ = 1e300;
   for (std::size_t a = 0; a < nsp_; ++a) {
     for (std::size_t b = 0; b <= nsp_; ++b) {
@@ -70,7 +63,7 @@ ContactModel::ContactModel(const World& w) : nsp_(w.species.size()) {
       d.gn = en < 1.0 ? law::gamma_normal(en, m12, d.ks) : 0.0;
       d.gt = et < 1.0 ? law::gamma_tangential(et, m12, d.ks) : 0.0;
       d.mu = 0.5 * (ma.mu + mb.mu);
-      d.clip = w.scene.model.clip_attractive;
+      d.clip = settings.clip_attractive;
       disk_[a * stride + b] = d;
       // stiffest contact: Model S exact; Model P linearised for flat faces, k ≈ E·side/l
       double tc;
@@ -146,10 +139,7 @@ bool ContactModel::polygon_pair(const World& w, PairKey key, const ContactSet& c
 
   // the contact's history, if it touched last step: last step's keys are searched forward
   // from the previous hit of this thread (candidates ascend), else by bisection
-  ContactState state;
-  const std::vector<PairKey>& old_keys = cs.keys;
-  hint = history_index(old_keys, key, hint);
-  if (hint < old_keys.size() && old_keys[hint] == key) state = cs.state[hint];
+  ContactState state = cs.history(key, hint);
 
   // geometry of the pair (P.29–P.33): l, m⊥, m∥
   const std::size_t pk = w.sp[i] * stride + (wall ? nsp_ : w.sp[j]);
@@ -266,9 +256,7 @@ ForceStats ContactModel::evaluate(const World& w, const std::vector<PairKey>& ca
     if (clock) clock->lap(Stage::NarrowPhase);  // the serial loop sums each pair as it goes
     if (after) parallel_ranges(n, kParallelMinCheap, after);
   }
-  cs.keys.swap(new_keys_);
-  cs.state.swap(new_state_);
-  cs.records.swap(new_records_);
+  cs.replace(next_);
   cs.degenerate += st.degenerate;
   st.contacts = cs.keys.size();
   st.candidates = ncand;
@@ -310,9 +298,9 @@ ForceStats ContactModel::evaluate_serial(const World& w, const std::vector<PairK
   const bool poly = w.polygons();
   const std::uint32_t N = static_cast<std::uint32_t>(w.size());
   clear_forces(f, N);
-  new_keys_.clear();
-  new_state_.clear();
-  new_records_.clear();
+  next_.keys.clear();
+  next_.state.clear();
+  next_.records.clear();
   ForceStats st;
   PairForce pf;
   PairResult r;
@@ -332,9 +320,9 @@ ForceStats ContactModel::evaluate_serial(const World& w, const std::vector<PairK
         f.fy[j] += pf.fy;
         if (poly) f.tq[j] += pf.tj;
       }
-      new_keys_.push_back(key);
-      new_records_.push_back({key, r.s, r.n, r.fn, r.ft, r.overlap});
-      if (poly) new_state_.push_back(r.state);
+      next_.keys.push_back(key);
+      next_.records.push_back({key, r.s, r.n, r.fn, r.ft, r.overlap});
+      if (poly) next_.state.push_back(r.state);
       note_overlap(st, w, key, r.h, r.degenerate, one_radius);
     }
   };
@@ -393,10 +381,10 @@ void ContactModel::clear_forces(ForceBuffer& f, std::size_t n) {
 // write costs about a cache line, eight sequential zeros), remember them for clear_forces
 void ContactModel::note_touched(ForceBuffer& f, std::size_t n) {
   f.touched.clear();
-  f.sparse = 2 * new_keys_.size() <= n / 8;
+  f.sparse = 2 * next_.keys.size() <= n / 8;
   f.sparse_n = n;
   if (!f.sparse) return;
-  for (PairKey key : new_keys_) {
+  for (PairKey key : next_.keys) {
     f.touched.push_back(key_i(key));
     if (key_j(key) < n) f.touched.push_back(key_j(key));
   }
@@ -507,9 +495,9 @@ ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<Pai
         first = total;
         total += c;
       }
-      new_keys_.resize(total);
-      new_records_.resize(total);
-      new_state_.resize(poly ? total : 0);
+      next_.keys.resize(total);
+      next_.records.resize(total);
+      next_.state.resize(poly ? total : 0);
       touching_k_.resize(from_touching ? total : 0);
     }
     for (std::size_t c = c_begin; c < c_end; ++c) {
@@ -519,10 +507,10 @@ ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<Pai
         if (!touch_[k]) continue;
         const PairKey key = cand[k];
         const PairResult& r = pair_r_[k];
-        new_keys_[out] = key;
+        next_.keys[out] = key;
         if (from_touching) touching_k_[out] = static_cast<std::uint32_t>(k);
-        new_records_[out] = {key, r.s, r.n, r.fn, r.ft, r.overlap};
-        if (poly) new_state_[out] = r.state;
+        next_.records[out] = {key, r.s, r.n, r.fn, r.ft, r.overlap};
+        if (poly) next_.state[out] = r.state;
         ++out;
         note_overlap(chunk_stats_[c], w, key, r.h, r.degenerate, one_radius);
       }

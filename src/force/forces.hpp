@@ -43,10 +43,20 @@ struct ForceStats {
   double max_overlap_rel = 0.0;  ///< the same over the smaller grain's radius
 };
 
+/// the contact laws' switches (the scene's [model] section), taken once from the scene
+struct ContactSettings {
+  bool hdot_finite_difference = false;  ///< Model P: ḣ_eff by finite difference (else analytic)
+  bool rocking_damping = true;   ///< Model P: the normal dashpot's moment along the contact line
+  bool clip_attractive = false;  ///< Model S: no attractive normal force
+};
+ContactSettings contact_settings(const SceneSpec& scene);
+
 /// the constant law parameters of a world, tabulated per (species, species) and (species, wall)
 class ContactModel {
  public:
-  explicit ContactModel(const World& w);
+  /// the world's species, materials and walls with the scene's switches
+  explicit ContactModel(const World& w) : ContactModel(w, contact_settings(w.scene)) {}
+  ContactModel(const World& w, const ContactSettings& settings);
   /// evaluate every contact among the candidates, update the contact set, and set f to the
   /// contact forces (f.tq: polygon models only). `generation` identifies the candidate list
   /// (BroadPhase::generation()): an unchanged list reuses its per-particle index; 0 = unknown.
@@ -167,9 +177,7 @@ class ContactModel {
   RangeBalancer balance_;        ///< parallel loop: each thread's range of chunks
   StealRanges steal_;            ///< parallel loop: the chunks still to run, per thread
   RangeBalancer place_balance_;  ///< parallel loop, polygons: each thread's grains to place
-  std::vector<PairKey> new_keys_;
-  std::vector<ContactState> new_state_;
-  std::vector<ContactRecord> new_records_;
+  ContactSet next_;              ///< the contact set being made (ContactSet::replace)
 };
 
 }  // namespace gs

@@ -33,7 +33,7 @@ Simulation::Simulation(World w, BroadPhaseKind bp)
       dt_(w_.scene.integrator.dt),
       broad_kind_(bp == BroadPhaseKind::Auto ? w_.scene.integrator.broad_phase : bp),
       broad_(make_broadphase(broad_kind_, w_)),
-      model_(w_),
+      model_(w_, contact_settings(w_.scene)),
       integ_(make_integrator(integrator_settings(w_))) {
   if (w_.id.size() != w_.size()) {  // a World assembled without add_particle: labels = slots
     w_.id.resize(w_.size());
