@@ -412,50 +412,22 @@ ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<Pai
   const std::size_t nchunks = (ncand + chunk - 1) / chunk;
   chunk_first_.resize(nchunks);
   chunk_stats_.assign(nchunks, {});
-  balance_.plan(nchunks, max_team_size());
-  steal_.reset(balance_.threads());
-  for (std::size_t t = 0; t < balance_.threads(); ++t)
-    steal_.set(t, balance_.begin(static_cast<int>(t)), balance_.end(static_cast<int>(t)));
-  p_items_.assign(balance_.threads(), 0.0);
-  p_seconds_.assign(balance_.threads(), 0.0);
-  bool balanced = true;  // did the team have the planned size (else: equal ranges, no timing)
+  schedule_.plan(nchunks, poly && !placed ? n : 0);
   if (poly) {
     place_walls(w);
     shapes_.resize(n, max_sides_);
-    if (!placed) place_balance_.plan(n, max_team_size());
   }
 #pragma omp parallel
   {
-    // each thread's particles: the ranges of parallel_ranges, as in the integrators' passes,
-    // so that a thread sums, accelerates and corrects the grains it predicted
     const int tid = team_thread(), nt = team_size();
-    const auto [p_begin, p_end] = thread_share(n, tid, nt);
-    // polygons placed over ranges of their own, balanced on the placing's own time: split by
-    // ThreadSpeeds (whose ranges balance summing + correcting) the barrier after it would wait
-    // for the slower thread
+    const auto [p_begin, p_end] = PassSchedule::particles(n, tid, nt);
     if (poly && !placed) {
-      const bool own = static_cast<std::size_t>(nt) == place_balance_.threads();
-      const double t0 = wall_seconds();
-      place_shapes(w, own ? place_balance_.begin(tid) : p_begin,
-                   own ? place_balance_.end(tid) : p_end);
-      if (own) place_balance_.record(tid, wall_seconds() - t0);
+      schedule_.place(tid, nt, [&](std::size_t b, std::size_t e) { place_shapes(w, b, e); });
 #pragma omp barrier
     }
-    // the time this thread spends on its own particles (summing, the callback): ThreadSpeeds
-    // splits the next step's particles by it
+    // the time this thread spends on its own particles (summing, the callback): the next
+    // step's particles are split by it
     double t_particles = 0.0;
-    // contiguous ranges of chunks, one per thread, in the pair loop and in the compaction
-    // below: candidates come sorted by their first particle, so a thread's pairs are mostly
-    // those of the particles it placed, and its slots stay in its own cache from step to step.
-    // (Chunks handed out dynamically move the pair slots between the cores every step, which
-    // on a VM can make two threads slower than one: docs/threads.md.) The split points follow
-    // the measured cost (RangeBalancer): where the grains touch more, a chunk costs more. What
-    // the last step's times cannot foresee (the host's jitter) a thread that is done first
-    // takes over from the back of the other's range, chunk by chunk (StealRanges).
-    const bool planned = static_cast<std::size_t>(nt) == balance_.threads();
-    const ItemRange equal = thread_share(nchunks, tid, nt);
-    const std::size_t c_begin = planned ? balance_.begin(tid) : equal.begin;
-    const std::size_t c_end = planned ? balance_.end(tid) : equal.end;
     auto run_chunk = [&](std::size_t c) {
       const std::size_t k0 = c * chunk, k1 = std::min(ncand, k0 + chunk);
       std::size_t hint = 0, touching = 0;
@@ -467,25 +439,7 @@ ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<Pai
       }
       chunk_first_[c] = touching;
     };
-    const double t_start = wall_seconds();
-    if (planned) {
-      // its own range from the front (timed for the balancer), then other threads' leftovers
-      // from their backs
-      std::size_t first = 0, count = 0, own = 0;
-      const auto t = static_cast<std::size_t>(tid);
-      while (steal_.take_front(t, 8, first, count)) {
-        for (std::size_t c = first; c < first + count; ++c) run_chunk(c);
-        own += count;
-      }
-      balance_.record(tid, wall_seconds() - t_start, own);
-      for (std::size_t k = 1; k < static_cast<std::size_t>(nt); ++k) {
-        std::size_t c = 0;
-        while (steal_.take_back((t + k) % static_cast<std::size_t>(nt), c)) run_chunk(c);
-      }
-    } else {
-      for (std::size_t c = c_begin; c < c_end; ++c) run_chunk(c);
-    }
-    if (tid == 0) balanced = planned;  // the same for every thread: one writes it
+    schedule_.run_chunks(tid, nt, run_chunk);
 #pragma omp barrier
 #pragma omp single
     {
@@ -500,7 +454,9 @@ ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<Pai
       next_.state.resize(poly ? total : 0);
       touching_k_.resize(from_touching ? total : 0);
     }
-    for (std::size_t c = c_begin; c < c_end; ++c) {
+    // the compaction over the same chunks as the pair loop's own ranges
+    const ItemRange own_chunks = schedule_.chunk_range(tid, nt);
+    for (std::size_t c = own_chunks.begin; c < own_chunks.end; ++c) {
       std::size_t out = chunk_first_[c];
       const std::size_t k0 = c * chunk, k1 = std::min(ncand, k0 + chunk);
       for (std::size_t k = k0; k < k1; ++k) {
@@ -547,17 +503,9 @@ ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<Pai
     if (clock && tid == 0) clock->lap(Stage::Laws);
     if (after) after(p_begin, p_end);
     t_particles += wall_seconds() - tp1;
-    if (planned) {
-      p_items_[static_cast<std::size_t>(tid)] = static_cast<double>(p_end - p_begin);
-      p_seconds_[static_cast<std::size_t>(tid)] = t_particles;
-    }
+    schedule_.record_particles(tid, nt, p_end - p_begin, t_particles);
   }  // omp parallel
-  if (balanced) {
-    balance_.update();
-    if (poly && !placed) place_balance_.update();
-    ThreadSpeeds::get().update(p_items_.data(), p_seconds_.data(),
-                               static_cast<int>(balance_.threads()));
-  }
+  schedule_.update();
   ForceStats st;  // maxima and counts: the same whatever the chunking
   for (const ForceStats& b : chunk_stats_) {
     st.degenerate += b.degenerate;

@@ -5,8 +5,8 @@
 #include <vector>
 
 #include "contact/contact_set.hpp"
-#include "core/balance.hpp"
 #include "core/parallel.hpp"
+#include "core/pass_schedule.hpp"
 #include "core/stage_clock.hpp"
 #include "force/laws/disk_law.hpp"
 #include "force/laws/polygon_law.hpp"
@@ -108,8 +108,6 @@ class ContactModel {
   static bool few_touched(const ContactSet& cs, std::size_t ncand) {
     return 3 * cs.keys.size() < ncand;
   }
-  /// per thread of the last force pass: particles it owned, seconds it spent on them
-  std::vector<double> p_items_, p_seconds_;
   // the per-particle index of the candidates (CSR, ascending candidate order per particle)
   void index_candidates(const std::vector<PairKey>& cand, std::size_t n);
   std::size_t nsp_ = 0;
@@ -174,10 +172,8 @@ class ContactModel {
   // the compaction of touching pairs into the contact set, in fixed blocks of candidates
   std::vector<std::size_t> chunk_first_;  ///< parallel loop: first contact-set slot of each chunk
   std::vector<ForceStats> chunk_stats_;
-  RangeBalancer balance_;        ///< parallel loop: each thread's range of chunks
-  StealRanges steal_;            ///< parallel loop: the chunks still to run, per thread
-  RangeBalancer place_balance_;  ///< parallel loop, polygons: each thread's grains to place
-  ContactSet next_;              ///< the contact set being made (ContactSet::replace)
+  PassSchedule schedule_;  ///< parallel loop: which thread runs, places and sums what
+  ContactSet next_;        ///< the contact set being made (ContactSet::replace)
 };
 
 }  // namespace gs

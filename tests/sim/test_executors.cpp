@@ -84,7 +84,7 @@ TEST(Executors, StagedAndFusedGiveTheSameBits) {
         std::size_t contacts = 0;  // at the ends of the runs
         const bool is_ring = name == std::string("ring");
         const int steps = is_ring ? 100 : 10;  // the ring's steps are cheap
-        for (int part = 0; part < 6; ++part) {
+        for (int part = 0; part < 4; ++part) {
           staged.run(steps);
           fused.run(steps);
           contacts += fused.contacts().keys.size();
