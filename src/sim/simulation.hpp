@@ -33,8 +33,8 @@ class Simulation {
   void health_check();
   Simulation(World w, BroadPhaseKind bp);
 
-  /// advance one time step: drive → predict → broad phase → contacts → forces → correct →
-  /// health check
+  /// advance one time step: drive → predict → broad phase → narrow phase → laws → correct →
+  /// constraints/health (docs/architecture.md, "One step")
   void step() { advance(false); }
   /// advance n steps: bitwise n × step(), but where nothing reads or edits the state between
   /// two of them (no drift removal, health check or sort between), the Fused executor's
