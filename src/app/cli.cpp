@@ -56,6 +56,8 @@ int run_cli(int argc, char** argv) {
   run->add_flag("--force", ro.force, "reuse a non-empty run directory (its contents are removed)");
   run->add_flag("-q,--quiet", ro.quiet, "no progress display");
   run->add_flag("--allow-unstable", ro.allow_unstable, "skip the up-front time-step check");
+  run->add_flag("--profile", ro.profile,
+                "print the wall time of each stage of the step at the end (also in run.json)");
 
   // resume: continue an interrupted run from its newest checkpoint
   ResumeOptions rso;

@@ -1,6 +1,6 @@
-// narrow phase: a [shape][partner] table of pure functions from two placed bodies to the
-// contact geometry (docs/physics.md §2.1 for polygons, §3 for disks). Periodic images arrive as a
-// shift already applied to the partner's position.
+// narrow phase: pure functions from two placed bodies to the contact geometry (the pair loop
+// picks one per model: force/forces.cpp) (docs/physics.md §2.1 for polygons, §3 for disks).
+// Periodic images arrive as a shift already applied to the partner's position.
 #pragma once
 #include <cmath>
 
@@ -59,15 +59,5 @@ inline ContactGeom disk_wall(const BodyView& a, const Wall& w) {
   g.s = a.c + w.normal * (a.r - 0.5 * delta);
   return g;
 }
-
-/// the table: partner kind 0 = disk, 1 = polygon, 2 = wall; nullptr = unsupported pairing
-enum PartnerKind { kPartnerDisk = 0, kPartnerPolygon = 1, kPartnerWall = 2 };
-using PairFn = ContactGeom (*)(const BodyView&, const BodyView&);
-using WallFn = ContactGeom (*)(const BodyView&, const Wall&);
-inline constexpr PairFn kPairTable[2][2] = {
-    {disk_disk, nullptr},        // disk × {disk, polygon}
-    {nullptr, polygon_polygon},  // polygon × {disk, polygon}
-};
-inline constexpr WallFn kWallTable[2] = {disk_wall, polygon_wall};
 
 }  // namespace gs

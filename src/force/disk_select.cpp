@@ -104,8 +104,8 @@ void ContactModel::sums_from_touching(const World& w, ForceBuffer& f, std::size_
             f.fx.begin() + static_cast<std::ptrdiff_t>(e), 0.0);
   std::fill(f.fy.begin() + static_cast<std::ptrdiff_t>(b),
             f.fy.begin() + static_cast<std::ptrdiff_t>(e), 0.0);
-  for (std::size_t q = 0; q < new_keys_.size(); ++q) {
-    const std::uint32_t i = key_i(new_keys_[q]), j = key_j(new_keys_[q]);
+  for (std::size_t q = 0; q < next_.keys.size(); ++q) {
+    const std::uint32_t i = key_i(next_.keys[q]), j = key_j(next_.keys[q]);
     const bool own_i = i >= b && i < e, own_j = j < N && j >= b && j < e;
     if (!own_i && !own_j) continue;
     const PairForce& r = pair_f_[touching_k_[q]];

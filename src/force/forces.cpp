@@ -22,22 +22,15 @@ Vec2 image_pos(const World& w, std::uint32_t j, std::uint32_t image) {
   return {w.s.x[j] + image_sx(image) * w.Lx, w.s.y[j] + image_sy(image) * w.Ly};
 }
 
-// the first index of ascending `keys` not below `key` (std::lower_bound), found by a short
-// forward scan from `hint` when the hint lies at or just before it
-std::size_t history_index(const std::vector<PairKey>& keys, PairKey key, std::size_t hint) {
-  const std::size_t n = keys.size();
-  if (hint <= n && (hint == 0 || keys[hint - 1] < key)) {
-    for (int step = 0; step < 4; ++step, ++hint)
-      if (hint == n || !(keys[hint] < key)) return hint;
-    return static_cast<std::size_t>(std::lower_bound(keys.begin() + hint, keys.end(), key) -
-                                    keys.begin());
-  }
-  return static_cast<std::size_t>(std::lower_bound(keys.begin(), keys.end(), key) - keys.begin());
-}
-
 }  // namespace
 
-ContactModel::ContactModel(const World& w) : nsp_(w.species.size()) {
+ContactSettings contact_settings(const SceneSpec& scene) {
+  return {scene.model.hdot_finite_difference, scene.model.rocking_damping,
+          scene.model.clip_attractive};
+}
+
+ContactModel::ContactModel(const World& w, const ContactSettings& settings)
+    : nsp_(w.species.size()) {
   const std::size_t stride = nsp_ + 1;
   poly_.resize(nsp_ * stride);
   poly_pc_.resize(nsp_ * stride);
@@ -50,8 +43,8 @@ ContactModel::ContactModel(const World& w) : nsp_(w.species.size()) {
       throw std::logic_error("ContactModel: grain " + std::to_string(i) +
                              " has a radius, mass or inertia other than its species'");
   }
-  hdot_fd_ = w.scene.model.hdot_finite_difference;
-  rocking_ = w.scene.model.rocking_damping;
+  hdot_fd_ = settings.hdot_finite_difference;
+  rocking_ = settings.rocking_damping;
   min_contact_time_ = 1e300;
   for (std::size_t a = 0; a < nsp_; ++a) {
     for (std::size_t b = 0; b <= nsp_; ++b) {
@@ -70,7 +63,7 @@ ContactModel::ContactModel(const World& w) : nsp_(w.species.size()) {
       d.gn = en < 1.0 ? law::gamma_normal(en, m12, d.ks) : 0.0;
       d.gt = et < 1.0 ? law::gamma_tangential(et, m12, d.ks) : 0.0;
       d.mu = 0.5 * (ma.mu + mb.mu);
-      d.clip = w.scene.model.clip_attractive;
+      d.clip = settings.clip_attractive;
       disk_[a * stride + b] = d;
       // stiffest contact: Model S exact; Model P linearised for flat faces, k ≈ E·side/l
       double tc;
@@ -146,10 +139,7 @@ bool ContactModel::polygon_pair(const World& w, PairKey key, const ContactSet& c
 
   // the contact's history, if it touched last step: last step's keys are searched forward
   // from the previous hit of this thread (candidates ascend), else by bisection
-  ContactState state;
-  const std::vector<PairKey>& old_keys = cs.keys;
-  hint = history_index(old_keys, key, hint);
-  if (hint < old_keys.size() && old_keys[hint] == key) state = cs.state[hint];
+  ContactState state = cs.history(key, hint);
 
   // geometry of the pair (P.29–P.33): l, m⊥, m∥
   const std::size_t pk = w.sp[i] * stride + (wall ? nsp_ : w.sp[j]);
@@ -231,7 +221,7 @@ std::size_t ContactModel::parallel_pairs_from(bool polygons, std::size_t n) {
 // either way, so the forces are bitwise the same on any number of threads, serial or parallel.
 ForceStats ContactModel::evaluate(const World& w, const std::vector<PairKey>& cand, ContactSet& cs,
                                   ForceBuffer& f, double dt, std::uint64_t generation,
-                                  RangeFn after) {
+                                  RangeFn after, StageClock* clock) {
   const std::size_t n = w.size();
   const std::size_t ncand = cand.size();
   const bool poly = w.polygons();
@@ -250,7 +240,7 @@ ForceStats ContactModel::evaluate(const World& w, const std::vector<PairKey>& ca
     const bool from_touching = !poly && few_touched(cs, ncand);
     const bool reindex = !from_touching && (generation == 0 || generation != indexed_generation_ ||
                                             n != indexed_n_ || ncand != indexed_count_);
-    st = evaluate_parallel(w, cand, cs, f, dt, reindex, from_touching, placed, after);
+    st = evaluate_parallel(w, cand, cs, f, dt, reindex, from_touching, placed, after, clock);
     if (reindex) {
       indexed_generation_ = generation;
       indexed_n_ = n;
@@ -263,11 +253,10 @@ ForceStats ContactModel::evaluate(const World& w, const std::vector<PairKey>& ca
       if (!placed) place_shapes(w, 0, n);
     }
     st = evaluate_serial(w, cand, cs, f, dt);
+    if (clock) clock->lap(Stage::NarrowPhase);  // the serial loop sums each pair as it goes
     if (after) parallel_ranges(n, kParallelMinCheap, after);
   }
-  cs.keys.swap(new_keys_);
-  cs.state.swap(new_state_);
-  cs.records.swap(new_records_);
+  cs.replace(next_);
   cs.degenerate += st.degenerate;
   st.contacts = cs.keys.size();
   st.candidates = ncand;
@@ -309,9 +298,9 @@ ForceStats ContactModel::evaluate_serial(const World& w, const std::vector<PairK
   const bool poly = w.polygons();
   const std::uint32_t N = static_cast<std::uint32_t>(w.size());
   clear_forces(f, N);
-  new_keys_.clear();
-  new_state_.clear();
-  new_records_.clear();
+  next_.keys.clear();
+  next_.state.clear();
+  next_.records.clear();
   ForceStats st;
   PairForce pf;
   PairResult r;
@@ -331,9 +320,9 @@ ForceStats ContactModel::evaluate_serial(const World& w, const std::vector<PairK
         f.fy[j] += pf.fy;
         if (poly) f.tq[j] += pf.tj;
       }
-      new_keys_.push_back(key);
-      new_records_.push_back({key, r.s, r.n, r.fn, r.ft, r.overlap});
-      if (poly) new_state_.push_back(r.state);
+      next_.keys.push_back(key);
+      next_.records.push_back({key, r.s, r.n, r.fn, r.ft, r.overlap});
+      if (poly) next_.state.push_back(r.state);
       note_overlap(st, w, key, r.h, r.degenerate, one_radius);
     }
   };
@@ -392,10 +381,10 @@ void ContactModel::clear_forces(ForceBuffer& f, std::size_t n) {
 // write costs about a cache line, eight sequential zeros), remember them for clear_forces
 void ContactModel::note_touched(ForceBuffer& f, std::size_t n) {
   f.touched.clear();
-  f.sparse = 2 * new_keys_.size() <= n / 8;
+  f.sparse = 2 * next_.keys.size() <= n / 8;
   f.sparse_n = n;
   if (!f.sparse) return;
-  for (PairKey key : new_keys_) {
+  for (PairKey key : next_.keys) {
     f.touched.push_back(key_i(key));
     if (key_j(key) < n) f.touched.push_back(key_j(key));
   }
@@ -404,7 +393,7 @@ void ContactModel::note_touched(ForceBuffer& f, std::size_t n) {
 ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<PairKey>& cand,
                                            const ContactSet& cs, ForceBuffer& f, double dt,
                                            bool reindex, bool from_touching, bool placed,
-                                           RangeFn after) {
+                                           RangeFn after, StageClock* clock) {
   const std::size_t n = w.size();
   const std::size_t ncand = cand.size();
   const bool poly = w.polygons();
@@ -423,50 +412,22 @@ ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<Pai
   const std::size_t nchunks = (ncand + chunk - 1) / chunk;
   chunk_first_.resize(nchunks);
   chunk_stats_.assign(nchunks, {});
-  balance_.plan(nchunks, max_team_size());
-  steal_.reset(balance_.threads());
-  for (std::size_t t = 0; t < balance_.threads(); ++t)
-    steal_.set(t, balance_.begin(static_cast<int>(t)), balance_.end(static_cast<int>(t)));
-  p_items_.assign(balance_.threads(), 0.0);
-  p_seconds_.assign(balance_.threads(), 0.0);
-  bool balanced = true;  // did the team have the planned size (else: equal ranges, no timing)
+  schedule_.plan(nchunks, poly && !placed ? n : 0);
   if (poly) {
     place_walls(w);
     shapes_.resize(n, max_sides_);
-    if (!placed) place_balance_.plan(n, max_team_size());
   }
 #pragma omp parallel
   {
-    // each thread's particles: the ranges of parallel_ranges, as in the integrators' passes,
-    // so that a thread sums, accelerates and corrects the grains it predicted
     const int tid = team_thread(), nt = team_size();
-    const auto [p_begin, p_end] = thread_share(n, tid, nt);
-    // polygons placed over ranges of their own, balanced on the placing's own time: split by
-    // ThreadSpeeds (whose ranges balance summing + correcting) the barrier after it would wait
-    // for the slower thread
+    const auto [p_begin, p_end] = PassSchedule::particles(n, tid, nt);
     if (poly && !placed) {
-      const bool own = static_cast<std::size_t>(nt) == place_balance_.threads();
-      const double t0 = wall_seconds();
-      place_shapes(w, own ? place_balance_.begin(tid) : p_begin,
-                   own ? place_balance_.end(tid) : p_end);
-      if (own) place_balance_.record(tid, wall_seconds() - t0);
+      schedule_.place(tid, nt, [&](std::size_t b, std::size_t e) { place_shapes(w, b, e); });
 #pragma omp barrier
     }
-    // the time this thread spends on its own particles (summing, the callback): ThreadSpeeds
-    // splits the next step's particles by it
+    // the time this thread spends on its own particles (summing, the callback): the next
+    // step's particles are split by it
     double t_particles = 0.0;
-    // contiguous ranges of chunks, one per thread, in the pair loop and in the compaction
-    // below: candidates come sorted by their first particle, so a thread's pairs are mostly
-    // those of the particles it placed, and its slots stay in its own cache from step to step.
-    // (Chunks handed out dynamically move the pair slots between the cores every step, which
-    // on a VM can make two threads slower than one: docs/threads.md.) The split points follow
-    // the measured cost (RangeBalancer): where the grains touch more, a chunk costs more. What
-    // the last step's times cannot foresee (the host's jitter) a thread that is done first
-    // takes over from the back of the other's range, chunk by chunk (StealRanges).
-    const bool planned = static_cast<std::size_t>(nt) == balance_.threads();
-    const ItemRange equal = thread_share(nchunks, tid, nt);
-    const std::size_t c_begin = planned ? balance_.begin(tid) : equal.begin;
-    const std::size_t c_end = planned ? balance_.end(tid) : equal.end;
     auto run_chunk = [&](std::size_t c) {
       const std::size_t k0 = c * chunk, k1 = std::min(ncand, k0 + chunk);
       std::size_t hint = 0, touching = 0;
@@ -478,25 +439,7 @@ ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<Pai
       }
       chunk_first_[c] = touching;
     };
-    const double t_start = wall_seconds();
-    if (planned) {
-      // its own range from the front (timed for the balancer), then other threads' leftovers
-      // from their backs
-      std::size_t first = 0, count = 0, own = 0;
-      const auto t = static_cast<std::size_t>(tid);
-      while (steal_.take_front(t, 8, first, count)) {
-        for (std::size_t c = first; c < first + count; ++c) run_chunk(c);
-        own += count;
-      }
-      balance_.record(tid, wall_seconds() - t_start, own);
-      for (std::size_t k = 1; k < static_cast<std::size_t>(nt); ++k) {
-        std::size_t c = 0;
-        while (steal_.take_back((t + k) % static_cast<std::size_t>(nt), c)) run_chunk(c);
-      }
-    } else {
-      for (std::size_t c = c_begin; c < c_end; ++c) run_chunk(c);
-    }
-    if (tid == 0) balanced = planned;  // the same for every thread: one writes it
+    schedule_.run_chunks(tid, nt, run_chunk);
 #pragma omp barrier
 #pragma omp single
     {
@@ -506,22 +449,24 @@ ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<Pai
         first = total;
         total += c;
       }
-      new_keys_.resize(total);
-      new_records_.resize(total);
-      new_state_.resize(poly ? total : 0);
+      next_.keys.resize(total);
+      next_.records.resize(total);
+      next_.state.resize(poly ? total : 0);
       touching_k_.resize(from_touching ? total : 0);
     }
-    for (std::size_t c = c_begin; c < c_end; ++c) {
+    // the compaction over the same chunks as the pair loop's own ranges
+    const ItemRange own_chunks = schedule_.chunk_range(tid, nt);
+    for (std::size_t c = own_chunks.begin; c < own_chunks.end; ++c) {
       std::size_t out = chunk_first_[c];
       const std::size_t k0 = c * chunk, k1 = std::min(ncand, k0 + chunk);
       for (std::size_t k = k0; k < k1; ++k) {
         if (!touch_[k]) continue;
         const PairKey key = cand[k];
         const PairResult& r = pair_r_[k];
-        new_keys_[out] = key;
+        next_.keys[out] = key;
         if (from_touching) touching_k_[out] = static_cast<std::uint32_t>(k);
-        new_records_[out] = {key, r.s, r.n, r.fn, r.ft, r.overlap};
-        if (poly) new_state_[out] = r.state;
+        next_.records[out] = {key, r.s, r.n, r.fn, r.ft, r.overlap};
+        if (poly) next_.state[out] = r.state;
         ++out;
         note_overlap(chunk_stats_[c], w, key, r.h, r.degenerate, one_radius);
       }
@@ -529,6 +474,7 @@ ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<Pai
     if (from_touching) {  // the sums read every thread's compacted pairs
 #pragma omp barrier
     }
+    if (clock && tid == 0) clock->lap(Stage::NarrowPhase);
     const double tp1 = wall_seconds();  // (the barrier's wait is no particle's work)
     if (from_touching) {
       sums_from_touching(w, f, p_begin, p_end);
@@ -554,19 +500,12 @@ ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<Pai
         if (poly) f.tq[p] = tq;
       }
     }
+    if (clock && tid == 0) clock->lap(Stage::Laws);
     if (after) after(p_begin, p_end);
     t_particles += wall_seconds() - tp1;
-    if (planned) {
-      p_items_[static_cast<std::size_t>(tid)] = static_cast<double>(p_end - p_begin);
-      p_seconds_[static_cast<std::size_t>(tid)] = t_particles;
-    }
+    schedule_.record_particles(tid, nt, p_end - p_begin, t_particles);
   }  // omp parallel
-  if (balanced) {
-    balance_.update();
-    if (poly && !placed) place_balance_.update();
-    ThreadSpeeds::get().update(p_items_.data(), p_seconds_.data(),
-                               static_cast<int>(balance_.threads()));
-  }
+  schedule_.update();
   ForceStats st;  // maxima and counts: the same whatever the chunking
   for (const ForceStats& b : chunk_stats_) {
     st.degenerate += b.degenerate;

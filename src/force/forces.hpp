@@ -5,8 +5,9 @@
 #include <vector>
 
 #include "contact/contact_set.hpp"
-#include "core/balance.hpp"
 #include "core/parallel.hpp"
+#include "core/pass_schedule.hpp"
+#include "core/stage_clock.hpp"
 #include "force/laws/disk_law.hpp"
 #include "force/laws/polygon_law.hpp"
 #include "geometry/prepared.hpp"
@@ -42,10 +43,20 @@ struct ForceStats {
   double max_overlap_rel = 0.0;  ///< the same over the smaller grain's radius
 };
 
+/// the contact laws' switches (the scene's [model] section), taken once from the scene
+struct ContactSettings {
+  bool hdot_finite_difference = false;  ///< Model P: ḣ_eff by finite difference (else analytic)
+  bool rocking_damping = true;   ///< Model P: the normal dashpot's moment along the contact line
+  bool clip_attractive = false;  ///< Model S: no attractive normal force
+};
+ContactSettings contact_settings(const SceneSpec& scene);
+
 /// the constant law parameters of a world, tabulated per (species, species) and (species, wall)
 class ContactModel {
  public:
-  explicit ContactModel(const World& w);
+  /// the world's species, materials and walls with the scene's switches
+  explicit ContactModel(const World& w) : ContactModel(w, contact_settings(w.scene)) {}
+  ContactModel(const World& w, const ContactSettings& settings);
   /// evaluate every contact among the candidates, update the contact set, and set f to the
   /// contact forces (f.tq: polygon models only). `generation` identifies the candidate list
   /// (BroadPhase::generation()): an unchanged list reuses its per-particle index; 0 = unknown.
@@ -55,8 +66,11 @@ class ContactModel {
   /// thread that summed them (each thread its own range, the ranges of parallel_ranges over
   /// the particles, as the integrators' loops): what depends on a particle's force alone, such
   /// as its acceleration, is then computed where the force and the integrator's data are.
+  /// `clock`, if given, gets the first thread's laps: Stage::NarrowPhase once the pairs are
+  /// done and the contact set is made, Stage::Laws once its particles' forces are summed.
   ForceStats evaluate(const World& w, const std::vector<PairKey>& candidates, ContactSet& cs,
-                      ForceBuffer& f, double dt, std::uint64_t generation = 0, RangeFn after = {});
+                      ForceBuffer& f, double dt, std::uint64_t generation = 0, RangeFn after = {},
+                      StageClock* clock = nullptr);
   /// polygons: place particles [b, e) at their current state for the next evaluate(), from
   /// inside this evaluate()'s `after` (the pairs are done by then), once the caller has
   /// predicted the next step there (Simulation::run); every particle once, then
@@ -87,15 +101,13 @@ class ContactModel {
                              ForceBuffer& f, double dt);
   ForceStats evaluate_parallel(const World& w, const std::vector<PairKey>& cand,
                                const ContactSet& cs, ForceBuffer& f, double dt, bool reindex,
-                               bool from_touching, bool placed, RangeFn after);
+                               bool from_touching, bool placed, RangeFn after, StageClock* clock);
   void sums_from_touching(const World& w, ForceBuffer& f, std::size_t b, std::size_t e) const;
   /// did few of the candidates touch last step (a gas: under a third)? Then the disk loops
   /// take their sparse ways (the serial one's selection pass, the parallel one's sums)
   static bool few_touched(const ContactSet& cs, std::size_t ncand) {
     return 3 * cs.keys.size() < ncand;
   }
-  /// per thread of the last force pass: particles it owned, seconds it spent on them
-  std::vector<double> p_items_, p_seconds_;
   // the per-particle index of the candidates (CSR, ascending candidate order per particle)
   void index_candidates(const std::vector<PairKey>& cand, std::size_t n);
   std::size_t nsp_ = 0;
@@ -160,12 +172,8 @@ class ContactModel {
   // the compaction of touching pairs into the contact set, in fixed blocks of candidates
   std::vector<std::size_t> chunk_first_;  ///< parallel loop: first contact-set slot of each chunk
   std::vector<ForceStats> chunk_stats_;
-  RangeBalancer balance_;        ///< parallel loop: each thread's range of chunks
-  StealRanges steal_;            ///< parallel loop: the chunks still to run, per thread
-  RangeBalancer place_balance_;  ///< parallel loop, polygons: each thread's grains to place
-  std::vector<PairKey> new_keys_;
-  std::vector<ContactState> new_state_;
-  std::vector<ContactRecord> new_records_;
+  PassSchedule schedule_;  ///< parallel loop: which thread runs, places and sums what
+  ContactSet next_;        ///< the contact set being made (ContactSet::replace)
 };
 
 }  // namespace gs

@@ -54,12 +54,13 @@ int integrator_order(IntegratorKind k) {
   return 0;
 }
 
-std::unique_ptr<Integrator> make_integrator(IntegratorKind k) {
-  switch (k) {
+std::unique_ptr<Integrator> make_integrator(const IntegratorSettings& settings) {
+  switch (settings.kind) {
     case IntegratorKind::Gear6:
       return std::make_unique<Gear6>();
     case IntegratorKind::VelocityVerlet:
-      return std::make_unique<VelocityVerlet>();
+      return std::make_unique<VelocityVerlet>(VerletForceVelocity::Extrapolated,
+                                              settings.verlet_correction);
     case IntegratorKind::PositionVerlet:
       return std::make_unique<PositionVerlet>();
     case IntegratorKind::SemiImplicitEuler:

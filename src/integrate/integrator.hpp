@@ -17,7 +17,6 @@
 #include <cstdint>
 #include <memory>
 #include <span>
-#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -55,6 +54,19 @@ struct KickForm {
   bool predict_half = false;
 };
 
+/// how velocity Verlet corrects: from the half-step velocity v_{n+½} it keeps, or as one kick
+/// from the last accelerations (KickForm; what an executor can apply inside its force pass).
+/// Equal in exact arithmetic; the round-off differs, so a run keeps one form throughout
+enum class VerletCorrection : std::uint8_t { HalfStepVelocity, Kick };
+
+/// what an integrator is built with (make_integrator)
+struct IntegratorSettings {
+  IntegratorKind kind = IntegratorKind::Gear6;
+  VerletCorrection verlet_correction = VerletCorrection::HalfStepVelocity;
+};
+
+class RangeStepping;
+
 /// an integrator owns whatever history it needs (Gear derivatives, previous positions)
 class Integrator {
  public:
@@ -66,34 +78,6 @@ class Integrator {
   virtual void predict(std::span<const Channel> ch, double dt) = 0;
   /// given a at the predicted state, produce the final q, v at t + dt
   virtual void correct(std::span<const Channel> ch, double dt) = 0;
-  /// correct() in two parts, for a caller that corrects each thread's particles where it has
-  /// just computed their accelerations: check_correct() once (it throws what correct() would),
-  /// then correct_range() over ranges [b, e) of particles that together cover every particle
-  /// once (clipped to each channel's length; disjoint ranges may run at the same time). The
-  /// result is bitwise that of correct()
-  virtual void check_correct(std::span<const Channel> ch, double dt) const = 0;
-  virtual void correct_range(std::span<const Channel> ch, std::size_t b, std::size_t e) = 0;
-  /// can predict_range() follow correct_range()? (Gear 6)
-  virtual bool predicts_by_range() const { return false; }
-  /// right after correct_range() of [b, e) and with nothing edited in between: the next
-  /// step's prediction of those particles, bitwise what the next predict() would make there
-  /// (a caller that runs steps back to back, Simulation::run; then it skips that predict())
-  virtual void predict_range(std::span<const Channel> ch, std::size_t b, std::size_t e) {
-    (void)ch;
-    (void)b;
-    (void)e;
-    throw std::logic_error("predict_range: this scheme predicts through predict() only");
-  }
-  /// let the caller apply the correction itself, as the kick `form`, inside its acceleration
-  /// pass while a_n is still in the channels (one pass over the velocities less, and no
-  /// history): on = true returns whether the scheme has such a form (velocity Verlet) and
-  /// fills `form`; predict() then keeps no history of its own and correct()/correct_range()
-  /// throw std::logic_error. on = false returns to correct(). Call between steps
-  virtual bool fuse_kick(bool on, KickForm& form) {
-    (void)on;
-    (void)form;
-    return false;
-  }
   /// between steps: set every velocity of ch to zero and restart the history from rest at
   /// the current positions, as init() would with v = 0 and the last accelerations (kinetic
   /// damping, drive.quench). Positions and the stored accelerations are kept
@@ -104,8 +88,14 @@ class Integrator {
   /// the integrator's internal history as flat doubles (for checkpoints), and back
   virtual std::vector<double> save() const = 0;
   virtual void load(const std::vector<double>& data) = 0;
+  /// the same step by ranges of particles, for an executor that corrects each particle where
+  /// it has just computed its acceleration (integrate/range_stepping.hpp); every scheme has it
+  virtual RangeStepping& ranges() = 0;
 };
 
-std::unique_ptr<Integrator> make_integrator(IntegratorKind k);
+std::unique_ptr<Integrator> make_integrator(const IntegratorSettings& settings);
+inline std::unique_ptr<Integrator> make_integrator(IntegratorKind k) {
+  return make_integrator(IntegratorSettings{k});
+}
 
 }  // namespace gs

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "integrate/integrator.hpp"
+#include "integrate/range_stepping.hpp"
 
 namespace gs {
 
@@ -43,7 +44,7 @@ class ChannelLayout {
 /// with exact higher derivatives (set_derivative) the scheme is fifth order.
 /// A new Δt rescales r_k by (Δt_new/Δt_old)^k. zero_velocities() sets r1 = r3 = r4 = r5 = 0 and
 /// keeps r0 and r2 (= a·Δt²/2 after correct()): the state init() gives a grain at rest.
-class Gear6 final : public Integrator {
+class Gear6 final : public Integrator, public RangeStepping {
  public:
   IntegratorKind kind() const override { return IntegratorKind::Gear6; }
   void init(std::span<const Channel> ch, double dt) override;
@@ -57,6 +58,7 @@ class Gear6 final : public Integrator {
   void permute(std::span<const std::uint32_t> perm) override;
   std::vector<double> save() const override;
   void load(const std::vector<double>& data) override;
+  RangeStepping& ranges() override { return *this; }
   /// after init(): set the k-th time derivative (k = 2…5) of channel c, in units/s^k,
   /// e.g. an exact start for convergence studies
   void set_derivative(std::size_t c, int k, std::span<const double> d);
@@ -94,33 +96,42 @@ enum class VerletForceVelocity {
 /// v_{n+½}·Δt; correct v_{n+1} = v_{n+½} + a_{n+1}·Δt/2. Symplectic for conservative forces.
 /// The velocity written for the force evaluation is chosen by VerletForceVelocity. a_n is
 /// read from the channels: between steps they must hold the last correct()'s accelerations.
-class VelocityVerlet final : public Integrator {
+/// VerletCorrection::Kick corrects as v_{n+1} = v̂ + (a_{n+1} − a_n)·Δt/2 (Extrapolated: v̂ =
+/// v_n + a_n·Δt), or v̂ + a_{n+1}·Δt/2 (HalfStep: v̂ = v_{n+½}), with a_n kept by predict()
+class VelocityVerlet final : public Integrator, public RangeStepping {
  public:
-  explicit VelocityVerlet(VerletForceVelocity fv = VerletForceVelocity::Extrapolated) : fv_(fv) {}
+  explicit VelocityVerlet(VerletForceVelocity fv = VerletForceVelocity::Extrapolated,
+                          VerletCorrection corr = VerletCorrection::HalfStepVelocity)
+      : fv_(fv), corr_(corr) {}
   IntegratorKind kind() const override { return IntegratorKind::VelocityVerlet; }
   void init(std::span<const Channel> ch, double dt) override;
   void predict(std::span<const Channel> ch, double dt) override;
   void correct(std::span<const Channel> ch, double dt) override;
   void check_correct(std::span<const Channel> ch, double dt) const override;
   void correct_range(std::span<const Channel> ch, std::size_t b, std::size_t e) override;
-  /// the kick: v_{n+1} = v̂ + (a_{n+1} − a_n)·Δt/2 (Extrapolated: v̂ = v_n + a_n·Δt), or
-  /// v̂ + a_{n+1}·Δt/2 (HalfStep: v̂ = v_{n+½})
-  bool fuse_kick(bool on, KickForm& form) override;
+  /// the kick, with VerletCorrection::Kick
+  std::optional<KickForm> kick_form() const override;
+  /// the correction's form from the next step on (between steps)
+  void set_correction(VerletCorrection corr);
+  VerletCorrection correction() const { return corr_; }
   void zero_velocities(std::span<const Channel> ch) override;
   void permute(std::span<const std::uint32_t> perm) override;
   std::vector<double> save() const override;
   void load(const std::vector<double>& data) override;
+  RangeStepping& ranges() override { return *this; }
 
  private:
   void size_history();
+  KickForm form() const;
+  void correct_dofs(const Channel& k, std::size_t c, std::size_t b, std::size_t e);
   VerletForceVelocity fv_;
-  bool fused_ = false;  ///< the caller kicks (fuse_kick): no v_{n+½} kept
+  VerletCorrection corr_;
   ChannelLayout layout_;
   std::vector<double> perm_tmp_;  ///< permute()'s buffer, kept between sorts
   double dt_ = 0.0;               ///< Δt of the last step, s
-  /// per channel, v_{n+½} during a step, unless the caller kicks (a_n is the channels' own
-  /// acceleration: the last force evaluation's, which the caller keeps between steps)
-  std::vector<std::vector<double>> vh_;
+  /// per channel during a step: v_{n+½} (HalfStepVelocity) or a_n (Kick), which correct()
+  /// needs once the channels hold a_{n+1}
+  std::vector<std::vector<double>> kept_;
 };
 
 /// position (Störmer) Verlet (T.2.3): q_{n+1} = 2q_n − q_{n−1} + a_n·Δt². The history is the
@@ -136,7 +147,7 @@ class VelocityVerlet final : public Integrator {
 /// and velocities at the end of a step refer to the same time. Start: q_{−1} = q_0 − v_0·Δt +
 /// a_0·Δt²/2 (consistent with that velocity definition). In exact arithmetic the positions
 /// equal those of velocity Verlet with an extrapolated force velocity; round-off differs.
-class PositionVerlet final : public Integrator {
+class PositionVerlet final : public Integrator, public RangeStepping {
  public:
   IntegratorKind kind() const override { return IntegratorKind::PositionVerlet; }
   void init(std::span<const Channel> ch, double dt) override;
@@ -148,6 +159,7 @@ class PositionVerlet final : public Integrator {
   void permute(std::span<const std::uint32_t> perm) override;
   std::vector<double> save() const override;
   void load(const std::vector<double>& data) override;
+  RangeStepping& ranges() override { return *this; }
 
  private:
   ChannelLayout layout_;
@@ -161,7 +173,7 @@ class PositionVerlet final : public Integrator {
 
 /// semi-implicit (symplectic) Euler: forces at the current state (predict does nothing),
 /// correct: v_{n+1} = v_n + a_n·Δt, q_{n+1} = q_n + v_{n+1}·Δt. First order.
-class SemiImplicitEuler final : public Integrator {
+class SemiImplicitEuler final : public Integrator, public RangeStepping {
  public:
   IntegratorKind kind() const override { return IntegratorKind::SemiImplicitEuler; }
   void init(std::span<const Channel> ch, double dt) override;
@@ -173,6 +185,7 @@ class SemiImplicitEuler final : public Integrator {
   void permute(std::span<const std::uint32_t> perm) override;
   std::vector<double> save() const override;
   void load(const std::vector<double>& data) override;
+  RangeStepping& ranges() override { return *this; }
 
  private:
   ChannelLayout layout_;

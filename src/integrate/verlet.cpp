@@ -27,30 +27,36 @@ void take(const std::vector<double>& in, std::size_t& off, const ChannelLayout& 
   }
 }
 // the velocity Verlet loops over particles [b, e) of one channel, on distinct arrays
-// (restrict: they vectorise without run-time overlap checks); kKeep: store v_{n+½} in vh for
-// correct() (not when the caller applies the kick itself: fuse_kick)
-template <bool kKeep, bool kHalf>
+// (restrict: they vectorise without run-time overlap checks); kKeep: what correct() needs
+// later, v_{n+½} (HalfStepVelocity) or a_n (Kick)
+enum class Keep { HalfStepVelocity, OldAcceleration };
+template <Keep kKeep, bool kHalf>
 void vv_predict(std::size_t b, std::size_t e, double dt, const double* __restrict a,
-                double* __restrict vh, double* __restrict q, double* __restrict v) {
+                double* __restrict kept, double* __restrict q, double* __restrict v) {
   for (std::size_t i = b; i < e; ++i) {
     double qi = q[i], vi = v[i];
     const double h = vv_predict_dof<kHalf>(dt, a[i], qi, vi);
-    if constexpr (kKeep) vh[i] = h;
+    kept[i] = kKeep == Keep::HalfStepVelocity ? h : a[i];
     q[i] = qi;
     v[i] = vi;
   }
 }
-template <bool kKeep>
+template <Keep kKeep>
 void vv_predict(std::size_t b, std::size_t e, double dt, bool half, const double* __restrict a,
-                double* __restrict vh, double* __restrict q, double* __restrict v) {
+                double* __restrict kept, double* __restrict q, double* __restrict v) {
   if (half)
-    vv_predict<kKeep, true>(b, e, dt, a, vh, q, v);
+    vv_predict<kKeep, true>(b, e, dt, a, kept, q, v);
   else
-    vv_predict<kKeep, false>(b, e, dt, a, vh, q, v);
+    vv_predict<kKeep, false>(b, e, dt, a, kept, q, v);
 }
 void vv_correct(std::size_t b, std::size_t e, double dt, const double* __restrict vh,
                 double* __restrict v, const double* __restrict an) {
   for (std::size_t i = b; i < e; ++i) v[i] = vh[i] + an[i] * dt / 2.0;
+}
+// the kick v_{n+1} = v̂ + c_new·a_{n+1} − c_old·a_n
+void vv_kick(std::size_t b, std::size_t e, double c_new, double c_old,
+             const double* __restrict a_old, double* __restrict v, const double* __restrict an) {
+  for (std::size_t i = b; i < e; ++i) v[i] = vv_kick_dof(v[i], an[i], a_old[i], c_new, c_old);
 }
 void check_dt(double dt, const char* who) {
   if (!(dt > 0.0)) throw std::invalid_argument(std::string(who) + ": dt must be positive");
@@ -67,31 +73,38 @@ void VelocityVerlet::init(std::span<const Channel> ch, double dt) {
   size_history();
 }
 
-// v_{n+½} per channel, unless the caller kicks
+// v_{n+½} or a_n per channel
 void VelocityVerlet::size_history() {
-  vh_.assign(fused_ ? 0 : layout_.channels(), {});
-  for (std::size_t c = 0; c < vh_.size(); ++c) vh_[c].assign(layout_.size(c), 0.0);
+  kept_.assign(layout_.channels(), {});
+  for (std::size_t c = 0; c < kept_.size(); ++c) kept_[c].assign(layout_.size(c), 0.0);
 }
 
-bool VelocityVerlet::fuse_kick(bool on, KickForm& form) {
-  fused_ = on;
+KickForm VelocityVerlet::form() const {
   const bool half = fv_ == VerletForceVelocity::HalfStep;
-  form = {0.5, half ? 0.0 : 0.5, half};
-  size_history();
-  return true;
+  return {0.5, half ? 0.0 : 0.5, half};
 }
+
+std::optional<KickForm> VelocityVerlet::kick_form() const {
+  if (corr_ != VerletCorrection::Kick) return std::nullopt;
+  return form();
+}
+
+void VelocityVerlet::set_correction(VerletCorrection corr) { corr_ = corr; }
 
 void VelocityVerlet::predict(std::span<const Channel> ch, double dt) {
   layout_.check(ch, "VelocityVerlet::predict");
   check_dt(dt, "VelocityVerlet::predict");
   dt_ = dt;
   const bool half = fv_ == VerletForceVelocity::HalfStep;
+  const bool kick = corr_ == VerletCorrection::Kick;
   for_channels(ch, kParallelMinCheap, [&](std::size_t c, std::size_t b, std::size_t e) {
     const double* a = ch[c].a.data();
-    if (fused_)
-      vv_predict<false>(b, e, dt, half, a, nullptr, ch[c].q.data(), ch[c].v.data());
+    if (kick)
+      vv_predict<Keep::OldAcceleration>(b, e, dt, half, a, kept_[c].data(), ch[c].q.data(),
+                                        ch[c].v.data());
     else
-      vv_predict<true>(b, e, dt, half, a, vh_[c].data(), ch[c].q.data(), ch[c].v.data());
+      vv_predict<Keep::HalfStepVelocity>(b, e, dt, half, a, kept_[c].data(), ch[c].q.data(),
+                                         ch[c].v.data());
   });
 }
 
@@ -102,18 +115,24 @@ void VelocityVerlet::check_correct(std::span<const Channel> ch, double dt) const
 
 void VelocityVerlet::correct(std::span<const Channel> ch, double dt) {
   check_correct(ch, dt);
-  if (fused_) throw std::logic_error("VelocityVerlet::correct: the caller kicks (fuse_kick)");
-  // second half kick with a_{n+1}, which stays in the channels for the next step's kick
-  for_channels(ch, kParallelMinCheap, [&](std::size_t c, std::size_t b, std::size_t e) {
-    vv_correct(b, e, dt_, vh_[c].data(), ch[c].v.data(), ch[c].a.data());
-  });
+  // a_{n+1} stays in the channels for the next step's kick
+  for_channels(ch, kParallelMinCheap,
+               [&](std::size_t c, std::size_t b, std::size_t e) { correct_dofs(ch[c], c, b, e); });
 }
 
 void VelocityVerlet::correct_range(std::span<const Channel> ch, std::size_t b, std::size_t e) {
-  if (fused_) throw std::logic_error("VelocityVerlet::correct_range: the caller kicks (fuse_kick)");
   for (std::size_t c = 0; c < ch.size(); ++c) {
     const std::size_t n = ch[c].q.size();
-    vv_correct(std::min(b, n), std::min(e, n), dt_, vh_[c].data(), ch[c].v.data(), ch[c].a.data());
+    correct_dofs(ch[c], c, std::min(b, n), std::min(e, n));
+  }
+}
+
+void VelocityVerlet::correct_dofs(const Channel& k, std::size_t c, std::size_t b, std::size_t e) {
+  if (corr_ == VerletCorrection::Kick) {
+    const KickForm f = form();
+    vv_kick(b, e, f.new_frac * dt_, f.old_frac * dt_, kept_[c].data(), k.v.data(), k.a.data());
+  } else {
+    vv_correct(b, e, dt_, kept_[c].data(), k.v.data(), k.a.data());
   }
 }
 
@@ -123,9 +142,11 @@ void VelocityVerlet::zero_velocities(std::span<const Channel> ch) {
   for (const Channel& k : ch) std::fill(k.v.begin(), k.v.end(), 0.0);
 }
 
+// v_{n+½} and a_n live within a step: nothing to move, but the permutation must fit
 void VelocityVerlet::permute(std::span<const std::uint32_t> perm) {
   for (std::size_t c = 0; c < layout_.channels(); ++c)
-    if (c < vh_.size() && !vh_[c].empty()) layout_.permute(vh_[c], c, perm, 1, perm_tmp_);
+    if (perm.size() != layout_.size(c))
+      throw std::invalid_argument("Integrator::permute: the permutation does not fit the history");
 }
 
 // history: the header only. a_n is the channels' acceleration (the state's, which a checkpoint

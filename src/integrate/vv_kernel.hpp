@@ -15,4 +15,10 @@ inline double vv_predict_dof(double dt, double a, double& q, double& v) {
   return h;
 }
 
+/// velocity Verlet's correction as one kick: v_{n+1} = v̂ + c_new·a_{n+1} − c_old·a_n (shared
+/// by VelocityVerlet's Kick correction and an executor's kick in its force pass: same bits)
+inline double vv_kick_dof(double v, double a_new, double a_old, double c_new, double c_old) {
+  return v + a_new * c_new - a_old * c_old;
+}
+
 }  // namespace gs

@@ -7,8 +7,10 @@
 
 #include "broadphase/broadphase.hpp"
 #include "contact/contact_set.hpp"
+#include "core/stage_clock.hpp"
 #include "force/forces.hpp"
 #include "integrate/integrator.hpp"
+#include "sim/step_executor.hpp"
 #include "world/world.hpp"
 
 namespace gs {
@@ -31,13 +33,13 @@ class Simulation {
   void health_check();
   Simulation(World w, BroadPhaseKind bp);
 
-  /// advance one time step: drive → predict → broad phase → contacts → forces → correct →
-  /// health check
+  /// advance one time step: drive → predict → broad phase → narrow phase → laws → correct →
+  /// constraints/health (docs/architecture.md, "One step")
   void step() { advance(false); }
   /// advance n steps: bitwise n × step(), but where nothing reads or edits the state between
-  /// two of them (no drift removal, health check or sort between), each step's correction
-  /// predicts the next step too, particle by particle inside the force pass (the fused kick
-  /// of velocity Verlet on disks; Gear 6): one pass over the state less per step
+  /// two of them (no drift removal, health check or sort between), the Fused executor's
+  /// correction predicts the next step too, particle by particle inside the force pass
+  /// (velocity Verlet's kick on disks; Gear 6): one pass over the state less per step
   void run(std::int64_t n);
 
   World& world() { return w_; }
@@ -77,31 +79,33 @@ class Simulation {
     energy_ref_ = ref;
     energy_slack_ = slack;
   }
-  /// the integrator's correction as a velocity kick inside the acceleration pass (one pass
-  /// over the velocities less): on by default where the scheme has one (velocity Verlet)
-  /// and the particles are disks; off: the integrator's own correct() (for comparisons)
-  void set_kick_fusion(bool on);
-  bool kick_fused() const { return fused_; }
+  /// how the step's narrow phase → laws → correct run (ExecutorKind; Fused unless set): the
+  /// same bits either way. Between steps
+  void set_executor(ExecutorKind k) { exec_ = make_executor(k); }
+  ExecutorKind executor() const { return exec_->kind(); }
+  /// is velocity Verlet's correction a kick inside the acceleration pass (Fused, disks)?
+  bool kicks_in_force_pass() const { return exec_->kicks_in_pass(parts()); }
+  /// velocity Verlet's correction (disks: the kick, polygons: from the half-step velocity, by
+  /// default); the two differ by round-off. Between steps; other schemes have one form only
+  void set_verlet_correction(VerletCorrection c);
   /// how many steps so far took their prediction from the previous step's kick (run())
   std::uint64_t steps_predicted_ahead() const { return ahead_steps_; }
+  /// wall time per stage of the steps so far (or since clear_profile())
+  const StepProfile& profile() const { return profile_; }
+  void clear_profile() { profile_ = {}; }
   /// does anything drive the system (gravity, pulses, noise)?
   bool driven() const;
   /// can the mechanical energy only decrease (no drive, or constant gravity)?
   bool conservative_drive() const;
 
  private:
-  /// accelerations at the current state; `index` counts force evaluations (noise stream)
-  // forces and accelerations at the current (predicted) state; with `correct`, the
-  // integrator's corrector too, each particle right after its acceleration, on the thread
-  // that computed it (Integrator::correct_range; check_correct() done by the caller)
-  // (`ahead`: and, after the kick, the next step's prediction: may_predict_ahead())
-  void compute_accelerations(std::int64_t index, std::span<const Channel> correct = {},
-                             bool ahead = false);
+  /// what the executor's stages work on
+  StepParts parts() const;
+  /// the drive stage at the current time: gravity_, the random force's stream keys
+  void drive();
   /// one step; `then_predict`: the next step follows at once (run())
   void advance(bool then_predict);
   bool may_predict_ahead(std::int64_t from) const;
-  /// does this scene's force pass predict the next step where asked (may_predict_ahead)?
-  bool predicts_in_pass() const;
   /// what step() does around step `step` (the step count after it): the drift removal and the
   /// health check after it, the spatial sort before the next
   bool removes_drift_after(std::int64_t step) const;
@@ -122,12 +126,9 @@ class Simulation {
   ForceBuffer forces_;
   ForceStats stats_;
   std::vector<std::uint64_t> noise_keys_;  ///< random force: stream keys per particle (cached)
-  std::vector<double> kick_;      ///< the ring's momentum kicks summed per block, kg·m/s²
-  std::vector<double> ring_pre_;  ///< the ring's accelerations before the mean kick, m/s²
-  bool fused_ = false;            ///< the integrator's kick inside the acceleration pass
+  std::unique_ptr<StepExecutor> exec_ = make_executor(ExecutorKind::Fused);
   bool ahead_ = false;  ///< inside run(): the state already holds the next step's prediction
   std::uint64_t ahead_steps_ = 0;  ///< steps that took their prediction from the last kick
-  KickForm kick_form_;
   Vec2 gravity_;
   std::int64_t sort_every_ = 0;
   std::uint64_t order_generation_ = 0;
@@ -139,6 +140,7 @@ class Simulation {
     std::vector<std::uint64_t> keys;
     World::PermuteScratch world;
   } sort_scratch_;
+  StepProfile profile_;
   double energy_ref_ = 0.0;    ///< mechanical energy at the start, J (undriven/constant g)
   double energy_slack_ = 0.0;  ///< growth tolerated before it counts as a blow-up, J
 };

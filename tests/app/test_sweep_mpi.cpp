@@ -35,7 +35,9 @@ std::string mpirun2(const std::string& args) {
 
 // run.json and sweep.json without what depends on the machine's speed (wall times, rates)
 std::string without_wall_times(const std::string& text) {
-  static const std::regex wall(R"re("(wall_time\w*|particle_steps_per_s|omp_\w+)": [-+.0-9e]+)re");
+  // (the step's profile too: its stages' wall times and the step loop's)
+  static const std::regex wall(
+      R"re("(wall_time\w*|particle_steps_per_s|omp_\w+|step_loop_s|drive|predict|broad_phase|narrow_phase|laws|correct|health)": [-+.0-9e]+)re");
   return std::regex_replace(text, wall, "\"$1\": -");
 }
 

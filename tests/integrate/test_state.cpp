@@ -199,10 +199,10 @@ TEST_P(State, CorrectByRangesIsCorrect) {
     auto sp = r.spans();
     J->predict(sp, dt);
     r.forces();
-    J->check_correct(sp, dt);
-    J->correct_range(sp, 4, 99);  // past every channel's end
-    J->correct_range(sp, 0, 1);
-    J->correct_range(sp, 1, 4);
+    J->ranges().check_correct(sp, dt);
+    J->ranges().correct_range(sp, 4, 99);  // past every channel's end
+    J->ranges().correct_range(sp, 0, 1);
+    J->ranges().correct_range(sp, 1, 4);
   }
   for (std::size_t c = 0; c < s.q.size(); ++c)
     for (std::size_t i = 0; i < s.q[c].size(); ++i) {
@@ -211,7 +211,7 @@ TEST_P(State, CorrectByRangesIsCorrect) {
     }
   auto sp = r.spans();
   J->predict(sp, dt);
-  EXPECT_THROW(J->check_correct(sp, 2.0 * dt), std::invalid_argument);
+  EXPECT_THROW(J->ranges().check_correct(sp, 2.0 * dt), std::invalid_argument);
 }
 
 INSTANTIATE_TEST_SUITE_P(AllIntegrators, State,

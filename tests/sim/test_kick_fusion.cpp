@@ -1,6 +1,7 @@
-// velocity Verlet's kick inside the acceleration pass (Simulation::set_kick_fusion): on for
-// disks with velocity Verlet only, and the same dynamics as the integrator's own correct()
-// up to round-off, in 2D (with noise and contacts), on the 1D ring (its noise's mean removed
+// velocity Verlet's correction as a kick inside the acceleration pass (the Fused executor with
+// VerletCorrection::Kick): on for disks with velocity Verlet only, and the same dynamics as
+// the correction from the half-step velocity (Simulation::set_verlet_correction) up to
+// round-off, in 2D (with noise and contacts), on the 1D ring (its noise's mean removed
 // in a second pass) and across a switch in the middle of a run
 #include <gtest/gtest.h>
 
@@ -65,16 +66,16 @@ std::size_t step_both(Simulation& a, Simulation& b, int steps) {
 }
 
 TEST(KickFusion, OnForDisksWithVelocityVerletOnly) {
-  EXPECT_TRUE(make_sim(gas()).kick_fused());
-  EXPECT_TRUE(make_sim(ring()).kick_fused());
-  EXPECT_FALSE(make_sim(gas(IntegratorKind::Gear6)).kick_fused());
-  EXPECT_FALSE(make_sim(gas(IntegratorKind::PositionVerlet)).kick_fused());
+  EXPECT_TRUE(make_sim(gas()).kicks_in_force_pass());
+  EXPECT_TRUE(make_sim(ring()).kicks_in_force_pass());
+  EXPECT_FALSE(make_sim(gas(IntegratorKind::Gear6)).kicks_in_force_pass());
+  EXPECT_FALSE(make_sim(gas(IntegratorKind::PositionVerlet)).kicks_in_force_pass());
   SceneSpec pile = build::decagon_pile(40, 0.2, 0.4, 1);
   pile.integrator.kind = IntegratorKind::VelocityVerlet;
-  EXPECT_FALSE(make_sim(pile).kick_fused());  // polygons: the integrator's own correct()
+  EXPECT_FALSE(make_sim(pile).kicks_in_force_pass());  // polygons: the integrator's own correct()
   Simulation s = make_sim(gas());
-  s.set_kick_fusion(false);
-  EXPECT_FALSE(s.kick_fused());
+  s.set_verlet_correction(VerletCorrection::HalfStepVelocity);
+  EXPECT_FALSE(s.kicks_in_force_pass());
 }
 
 // the fused kick v̂ + (a_{n+1} − a_n)·Δt/2 is v_{n+½} + a_{n+1}·Δt/2 in exact arithmetic; the
@@ -85,8 +86,8 @@ TEST(KickFusion, OnForDisksWithVelocityVerletOnly) {
 TEST(KickFusion, FollowsTheIntegratorsOwnCorrection) {
   Simulation fused = make_sim(gas());
   Simulation own = make_sim(gas());
-  own.set_kick_fusion(false);
-  ASSERT_TRUE(fused.kick_fused());
+  own.set_verlet_correction(VerletCorrection::HalfStepVelocity);
+  ASSERT_TRUE(fused.kicks_in_force_pass());
   // the contacts were there to amplify differences
   EXPECT_GT(step_both(fused, own, 600), 600u * 10);
   const double d = max_difference(fused.world(), own.world());
@@ -99,7 +100,7 @@ TEST(KickFusion, FollowsTheIntegratorsOwnCorrection) {
 TEST(KickFusion, RingWithSymmetrisedNoiseFollowsTheOwnCorrection) {
   Simulation fused = make_sim(ring());
   Simulation own = make_sim(ring());
-  own.set_kick_fusion(false);
+  own.set_verlet_correction(VerletCorrection::HalfStepVelocity);
   auto momentum = [](const World& w) {
     double p = 0.0;
     for (std::size_t i = 0; i < w.size(); ++i) p += w.mass[i] * w.s.vx[i];
@@ -119,13 +120,12 @@ TEST(KickFusion, RingWithSymmetrisedNoiseFollowsTheOwnCorrection) {
   EXPECT_LT(std::abs(momentum(fused.world()) - p0), 1e-15);
 }
 
-// the ring without noise: the kick in the force pass's callback, x alone (this path must not
-// call the integrator's correct_range, which refuses while the caller kicks)
+// the ring without noise: the kick in the force pass's callback, x alone
 TEST(KickFusion, RingWithoutNoiseFollowsTheOwnCorrection) {
   Simulation fused = make_sim(ring(false));
   Simulation own = make_sim(ring(false));
-  own.set_kick_fusion(false);
-  ASSERT_TRUE(fused.kick_fused());
+  own.set_verlet_correction(VerletCorrection::HalfStepVelocity);
+  ASSERT_TRUE(fused.kicks_in_force_pass());
   EXPECT_GT(step_both(fused, own, 2000), 0u);
   EXPECT_LT(max_difference(fused.world(), own.world()), 1e-9);
 }
@@ -136,13 +136,13 @@ TEST(KickFusion, SwitchesBetweenSteps) {
   Simulation b = make_sim(gas());
   a.run(200);
   b.run(200);
-  b.set_kick_fusion(false);
+  b.set_verlet_correction(VerletCorrection::HalfStepVelocity);
   a.run(200);
   b.run(200);
-  b.set_kick_fusion(true);
+  b.set_verlet_correction(VerletCorrection::Kick);
   a.run(200);
   b.run(200);
-  EXPECT_TRUE(b.kick_fused());
+  EXPECT_TRUE(b.kicks_in_force_pass());
   EXPECT_LT(max_difference(a.world(), b.world()), 1e-9);
 }
 

@@ -180,12 +180,12 @@ TEST(RunAhead, TwoThreadsGiveOneThreadsSteps) {
   EXPECT_GT(a.steps_predicted_ahead(), 0u);
 }
 
-// velocity Verlet without the fused kick predicts through predict() only
+// velocity Verlet corrected from the half-step velocity predicts through predict() only
 TEST(RunAhead, NotWithTheIntegratorsOwnKick) {
   Simulation own = make_sim(gas());
-  own.set_kick_fusion(false);
+  own.set_verlet_correction(VerletCorrection::HalfStepVelocity);
   Simulation own_steps = make_sim(gas());
-  own_steps.set_kick_fusion(false);
+  own_steps.set_verlet_correction(VerletCorrection::HalfStepVelocity);
   own.run(50);
   steps(own_steps, 50);
   EXPECT_EQ(own.steps_predicted_ahead(), 0u);

@@ -138,6 +138,7 @@ int run_command(const RunOptions& opt) {
   rs.scene_file = scene.path;
   rs.out = out;
   rs.quiet = opt.quiet;
+  rs.profile = opt.profile;
   rs.sim = &sim;
   rs.clock = &clock;
   rs.series = CsvWriter(out + "/series.csv", series_columns());

@@ -12,6 +12,7 @@ struct RunOptions {
   bool force = false;             ///< allow reusing a non-empty run directory
   bool quiet = false;             ///< no progress display
   bool allow_unstable = false;    ///< skip the up-front Δt check
+  bool profile = false;           ///< print the wall time per stage of the step at the end
 };
 
 /// returns the process exit code (ExitCode)

@@ -82,10 +82,29 @@ void write_run_json(const RunSession& rs, int code, const std::string& failure, 
         taps_done > 0 ? (wall - settled) / static_cast<double>(taps_done) : 0.0;
   }
   if (!failure.empty()) j["failure"] = failure;
+  // this session's wall time per stage of the step, and inside the step loop as a whole
+  nlohmann::ordered_json& prof = j["profile"];
+  for (std::size_t k = 0; k < kStageCount; ++k)
+    prof[std::string(stage_name(static_cast<Stage>(k)))] = sim.profile().seconds[k];
+  j["step_loop_s"] = rs.step_loop;
   // the resolved scene, one typed value per dotted key (docs/python.md)
   j["scene"] = scene_json(scene.resolved);
   write_file_atomic(rs.out + "/run.json",
                     j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
+}
+
+// gransim run --profile: the stages' wall times as a table on stderr
+void print_profile(const RunSession& rs) {
+  const StepProfile& p = rs.sim->profile();
+  const double total = p.total();
+  std::fprintf(stderr, "\n%-14s %12s %7s\n", "stage", "seconds", "share");
+  for (std::size_t k = 0; k < kStageCount; ++k) {
+    const std::string name(stage_name(static_cast<Stage>(k)));
+    std::fprintf(stderr, "%-14s %12.6f %6.1f%%\n", name.c_str(), p.seconds[k],
+                 total > 0.0 ? 100.0 * p.seconds[k] / total : 0.0);
+  }
+  std::fprintf(stderr, "%-14s %12.6f   (%llu steps; step loop %.6f s)\n", "total", total,
+               static_cast<unsigned long long>(p.steps), rs.step_loop);
 }
 
 }  // namespace
@@ -162,7 +181,9 @@ int run_session(RunSession& rs) {
     while (!finished()) {
       const std::int64_t m = batch();
       const bool first = sim.world().s.step == 0;
+      const auto run_start = Clock::now();
       sim.run(m);
+      rs.step_loop += std::chrono::duration<double>(Clock::now() - run_start).count();
       since_check += m;
       // non-finite state is caught at once, whatever health.check_every is
       if (first) sim.check_finite();
@@ -252,6 +273,7 @@ int run_session(RunSession& rs) {
                  sim.world().s.t, static_cast<long long>(sim.world().s.step), rs.out.c_str(),
                  rs.out.c_str());
   }
+  if (rs.profile) print_profile(rs);
   return code;
 }
 

@@ -21,6 +21,8 @@ struct RunSession {
   std::string scene_file;  ///< the file it came from, for run.json
   std::string out;         ///< run directory
   bool quiet = false;
+  bool profile = false;    ///< print the step's profile at the end (gransim run --profile)
+  double step_loop = 0.0;  ///< wall time inside Simulation::run this session, s
   Simulation* sim = nullptr;
   ProtocolClock* clock = nullptr;
   Observers observers;              ///< started or resumed
