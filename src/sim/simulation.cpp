@@ -40,6 +40,11 @@ Simulation::Simulation(World w, BroadPhaseKind bp)
     for (std::size_t k = 0; k < w_.size(); ++k) w_.id[k] = static_cast<std::uint32_t>(k);
   }
   sort_every_ = resolved_sort_every(w_);
+  sort_trigger_ = Trigger::every_steps(sort_every_);
+  const DriveSpec& d = w_.scene.drive;
+  if (d.kind == DriveKind::RandomForce && w_.box != BoxKind::Ring1D)
+    drift_trigger_ = Trigger::every_steps(d.com_removal_every);
+  health_trigger_ = Trigger::every_steps(w_.scene.health.check_every);
   // forces at the initial state start the integrator
   drive();
   exec_->run(parts(), broad_->update(w_), {}, w_.s.step, false, nullptr);
@@ -121,17 +126,15 @@ bool Simulation::may_predict_ahead(std::int64_t from) const {
 }
 
 bool Simulation::removes_drift_after(std::int64_t step) const {
-  const DriveSpec& d = w_.scene.drive;
-  return d.kind == DriveKind::RandomForce && w_.box != BoxKind::Ring1D && d.com_removal_every > 0 &&
-         step % d.com_removal_every == 0;
+  return drift_trigger_.at_step(step);
 }
 
 bool Simulation::checks_health_after(std::int64_t step) const {
-  return w_.scene.health.check_every > 0 && step % w_.scene.health.check_every == 0;
+  return health_trigger_.at_step(step);
 }
 
 bool Simulation::sorts_before(std::int64_t step) const {
-  return sort_every_ > 0 && step > 0 && step % sort_every_ == 0;
+  return step > 0 && sort_trigger_.at_step(step);
 }
 
 // one step, stage by stage; the stages' wall times go to profile()

@@ -8,6 +8,7 @@
 #include "broadphase/broadphase.hpp"
 #include "contact/contact_set.hpp"
 #include "core/stage_clock.hpp"
+#include "core/trigger.hpp"
 #include "force/forces.hpp"
 #include "integrate/integrator.hpp"
 #include "sim/step_executor.hpp"
@@ -131,6 +132,10 @@ class Simulation {
   std::uint64_t ahead_steps_ = 0;  ///< steps that took their prediction from the last kick
   Vec2 gravity_;
   std::int64_t sort_every_ = 0;
+  // when the jobs between steps run: slots re-sorted in cell order before a step, the random
+  // force's drift removed and the health checked after one (step counts only: the state stays
+  // bitwise independent of wall time and of where a run was resumed)
+  Trigger sort_trigger_, drift_trigger_, health_trigger_;
   std::uint64_t order_generation_ = 0;
   std::vector<std::uint32_t> last_order_;
   /// sort_particles()'s buffers, kept between sorts: at 10⁶ particles fresh pages for them
