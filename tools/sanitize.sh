@@ -13,8 +13,9 @@ dir=${GS_ASAN_DIR:-build-asan}
 # counted before OMP_NUM_THREADS is set below: GNU nproc honours it
 jobs=${GS_JOBS:-$(nproc)}
 labels="core|geometry|integrate|scene|broadphase|contact|force|analysis|models|sim|drive|measure|render|output|app"
-# each of these runs whole simulations for tens of seconds, or starts MPI or several threads
-slow="KillResume|^Resume\.|Study|SweepMpi|Threads|ThreadCount|TappingCli|RfmAnalyze|Pile|RunAhead|Demo"
+# each of these runs whole simulations for tens of seconds (Executors: every integrator on three
+# scenes, 1 and 2 threads), or starts MPI or several threads
+slow="KillResume|^Resume\.|Study|SweepMpi|Threads|ThreadCount|TappingCli|RfmAnalyze|Pile|RunAhead|Demo|Executors"
 exclude=(-E "$slow")
 if [ "${1:-}" = "--all" ]; then
   shift
