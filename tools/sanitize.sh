@@ -14,8 +14,10 @@ dir=${GS_ASAN_DIR:-build-asan}
 jobs=${GS_JOBS:-$(nproc)}
 labels="core|geometry|integrate|scene|broadphase|contact|force|analysis|models|sim|drive|measure|render|output|app"
 # each of these runs whole simulations for tens of seconds (Executors: every integrator on three
-# scenes, 1 and 2 threads), or starts MPI or several threads
+# scenes, 1 and 2 threads; RunDirLock.AnalysisNever…: every analysis command against every
+# protected path; Quench.Off…: whole tapping runs), or starts MPI or several threads
 slow="KillResume|^Resume\.|Study|SweepMpi|Threads|ThreadCount|TappingCli|RfmAnalyze|Pile|RunAhead|Demo|Executors"
+slow+="|RunDirLock.AnalysisNeverWrites|Quench.OffOrNeverArmed"
 exclude=(-E "$slow")
 if [ "${1:-}" = "--all" ]; then
   shift
