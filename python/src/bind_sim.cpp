@@ -278,7 +278,8 @@ void bind_scene_sim(py::module_& m) {
           "theta",
           [](py::object self) { return view(self, self.cast<PySim&>().sim->world().s.th); })
       .def_property_readonly(
-          "omega", [](py::object self) { return view(self, self.cast<PySim&>().sim->world().s.w); })
+          "omega",
+          [](py::object self) { return view(self, self.cast<PySim&>().sim->world().s.omega); })
       .def_property_readonly(
           "species",
           [](py::object self) { return view(self, self.cast<PySim&>().sim->world().sp); })

@@ -149,8 +149,8 @@ bool ContactModel::polygon_pair(const World& w, PairKey key, const ContactSet& c
 
   // relative velocity of i against j at the contact point
   const Vec2 ri_s = g.s - xi;
-  Vec2 vrel = Vec2{w.s.vx[i], w.s.vy[i]} + cross(w.s.w[i], ri_s);
-  if (!wall) vrel -= Vec2{w.s.vx[j], w.s.vy[j]} + cross(w.s.w[j], g.s - xj);
+  Vec2 vrel = Vec2{w.s.vx[i], w.s.vy[i]} + cross(w.s.omega[i], ri_s);
+  if (!wall) vrel -= Vec2{w.s.vx[j], w.s.vy[j]} + cross(w.s.omega[j], g.s - xj);
   const Vec2 t = perp(g.n);
   const double vn = dot(vrel, g.n), vt = dot(vrel, t);
 
@@ -167,7 +167,7 @@ bool ContactModel::polygon_pair(const World& w, PairKey key, const ContactSet& c
   // rotation, ∫ x·(γ√(E m⊥)/l)·ω_rel·x dx = γ√(E m⊥)·L³/(12 l)·ω_rel (only while pressing)
   double couple = 0.0;
   if (rocking_ && fn > 0.0) {
-    const double w_rel = w.s.w[i] - (wall ? 0.0 : w.s.w[j]);
+    const double w_rel = w.s.omega[i] - (wall ? 0.0 : w.s.omega[j]);
     couple = pc.damp_n * g.chord * g.chord * g.chord / (12.0 * l) * w_rel;
   }
   // j gets +fn·n + ft·t, i the opposite; torques about each centre

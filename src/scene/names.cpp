@@ -6,10 +6,10 @@ namespace gs {
 namespace {
 constexpr EnumName<ShapeKind> kShape[] = {{"polygon", ShapeKind::Polygon},
                                           {"disk", ShapeKind::Disk}};
-constexpr EnumName<ModelKind> kModel[] = {{"P", ModelKind::P},
-                                          {"S", ModelKind::S},
-                                          {"polygon_dem", ModelKind::P},
-                                          {"soft_disk", ModelKind::S}};
+constexpr EnumName<ModelKind> kModel[] = {{"P", ModelKind::Polygon},
+                                          {"S", ModelKind::Disk},
+                                          {"polygon_dem", ModelKind::Polygon},
+                                          {"soft_disk", ModelKind::Disk}};
 constexpr EnumName<BoxKind> kBox[] = {
     {"walls", BoxKind::Walls}, {"periodic", BoxKind::Periodic}, {"ring", BoxKind::Ring1D}};
 constexpr EnumName<PlacementKind> kPlacement[] = {{"loose_column", PlacementKind::LooseColumn},

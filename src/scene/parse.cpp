@@ -50,7 +50,7 @@ void read_model(const Ctx& ctx, const TableReader& top, SceneSpec& s) {
   TableReader r(
       ctx, table_or_empty(sub_table(top, "model")), "model",
       {"kind", "hdot_finite_difference", "rocking_damping", "clip_attractive", "rotation"});
-  s.model.kind = r.choice("kind", ModelKind::P);
+  s.model.kind = r.choice("kind", ModelKind::Polygon);
   s.model.hdot_finite_difference = r.boolean("hdot_finite_difference", false);
   s.model.rocking_damping = r.boolean("rocking_damping", true);
   s.model.clip_attractive = r.boolean("clip_attractive", false);
@@ -132,9 +132,9 @@ std::vector<SpeciesRead> read_species(const Ctx& ctx, const TableReader& top, Sc
         r.fail("name", "duplicate species name " + quote(sp.name) + " (first defined at line " +
                            std::to_string(s.species[j].line) + ")");
     // shape: Model S is soft disks only, so its default is "disk"
-    ShapeKind def_shape = s.model.kind == ModelKind::S ? ShapeKind::Disk : ShapeKind::Polygon;
+    ShapeKind def_shape = s.model.kind == ModelKind::Disk ? ShapeKind::Disk : ShapeKind::Polygon;
     sp.shape = r.choice("shape", def_shape);
-    if (s.model.kind == ModelKind::S && sp.shape != ShapeKind::Disk)
+    if (s.model.kind == ModelKind::Disk && sp.shape != ShapeKind::Disk)
       r.fail("shape", "model S (soft disks, docs/physics.md §3) needs shape = \"disk\"");
     // sides: regular n-gons with 3..64 sides, polygons only
     if (sp.shape == ShapeKind::Disk && r.has("sides"))
@@ -305,13 +305,13 @@ void read_preparation(const Ctx& ctx, const TableReader& top, SceneSpec& s,
 void read_integrator(const Ctx& ctx, const TableReader& top, SceneSpec& s) {
   TableReader r(ctx, table_or_empty(sub_table(top, "integrator")), "integrator",
                 {"kind", "dt", "broad_phase", "sort_every"});
-  bool soft = s.model.kind == ModelKind::S;
+  bool soft = s.model.kind == ModelKind::Disk;
   s.integrator.kind =
       r.choice("kind", soft ? IntegratorKind::VelocityVerlet : IntegratorKind::Gear6);
   s.integrator.dt = r.number("dt", soft ? 1e-6 : 5e-5, Range::positive());
   s.integrator.broad_phase = r.choice("broad_phase", BroadPhaseKind::Auto);
   s.integrator.sort_every = static_cast<int>(r.integer("sort_every", -1, -1, kIntMax));
-  if (s.integrator.sort_every > 0 && s.model.kind == ModelKind::P)
+  if (s.integrator.sort_every > 0 && s.model.kind == ModelKind::Polygon)
     r.fail("sort_every",
            "spatial sorting is for disk scenes (Model S); polygon contacts keep "
            "a directed history. Use 0 or -1 (auto)");

@@ -14,8 +14,8 @@ namespace gs {
 
 enum class ShapeKind : std::uint8_t { Disk, Polygon };
 enum class ModelKind : std::uint8_t {
-  P,  ///< polygon DEM: overlap-area normal force + Cundall–Strack (docs/physics.md §2)
-  S,  ///< soft disks: linear spring–dashpot (docs/physics.md §3)
+  Polygon,  ///< "P": polygon DEM, overlap-area normal force + Cundall–Strack (docs/physics.md §2)
+  Disk,     ///< "S": soft disks, linear spring–dashpot (docs/physics.md §3)
 };
 enum class BoxKind : std::uint8_t {
   Walls,     ///< closed box of wall rectangles (optionally without lid)
@@ -96,7 +96,7 @@ struct PreparationSpec {
 };
 
 struct ModelSpec {
-  ModelKind kind = ModelKind::P;
+  ModelKind kind = ModelKind::Polygon;
   bool hdot_finite_difference = false;  ///< Model P: ḣ_eff by finite difference (else analytic)
   /// Model P: spread the normal dashpot along the contact line, so it also damps relative
   /// rotation (a couple γ√(E m⊥)·L³/(12 l)·ω_rel); the paper's point dashpot leaves rocking

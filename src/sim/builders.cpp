@@ -54,7 +54,7 @@ SceneSpec two_body(ModelKind model, ShapeKind shape, double radius, double mass,
 SceneSpec decagon_pile(int n, double width, double height, std::uint64_t seed) {
   SceneSpec s;
   s.name = "decagon_pile";
-  s.model.kind = ModelKind::P;
+  s.model.kind = ModelKind::Polygon;
   s.materials = {paper_material()};
   const int big = static_cast<int>(std::lround(n * 544.0 / 1184.0));
   SpeciesSpec b;
@@ -82,7 +82,7 @@ SceneSpec decagon_pile(int n, double width, double height, std::uint64_t seed) {
 SceneSpec disk_gas(int n, double phi, double eps_n, double eps_t, std::uint64_t seed) {
   SceneSpec s;
   s.name = "disk_gas";
-  s.model.kind = ModelKind::S;
+  s.model.kind = ModelKind::Disk;
   s.model.rotation = false;
   s.materials = {disk_material(eps_n, eps_t)};
   SpeciesSpec d;

@@ -24,7 +24,7 @@ std::string encode_checkpoint(const Simulation& sim, const CheckpointExtras& ext
   p.u64(w.size());
   p.i32s(w.sp);
   for (const auto* v : {&w.radius, &w.mass, &w.inv_mass, &w.inv_inertia, &s.x, &s.y, &s.th, &s.vx,
-                        &s.vy, &s.w, &s.ax, &s.ay, &s.aw})
+                        &s.vy, &s.omega, &s.ax, &s.ay, &s.alpha})
     p.f64s(*v);
   p.i32s(s.wrap_x);
   p.i32s(s.wrap_y);
@@ -79,8 +79,8 @@ Simulation restore_simulation(const Checkpoint& c) {
       throw InputError(
           c.path, "",
           "particle " + std::to_string(i) + " has unknown species " + std::to_string(c.sp[i]));
-    for (const auto* v : {&c.s.x, &c.s.y, &c.s.th, &c.s.vx, &c.s.vy, &c.s.w, &c.s.ax, &c.s.ay,
-                          &c.s.aw, &c.radius, &c.mass, &c.inv_mass, &c.inv_inertia})
+    for (const auto* v : {&c.s.x, &c.s.y, &c.s.th, &c.s.vx, &c.s.vy, &c.s.omega, &c.s.ax, &c.s.ay,
+                          &c.s.alpha, &c.radius, &c.mass, &c.inv_mass, &c.inv_inertia})
       if (!std::isfinite((*v)[i]))
         throw InputError(c.path, "", "particle " + std::to_string(i) + " has a non-finite value");
     w.add_particle(c.sp[i], {c.s.x[i], c.s.y[i]}, c.s.th[i]);
@@ -130,7 +130,7 @@ void load_checkpoint_history(Simulation& sim, const Checkpoint& c, bool degenera
   State& s = sim.world().s;
   s.ax = c.s.ax;
   s.ay = c.s.ay;
-  s.aw = c.s.aw;
+  s.alpha = c.s.alpha;
   sim.integrator().load(c.integ);
   ContactSet cs;
   cs.keys = c.keys;

@@ -63,7 +63,7 @@ Checkpoint decode_checkpoint(std::string_view bytes, const std::string& name) {
   const std::size_t n = r.count(kParticleBytes + (version >= 2 ? 4 : 0), "particle");
   r.i32s(c.sp, n, "species indices");
   for (auto* v : {&c.radius, &c.mass, &c.inv_mass, &c.inv_inertia, &s.x, &s.y, &s.th, &s.vx, &s.vy,
-                  &s.w, &s.ax, &s.ay, &s.aw})
+                  &s.omega, &s.ax, &s.ay, &s.alpha})
     r.f64s(*v, n, "particle arrays");
   r.i32s(s.wrap_x, n, "wrap counts");
   r.i32s(s.wrap_y, n, "wrap counts");

@@ -38,7 +38,7 @@ SavedState from_state_rows(const std::string& path) {
   st.th = std::move(r.th);
   st.vx = std::move(r.vx);
   st.vy = std::move(r.vy);
-  st.w = std::move(r.w);
+  st.omega = std::move(r.omega);
   return st;
 }
 
@@ -60,7 +60,7 @@ SavedState from_checkpoint(Checkpoint c) {
   st.th = c.s.th;
   st.vx = c.s.vx;
   st.vy = c.s.vy;
-  st.w = c.s.w;
+  st.omega = c.s.omega;
   st.checkpoint = std::move(c);
   return st;
 }
@@ -153,7 +153,7 @@ void fit_scene_to_state(SceneSpec& scene, const SavedState& st) {
     }
   }
   for (std::size_t i = 0; i < st.size(); ++i)
-    for (double v : {st.th[i], st.vx[i], st.vy[i], st.w[i]})
+    for (double v : {st.th[i], st.vx[i], st.vy[i], st.omega[i]})
       if (!std::isfinite(v))
         throw InputError(where, kKey,
                          "the saved state's grain at " + st.where[i] + " has a non-finite value");
@@ -164,7 +164,7 @@ void place_saved_state(World& w, const SavedState& st) {
   for (std::size_t i = 0; i < st.size(); ++i) {
     int k = 0;
     while (w.species[static_cast<std::size_t>(k)].name != st.species[i]) ++k;
-    w.add_particle(k, {st.x[i], st.y[i]}, st.th[i], {st.vx[i], st.vy[i]}, st.w[i]);
+    w.add_particle(k, {st.x[i], st.y[i]}, st.th[i], {st.vx[i], st.vy[i]}, st.omega[i]);
   }
   if (!st.checkpoint) return;
   // slots keep the checkpoint's labels and periodic wrap counts

@@ -18,7 +18,7 @@ struct SavedState {
   std::string path;                  ///< the file read (a run directory resolved)
   std::vector<std::string> species;  ///< species name of each grain
   std::vector<std::string> where;    ///< "file:line" (state file) or "file" of each grain
-  std::vector<double> x, y, th, vx, vy, w;
+  std::vector<double> x, y, th, vx, vy, omega;
   std::optional<Checkpoint> checkpoint;  ///< set when read from a checkpoint
   std::size_t size() const { return x.size(); }
 };

@@ -88,7 +88,7 @@ std::vector<Channel> Simulation::channels() {
   State& s = w_.s;
   std::vector<Channel> ch{{s.x, s.vx, s.ax}};
   if (w_.box != BoxKind::Ring1D) ch.push_back({s.y, s.vy, s.ay});
-  if (w_.rotation) ch.push_back({s.th, s.w, s.aw});
+  if (w_.rotation) ch.push_back({s.th, s.omega, s.alpha});
   return ch;
 }
 
@@ -181,7 +181,7 @@ void Simulation::zero_velocities() {
   State& s = w_.s;
   std::fill(s.vx.begin(), s.vx.end(), 0.0);
   std::fill(s.vy.begin(), s.vy.end(), 0.0);
-  std::fill(s.w.begin(), s.w.end(), 0.0);
+  std::fill(s.omega.begin(), s.omega.end(), 0.0);
 }
 
 // non-finite state, overlaps beyond the scene threshold, or energy growing without driving
@@ -190,7 +190,7 @@ void Simulation::check_finite() const {
   const State& s = w_.s;
   for (std::size_t i = 0; i < w_.size(); ++i) {
     if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i]) || !std::isfinite(s.vx[i]) ||
-        !std::isfinite(s.vy[i]) || !std::isfinite(s.w[i])) {
+        !std::isfinite(s.vy[i]) || !std::isfinite(s.omega[i])) {
       std::ostringstream m;
       m << "non-finite position or velocity of particle " << w_.id[i] << " at step " << s.step
         << " (t = " << s.t << " s); ";

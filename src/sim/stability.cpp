@@ -81,7 +81,7 @@ std::string short_number(double v) {
 // that advice about dt names what to change when no practical dt can resolve the contact
 std::string contact_time_keys(const SceneSpec& scene) {
   std::ostringstream m;
-  const bool p = scene.model.kind == ModelKind::P;
+  const bool p = scene.model.kind == ModelKind::Polygon;
   const MaterialSpec* stiff = nullptr;
   for (const auto& mat : scene.materials)
     if (!stiff || (p ? mat.E > stiff->E : mat.ks > stiff->ks)) stiff = &mat;

@@ -84,7 +84,7 @@ StateRows parse_state_rows(const std::string& text, const std::string& path, lon
     r.th.push_back(v[2]);
     r.vx.push_back(v[3]);
     r.vy.push_back(v[4]);
-    r.w.push_back(v[5]);
+    r.omega.push_back(v[5]);
   }
   if (!header)
     throw InputError(path, "", std::string("not a gransim state file: no header ") + kHeader);
@@ -110,7 +110,7 @@ void place_rows(World& w, const StateRows& r, const std::string& path) {
     if (k < 0)
       throw InputError(path + ":" + std::to_string(r.line[i]), "species",
                        "column 2: unknown species '" + r.species[i] + "' for this scene");
-    fresh.add_particle(k, {r.x[i], r.y[i]}, r.th[i], {r.vx[i], r.vy[i]}, r.w[i]);
+    fresh.add_particle(k, {r.x[i], r.y[i]}, r.th[i], {r.vx[i], r.vy[i]}, r.omega[i]);
   }
   fresh.s.t = r.t;
   fresh.s.step = r.step;
@@ -134,7 +134,7 @@ void write_state_file(const World& w, const std::string& path) {
   for (std::size_t k = 0; k < w.size(); ++k) {
     const std::size_t i = slot.size() == w.size() ? slot[k] : k;
     o << k << ',' << w.species[w.sp[i]].name;
-    for (double v : {w.s.x[i], w.s.y[i], w.s.th[i], w.s.vx[i], w.s.vy[i], w.s.w[i]}) {
+    for (double v : {w.s.x[i], w.s.y[i], w.s.th[i], w.s.vx[i], w.s.vy[i], w.s.omega[i]}) {
       std::snprintf(buf, sizeof buf, ",%.17g", v);
       o << buf;
     }

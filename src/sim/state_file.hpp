@@ -15,7 +15,7 @@ namespace gs {
 struct StateRows {
   std::vector<std::string> species;  ///< species name of each grain
   std::vector<int> line;             ///< line of each grain in the file, for messages
-  std::vector<double> x, y, th, vx, vy, w;
+  std::vector<double> x, y, th, vx, vy, omega;
   double t = 0.0;         ///< simulated time of the state (0 when not recorded), s
   std::int64_t step = 0;  ///< step of the state (0 when not recorded)
   std::size_t size() const { return x.size(); }

@@ -19,7 +19,7 @@ namespace {
 struct AccelArrays {
   const double *fx, *fy, *tq, *inv_mass, *inv_inertia, *mass;
   const std::uint64_t* keys;
-  double *ax, *ay, *aw;
+  double *ax, *ay, *alpha;
   double *vx, *vy;      ///< the kick's velocities (fused)
   double c_new, c_old;  ///< the kick v += c_new·a_{n+1} − c_old·a_n, s (fused)
   double *qx, *qy;      ///< the positions the next step's prediction advances (ahead)
@@ -77,7 +77,7 @@ double accelerate(const AccelArrays& a, std::size_t b, std::size_t e) {
       }
       axo[i] = ax;
       if constexpr (!kRing) ayo[i] = ay;
-      if constexpr (kSpin) a.aw[i] = a.tq[i] * a.inv_inertia[i];
+      if constexpr (kSpin) a.alpha[i] = a.tq[i] * a.inv_inertia[i];
     }
   }
   return kick_sum;
@@ -237,7 +237,7 @@ AccelArrays accel_arrays(const StepParts& p, std::int64_t index, const KickForm&
           noise ? p.noise_keys.data() : nullptr,
           s.ax.data(),
           s.ay.data(),
-          s.aw.data(),
+          s.alpha.data(),
           s.vx.data(),
           s.vy.data(),
           form.new_frac * p.dt,

@@ -10,7 +10,7 @@
 namespace gs {
 
 void State::resize(std::size_t n) {
-  for (auto* v : {&x, &y, &th, &vx, &vy, &w, &ax, &ay, &aw}) v->resize(n, 0.0);
+  for (auto* v : {&x, &y, &th, &vx, &vy, &omega, &ax, &ay, &alpha}) v->resize(n, 0.0);
   wrap_x.resize(n, 0);
   wrap_y.resize(n, 0);
 }
@@ -48,12 +48,12 @@ void World::add_particle(int k, Vec2 pos, double theta, Vec2 vel, double omega) 
   s.th.push_back(theta);
   s.vx.push_back(vel.x);
   s.vy.push_back(vel.y);
-  s.w.push_back(omega);
+  s.omega.push_back(omega);
   s.ax.push_back(0.0);
   s.wrap_x.push_back(0);
   s.wrap_y.push_back(0);
   s.ay.push_back(0.0);
-  s.aw.push_back(0.0);
+  s.alpha.push_back(0.0);
 }
 
 void World::clear_particles() {
@@ -68,8 +68,8 @@ void World::clear_particles() {
 
 void World::permute(std::span<const std::uint32_t> perm, PermuteScratch& scratch) {
   if (perm.size() != size()) throw std::invalid_argument("World::permute: wrong size");
-  for (auto* v : {&radius, &mass, &inv_mass, &inv_inertia, &s.x, &s.y, &s.th, &s.vx, &s.vy, &s.w,
-                  &s.ax, &s.ay, &s.aw})
+  for (auto* v : {&radius, &mass, &inv_mass, &inv_inertia, &s.x, &s.y, &s.th, &s.vx, &s.vy,
+                  &s.omega, &s.ax, &s.ay, &s.alpha})
     gather_permuted(*v, perm, scratch.d);
   for (auto* v : {&sp, &s.wrap_x, &s.wrap_y}) gather_permuted(*v, perm, scratch.i);
   gather_permuted(id, perm, scratch.u);
@@ -85,7 +85,7 @@ double World::kinetic_energy() const {
   double e = 0.0;
   for (std::size_t i = 0; i < size(); ++i) {
     e += 0.5 * mass[i] * (s.vx[i] * s.vx[i] + s.vy[i] * s.vy[i]);
-    if (inv_inertia[i] > 0) e += 0.5 * s.w[i] * s.w[i] / inv_inertia[i];
+    if (inv_inertia[i] > 0) e += 0.5 * s.omega[i] * s.omega[i] / inv_inertia[i];
   }
   return e;
 }
@@ -157,13 +157,13 @@ World make_world(const SceneSpec& sc) {
   if (any_poly && any_disk)
     throw InputError(sc.path, "species",
                      "a scene mixes polygons and disks; use one shape kind per scene");
-  if (sc.model.kind == ModelKind::P && any_disk)
+  if (sc.model.kind == ModelKind::Polygon && any_disk)
     throw InputError(sc.path, "model.kind", "model P (polygon DEM) needs polygon species");
-  if (sc.model.kind == ModelKind::S && any_poly)
+  if (sc.model.kind == ModelKind::Disk && any_poly)
     throw InputError(sc.path, "model.kind", "model S (soft disks) needs disk species");
 
   // rotation only where torques can arise: polygon contacts are non-central
-  w.rotation = sc.model.kind == ModelKind::P && sc.model.rotation;
+  w.rotation = sc.model.kind == ModelKind::Polygon && sc.model.rotation;
 
   // box: walls as rectangles around [0,W]×[0,H], or a periodic cell
   w.wall_material = material_index(sc, sc.box.material);

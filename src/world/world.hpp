@@ -36,12 +36,12 @@ struct Wall {
 /// mutable particle state, structure of arrays; positions are never wrapped (periodic boxes
 /// use the minimum image), so displacements stay continuous for free paths and integrators
 struct State {
-  std::vector<double> x, y, th;     ///< position (m) and orientation (rad)
-  std::vector<double> vx, vy, w;    ///< velocity (m/s) and angular velocity (rad/s)
-  std::vector<double> ax, ay, aw;   ///< accelerations at the current state (m/s², rad/s²)
-  std::vector<int> wrap_x, wrap_y;  ///< periodic boxes: box lengths removed from x, y so far
-  double t = 0.0;                   ///< simulated time, s
-  std::int64_t step = 0;            ///< steps taken
+  std::vector<double> x, y, th;       ///< position (m) and orientation (rad)
+  std::vector<double> vx, vy, omega;  ///< velocity (m/s) and angular velocity ω (rad/s)
+  std::vector<double> ax, ay, alpha;  ///< accelerations at the current state (m/s², α rad/s²)
+  std::vector<int> wrap_x, wrap_y;    ///< periodic boxes: box lengths removed from x, y so far
+  double t = 0.0;                     ///< simulated time, s
+  std::int64_t step = 0;              ///< steps taken
   std::size_t size() const { return x.size(); }
   void resize(std::size_t n);
 };
@@ -72,7 +72,7 @@ struct World {
   double clock_origin = 0.0;
 
   std::size_t size() const { return s.size(); }
-  bool polygons() const { return scene.model.kind == ModelKind::P; }
+  bool polygons() const { return scene.model.kind == ModelKind::Polygon; }
   /// append a particle of species k at rest
   void add_particle(int k, Vec2 pos, double theta, Vec2 vel = {}, double omega = 0.0);
   /// remove every particle (constants, species, walls and box stay)

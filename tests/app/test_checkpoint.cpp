@@ -27,7 +27,7 @@ std::uint64_t state_hash(const World& w) {
     for (std::size_t k = 0; k < n; ++k) h = (h ^ p[k]) * 1099511628211ULL;
   };
   for (const auto* v :
-       {&w.s.x, &w.s.y, &w.s.th, &w.s.vx, &w.s.vy, &w.s.w, &w.s.ax, &w.s.ay, &w.s.aw})
+       {&w.s.x, &w.s.y, &w.s.th, &w.s.vx, &w.s.vy, &w.s.omega, &w.s.ax, &w.s.ay, &w.s.alpha})
     mix(v->data(), v->size() * sizeof(double));
   mix(w.s.wrap_x.data(), w.s.wrap_x.size() * sizeof(int));
   mix(&w.s.t, sizeof w.s.t);

@@ -175,7 +175,7 @@ TEST(RenderCommand, TrajectoryParsesBackToTheFinalState) {
     EXPECT_NEAR(last.theta[i], w.s.th[i], 1e-9);
     EXPECT_NEAR(last.vy[i], w.s.vy[i], 1e-7);
     EXPECT_NEAR(last.speed[i], std::hypot(w.s.vx[i], w.s.vy[i]), 1e-7);
-    EXPECT_NEAR(last.omega[i], w.s.w[i], 1e-7 * (1.0 + std::abs(w.s.w[i])));
+    EXPECT_NEAR(last.omega[i], w.s.omega[i], 1e-7 * (1.0 + std::abs(w.s.omega[i])));
     EXPECT_EQ(last.radius[i], 0.008);
     EXPECT_EQ(last.species[i], "g");  // the name column, not the symbol
   }

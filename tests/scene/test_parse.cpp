@@ -23,7 +23,7 @@ TEST(SceneParse, FullSceneGivesTheWrittenValues) {
   EXPECT_EQ(s.name, "pile");
   EXPECT_EQ(s.description, "bidisperse \"decagons\"\nsecond line");
   EXPECT_EQ(s.duration, 2.5);
-  EXPECT_EQ(s.model.kind, ModelKind::P);  // via the alias "polygon_dem"
+  EXPECT_EQ(s.model.kind, ModelKind::Polygon);  // via the alias "polygon_dem"
   EXPECT_TRUE(s.model.hdot_finite_difference);
   EXPECT_TRUE(s.model.clip_attractive);
   EXPECT_FALSE(s.model.rotation);
@@ -146,7 +146,7 @@ width = 0.48
   SceneSpec s = parse_scene_string(text, "scenes/minimal.toml");
   EXPECT_EQ(s.name, "minimal");  // the file's stem
   EXPECT_EQ(s.duration, 1.0);
-  EXPECT_EQ(s.model.kind, ModelKind::P);
+  EXPECT_EQ(s.model.kind, ModelKind::Polygon);
   ASSERT_EQ(s.materials.size(), 1u);
   EXPECT_EQ(s.materials[0].name, "default");
   EXPECT_EQ(s.materials[0].E, 1000.0);  // paper parameters (docs/physics.md §2.2)
@@ -195,7 +195,7 @@ kind = "periodic"
 width = 0.2
 )";
   SceneSpec s = parse_scene_string(text, "rfm.toml");
-  EXPECT_EQ(s.model.kind, ModelKind::S);
+  EXPECT_EQ(s.model.kind, ModelKind::Disk);
   EXPECT_EQ(s.species[0].shape, ShapeKind::Disk);
   EXPECT_EQ(s.integrator.kind, IntegratorKind::VelocityVerlet);
   EXPECT_EQ(s.integrator.dt, 1e-6);
@@ -375,8 +375,8 @@ TEST(SceneNames, CanonicalNamesRoundTrip) {
     EXPECT_EQ(scene_enum<DriveKind>(scene_name(n.value)), n.value);
   for (auto n : enum_names(IntegratorKind{}))
     EXPECT_EQ(scene_enum<IntegratorKind>(scene_name(n.value)), n.value);
-  EXPECT_EQ(scene_name(ModelKind::S), "S");
-  EXPECT_EQ(scene_enum<ModelKind>("soft_disk"), ModelKind::S);
+  EXPECT_EQ(scene_name(ModelKind::Disk), "S");
+  EXPECT_EQ(scene_enum<ModelKind>("soft_disk"), ModelKind::Disk);
   EXPECT_FALSE(scene_enum<ModelKind>("s").has_value());
 }
 

@@ -25,7 +25,7 @@ struct Outcome {
 // two decagons approach head-on along x; theta sets which faces meet
 Outcome collide(double speed, double theta1, double theta2, bool finite_difference,
                 IntegratorKind integ = IntegratorKind::Gear6, double dt = 1e-5) {
-  SceneSpec s = build::two_body(ModelKind::P, ShapeKind::Polygon, kR, grain_mass(), 10,
+  SceneSpec s = build::two_body(ModelKind::Polygon, ShapeKind::Polygon, kR, grain_mass(), 10,
                                 build::paper_material(), integ, dt);
   s.model.hdot_finite_difference = finite_difference;
   TestWorld tw(s);

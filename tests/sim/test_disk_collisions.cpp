@@ -31,7 +31,7 @@ TEST_P(DiskCollision, HeadOnRealisesTargetRestitution) {
   const auto [integ, eps] = GetParam();
   const double m12 = kM / 2;
   const double tc = law::contact_time(kKs, m12, law::gamma_normal(eps, m12, kKs));
-  TestWorld tw(build::two_body(ModelKind::S, ShapeKind::Disk, kR, kM, 0,
+  TestWorld tw(build::two_body(ModelKind::Disk, ShapeKind::Disk, kR, kM, 0,
                                build::disk_material(eps, 1.0, kKs), integ, tc / 200));
   // start just apart so the flight is short: gap 1e-3 along x
   tw.particle(0.0, 0.0, 1.0, 0.0).particle(2 * kR + 1e-3, 0.0, 0.0, 0.0);
@@ -85,7 +85,7 @@ TEST_P(ObliqueCollision, LosesPredictedEnergyFraction) {
   const Oblique c = table[sim - 2];
   const double m12 = kM / 2;
   const double tc = law::contact_time(kKs, m12, law::gamma_normal(eps, m12, kKs));
-  TestWorld tw(build::two_body(ModelKind::S, ShapeKind::Disk, kR, kM, 0,
+  TestWorld tw(build::two_body(ModelKind::Disk, ShapeKind::Disk, kR, kM, 0,
                                build::disk_material(eps, eps, kKs), IntegratorKind::VelocityVerlet,
                                tc / 200));
   tw.particle(0, 0, c.v1.x, c.v1.y).particle(c.x2.x, c.x2.y, 0, 0);

@@ -33,8 +33,8 @@ void expect_same_state(const Simulation& a, const Simulation& b, const std::stri
   const State& p = a.world().s;
   const State& q = b.world().s;
   EXPECT_EQ(p.step, q.step) << what;
-  for (auto m : {&State::x, &State::y, &State::th, &State::vx, &State::vy, &State::w, &State::ax,
-                 &State::ay, &State::aw})
+  for (auto m : {&State::x, &State::y, &State::th, &State::vx, &State::vy, &State::omega,
+                 &State::ax, &State::ay, &State::alpha})
     EXPECT_TRUE(same_bits(p.*m, q.*m)) << what;
   EXPECT_EQ(a.world().id, b.world().id) << what;
   EXPECT_EQ(a.contacts().keys, b.contacts().keys) << what;

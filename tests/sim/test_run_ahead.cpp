@@ -217,7 +217,7 @@ TEST(RunAhead, GearSixPredictsByRange) {
     }
     expect_same_state(a, b);
     EXPECT_TRUE(same_bits(a.world().s.th, b.world().s.th));
-    EXPECT_TRUE(same_bits(a.world().s.w, b.world().s.w));
+    EXPECT_TRUE(same_bits(a.world().s.omega, b.world().s.omega));
     EXPECT_EQ(a.integrator().save(), b.integrator().save());
     EXPECT_EQ(a.steps_predicted_ahead(), 29u) << paper;
     if (paper) {

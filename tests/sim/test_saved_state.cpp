@@ -70,7 +70,7 @@ TEST(SavedState, StateFileSpringsStartAtZeroCheckpointKeepsThem) {
   sim.run(200);
   b.run(200);
   EXPECT_EQ(b.world().s.x, sim.world().s.x);
-  EXPECT_EQ(b.world().s.w, sim.world().s.w);
+  EXPECT_EQ(b.world().s.omega, sim.world().s.omega);
   fs::remove_all(dir);
 }
 

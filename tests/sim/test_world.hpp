@@ -29,7 +29,7 @@ struct Threads {
 /// FNV-1a over the bytes of the state arrays (positions, angles, velocities)
 inline std::uint64_t state_hash(const World& w) {
   std::uint64_t h = 1469598103934665603ULL;
-  for (const auto* v : {&w.s.x, &w.s.y, &w.s.th, &w.s.vx, &w.s.vy, &w.s.w}) {
+  for (const auto* v : {&w.s.x, &w.s.y, &w.s.th, &w.s.vx, &w.s.vy, &w.s.omega}) {
     const auto* p = reinterpret_cast<const unsigned char*>(v->data());
     for (std::size_t k = 0; k < v->size() * sizeof(double); ++k) h = (h ^ p[k]) * 1099511628211ULL;
   }

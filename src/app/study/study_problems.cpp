@@ -27,14 +27,14 @@ SceneSpec problem_scene(const StudySizes& z, const StudyCase& c) {
   SceneSpec s;
   switch (c.problem) {
     case StudyProblem::TwoDisk:
-      s = build::two_body(ModelKind::S, ShapeKind::Disk, kDiskR, kDiskM, 0,
+      s = build::two_body(ModelKind::Disk, ShapeKind::Disk, kDiskR, kDiskM, 0,
                           build::disk_material(z.disk_eps, 1.0, kDiskKs), c.integrator, 1e-6);
       s.prep.particles = {{"a", 0, 0, 0, z.disk_speed, 0, 0},
                           {"a", 2 * kDiskR + kDiskGap, 0, 0, 0, 0, 0}};
       s.health.check_every = 1;
       break;
     case StudyProblem::TwoDecagon:
-      s = build::two_body(ModelKind::P, ShapeKind::Polygon, kDecR, ngon_area(10, kDecR), 10,
+      s = build::two_body(ModelKind::Polygon, ShapeKind::Polygon, kDecR, ngon_area(10, kDecR), 10,
                           build::paper_material(), c.integrator, 1e-6);
       // faces meeting flat: a vertex sits at θ, so π/10 presents a face
       s.prep.particles = {{"a", 0, 0, M_PI / 10, z.decagon_speed / 2, 0, 0},

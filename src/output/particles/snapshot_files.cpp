@@ -108,7 +108,7 @@ void write_vtp(const std::string& path, const World& w, const ContactSet& c, lon
          "format=\"ascii\">\n         ";
   for (std::size_t i : order) out << ' ' << w.s.vx[i] << ' ' << w.s.vy[i] << " 0";
   out << "\n        </DataArray>\n";
-  cell_array(out, "Float64", "omega", 1, order, [&](std::size_t i) { return w.s.w[i]; });
+  cell_array(out, "Float64", "omega", 1, order, [&](std::size_t i) { return w.s.omega[i]; });
   cell_array(out, "Float64", "speed", 1, order,
              [&](std::size_t i) { return std::hypot(w.s.vx[i], w.s.vy[i]); });
   cell_array(out, "Int32", "contacts", 1, order,

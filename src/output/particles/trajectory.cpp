@@ -71,7 +71,7 @@ void write_trajectory_frame(std::ostream& out, const World& w, const ContactSet*
         " %.10g %.10g 0 %s %zu %zu %.10g %.10g 0 %.10g %.10g 0 0 %.10g %.10g 0 0 %.10g %.10g "
         "%d %d\n",
         w.s.x[i], w.s.y[i], names[sp].c_str(), sp, label, vx, vy, w.radius[i], th,
-        std::sin(0.5 * th), std::cos(0.5 * th), w.s.w[i], std::hypot(vx, vy),
+        std::sin(0.5 * th), std::cos(0.5 * th), w.s.omega[i], std::hypot(vx, vy),
         k.shape == ShapeKind::Polygon ? k.sides : 0, static_cast<int>(z[i]));
     out << species_symbol(sp) << buf;
   }
