@@ -28,10 +28,20 @@ constexpr std::string_view stage_name(Stage s) {
   return names[static_cast<std::size_t>(s)];
 }
 
-/// wall time spent in each stage, summed over the steps since the profile was cleared
+/// wall time spent in each stage, summed over the steps since the profile was cleared.
+/// Short steps are sampled: a step's eight clock reads cost about as much as a 1D ring's
+/// step does in a few per cent, so where steps are shorter than kTimedStepMin one step in
+/// `stride` is timed and counts for `stride` (an unbiased estimate of the sum). The timed steps
+/// are picked by a hash of the step index, so that no period of the run (sorts, health
+/// checks, taps) lines up with them.
 struct StepProfile {
   std::array<double, kStageCount> seconds{};  ///< per stage, s
-  std::uint64_t steps = 0;
+  std::uint64_t steps = 0;                    ///< steps taken
+  std::uint64_t timed = 0;                    ///< of them timed
+  std::uint32_t stride = 1;                   ///< one step in `stride` is timed (a power of 2)
+  /// a step shorter than this is sampled (the clock reads stay under ~0.5 % of the time), s
+  static constexpr double kTimedStepMin = 50e-6;
+  static constexpr std::uint32_t kMaxStride = 64;
   double& operator[](Stage s) { return seconds[static_cast<std::size_t>(s)]; }
   double operator[](Stage s) const { return seconds[static_cast<std::size_t>(s)]; }
   double total() const {
@@ -39,23 +49,56 @@ struct StepProfile {
     for (double s : seconds) t += s;
     return t;
   }
+  /// is step `step` timed?
+  bool times(std::int64_t step) const {
+    return (mix(static_cast<std::uint64_t>(step)) & (stride - 1)) == 0;
+  }
+  /// after a timed step of `seconds`: the stride that brings stride × step to kTimedStepMin
+  void adapt(double step_seconds) {
+    std::uint32_t k = 1;
+    while (k < kMaxStride && static_cast<double>(k) * step_seconds < kTimedStepMin) k *= 2;
+    stride = k;
+  }
+
+ private:
+  // splitmix64's finaliser: neighbouring step indices give unrelated bits
+  static std::uint64_t mix(std::uint64_t z) {
+    z += 0x9e3779b97f4a7c15ULL;
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return z ^ (z >> 31);
+  }
 };
 
 /// laps of one step: lap(s) charges the time since the last lap (or since construction) to s,
-/// so the stages' times add up to the step's wall time
+/// so the stages' times add up to the step's wall time. A step the profile does not time
+/// (StepProfile::times) reads no clock
 class StageClock {
  public:
-  explicit StageClock(StepProfile& p) : profile_(&p), last_(Clock::now()) {}
+  StageClock(StepProfile& p, std::int64_t step)
+      : profile_(p.times(step) ? &p : nullptr), weight_(p.stride) {
+    if (profile_ != nullptr) first_ = last_ = Clock::now();
+  }
+  StageClock(const StageClock&) = delete;
+  StageClock& operator=(const StageClock&) = delete;
+  /// the step is over: count it, and after a timed one set the stride from its duration
+  ~StageClock() {
+    if (profile_ == nullptr) return;
+    ++profile_->timed;
+    profile_->adapt(std::chrono::duration<double>(last_ - first_).count());
+  }
   void lap(Stage s) {
+    if (profile_ == nullptr) return;
     const Clock::time_point t = Clock::now();
-    (*profile_)[s] += std::chrono::duration<double>(t - last_).count();
+    (*profile_)[s] += weight_ * std::chrono::duration<double>(t - last_).count();
     last_ = t;
   }
 
  private:
   using Clock = std::chrono::steady_clock;
   StepProfile* profile_;
-  Clock::time_point last_;
+  double weight_;
+  Clock::time_point first_, last_;
 };
 
 }  // namespace gs

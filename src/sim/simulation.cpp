@@ -139,7 +139,8 @@ bool Simulation::sorts_before(std::int64_t step) const {
 
 // one step, stage by stage; the stages' wall times go to profile()
 void Simulation::advance(bool then_predict) {
-  StageClock clock(profile_);
+  ++profile_.steps;
+  StageClock clock(profile_, w_.s.step);
   if (sorts_before(w_.s.step)) sort_particles();  // between steps: slots in cell order
   clock.lap(Stage::Health);
   // the step ends at t + Δt: the drive of that moment
@@ -170,7 +171,6 @@ void Simulation::advance(bool then_predict) {
     w_.rewrap();  // periodic: keep |x| within 32 box lengths (image shifts fit in 8 bits)
   }
   clock.lap(Stage::Health);
-  ++profile_.steps;
 }
 
 // every grain at rest where it is; the channels' velocities through the integrator (which keeps

@@ -87,6 +87,7 @@ void write_run_json(const RunSession& rs, int code, const std::string& failure, 
   for (std::size_t k = 0; k < kStageCount; ++k)
     prof[std::string(stage_name(static_cast<Stage>(k)))] = sim.profile().seconds[k];
   j["step_loop_s"] = rs.step_loop;
+  j["profile_timed_steps"] = sim.profile().timed;  // short steps are sampled (docs/architecture.md)
   // the resolved scene, one typed value per dotted key (docs/python.md)
   j["scene"] = scene_json(scene.resolved);
   write_file_atomic(rs.out + "/run.json",
@@ -103,8 +104,9 @@ void print_profile(const RunSession& rs) {
     std::fprintf(stderr, "%-14s %12.6f %6.1f%%\n", name.c_str(), p.seconds[k],
                  total > 0.0 ? 100.0 * p.seconds[k] / total : 0.0);
   }
-  std::fprintf(stderr, "%-14s %12.6f   (%llu steps; step loop %.6f s)\n", "total", total,
-               static_cast<unsigned long long>(p.steps), rs.step_loop);
+  std::fprintf(stderr, "%-14s %12.6f   (%llu steps, %llu of them timed; step loop %.6f s)\n",
+               "total", total, static_cast<unsigned long long>(p.steps),
+               static_cast<unsigned long long>(p.timed), rs.step_loop);
 }
 
 }  // namespace
