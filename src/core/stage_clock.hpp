@@ -42,6 +42,13 @@ struct StepProfile {
   /// a step shorter than this is sampled (the clock reads stay under ~0.5 % of the time), s
   static constexpr double kTimedStepMin = 50e-6;
   static constexpr std::uint32_t kMaxStride = 64;
+  double timed_step_min = kTimedStepMin;  ///< 0: every step timed
+  /// the sums back to zero, the sampling kept
+  void clear() {
+    const double m = timed_step_min;
+    *this = StepProfile{};
+    timed_step_min = m;
+  }
   double& operator[](Stage s) { return seconds[static_cast<std::size_t>(s)]; }
   double operator[](Stage s) const { return seconds[static_cast<std::size_t>(s)]; }
   double total() const {
@@ -53,10 +60,10 @@ struct StepProfile {
   bool times(std::int64_t step) const {
     return (mix(static_cast<std::uint64_t>(step)) & (stride - 1)) == 0;
   }
-  /// after a timed step of `seconds`: the stride that brings stride × step to kTimedStepMin
+  /// after a timed step of `seconds`: the stride that brings stride × step to timed_step_min
   void adapt(double step_seconds) {
     std::uint32_t k = 1;
-    while (k < kMaxStride && static_cast<double>(k) * step_seconds < kTimedStepMin) k *= 2;
+    while (k < kMaxStride && static_cast<double>(k) * step_seconds < timed_step_min) k *= 2;
     stride = k;
   }
 

@@ -93,7 +93,13 @@ class Simulation {
   std::uint64_t steps_predicted_ahead() const { return ahead_steps_; }
   /// wall time per stage of the steps so far (or since clear_profile())
   const StepProfile& profile() const { return profile_; }
-  void clear_profile() { profile_ = {}; }
+  void clear_profile() { profile_.clear(); }
+  /// steps shorter than `seconds` are sampled (StepProfile; by default 50 µs); 0: every step
+  /// is timed
+  void sample_steps_under(double seconds) {
+    profile_.timed_step_min = seconds;
+    profile_.stride = 1;
+  }
   /// does anything drive the system (gravity, pulses, noise)?
   bool driven() const;
   /// can the mechanical energy only decrease (no drive, or constant gravity)?

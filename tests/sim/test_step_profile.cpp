@@ -17,8 +17,10 @@ Simulation make_sim(const SceneSpec& s) {
   return Simulation(std::move(w));
 }
 
-// runs `steps` steps in runs of 10 and checks the profile against the wall time around them
+// runs `steps` steps in runs of 10, every step timed, and checks the profile against the wall
+// time around them
 void check_profile(Simulation& sim, int steps, const char* what) {
+  sim.sample_steps_under(0.0);
   sim.clear_profile();
   double wall = 0.0;
   for (int k = 0; k < steps; k += 10) {
@@ -41,6 +43,7 @@ void check_profile(Simulation& sim, int steps, const char* what) {
   // laps on one clock: the stages' sum is the steps' time, less the calls between them
   EXPECT_LE(p.total(), wall) << what;
   EXPECT_GT(p.total(), 0.9 * wall) << what;
+  EXPECT_EQ(p.timed, p.steps) << what;
 }
 
 TEST(StepProfile, EveryStageTimedAndTheSumIsTheStepsWallTime) {
@@ -53,6 +56,27 @@ TEST(StepProfile, EveryStageTimedAndTheSumIsTheStepsWallTime) {
   gas.drive.D = 1e-7;
   Simulation b = make_sim(gas);
   check_profile(b, 200, "gas");
+}
+
+// short steps are sampled (here every step counts as short): one in 64 timed, each counting
+// for 64, the weighted sum an estimate of the steps' wall time (bounds wide enough for a
+// preempted timed step; a weight left out would give 1/64 of it)
+TEST(StepProfile, ShortStepsAreSampledAndStillAddUpToTheWallTime) {
+  SceneSpec pile = build::decagon_pile(40, 0.2, 0.4, 1);
+  Simulation a = make_sim(pile);
+  a.run(100);
+  a.sample_steps_under(1.0);
+  a.clear_profile();
+  const int steps = 4000;
+  const auto t0 = std::chrono::steady_clock::now();
+  a.run(steps);
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const StepProfile& p = a.profile();
+  EXPECT_EQ(p.steps, static_cast<std::uint64_t>(steps));
+  EXPECT_LT(p.timed, p.steps / 16);
+  EXPECT_GT(p.timed, p.steps / 256);
+  EXPECT_GT(p.total(), 0.25 * wall);
+  EXPECT_LT(p.total(), 8.0 * wall);
 }
 
 TEST(StepProfile, NamesEveryStageOnce) {
