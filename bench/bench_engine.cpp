@@ -32,13 +32,14 @@ void BM_PileForceEvaluation(benchmark::State& st) {
   World w = settled_pile(IntegratorKind::Gear6);
   auto bp = make_broadphase(BroadPhaseKind::Box2DTree, w);
   ContactModel model(w);
+  ThreadTeam team;
   ContactSet cs;
   ForceBuffer f;
   std::vector<PairKey> cand;
   bp->update(w, cand);
   for (auto _ : st) {
     f.reset(w.size());
-    benchmark::DoNotOptimize(model.evaluate(w, cand, cs, f, 5e-5));
+    benchmark::DoNotOptimize(model.evaluate(w, cand, cs, f, 5e-5, team));
   }
   st.counters["contacts"] = static_cast<double>(cs.keys.size());
   st.counters["particles/s"] = benchmark::Counter(static_cast<double>(w.size()) * st.iterations(),

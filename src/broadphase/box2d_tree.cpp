@@ -16,7 +16,7 @@ class Box2DTree final : public BroadPhase {
   const char* name() const override { return "box2d_tree"; }
 
   using BroadPhase::update;
-  const std::vector<PairKey>& update(const World& w) override {
+  const std::vector<PairKey>& update(const World& w, const ThreadTeam&) override {
     std::vector<PairKey>& out = out_;
     const std::size_t n = w.size();
     if (!built_ || n != n_) build(w);

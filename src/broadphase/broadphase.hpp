@@ -8,6 +8,7 @@
 #include <memory>
 #include <vector>
 
+#include "core/team.hpp"
 #include "world/world.hpp"
 
 namespace gs {
@@ -38,8 +39,11 @@ class BroadPhase {
   virtual ~BroadPhase() = default;
   /// the candidate pairs of the current state, sorted ascending, no duplicates: every pair
   /// whose bounding circles (or circle and wall box) overlap is among them. The list stays
-  /// valid until the next call.
-  virtual const std::vector<PairKey>& update(const World& w) = 0;
+  /// valid until the next call. `team`: how its particle loops split among the threads (the
+  /// simulation's, as its other particle loops)
+  virtual const std::vector<PairKey>& update(const World& w, const ThreadTeam& team) = 0;
+  /// the same on equal shares (outside a simulation)
+  const std::vector<PairKey>& update(const World& w) { return update(w, ThreadTeam{}); }
   /// the same, copied into out
   void update(const World& w, std::vector<PairKey>& out) { out = update(w); }
   virtual const char* name() const = 0;

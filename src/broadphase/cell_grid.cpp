@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "broadphase/broadphase.hpp"
-#include "core/parallel.hpp"
+#include "core/team.hpp"
 
 namespace gs {
 namespace {
@@ -17,13 +17,13 @@ class CellGrid final : public BroadPhase {
   const char* name() const override { return "cell_grid"; }
 
   using BroadPhase::update;
-  const std::vector<PairKey>& update(const World& w) override {
+  const std::vector<PairKey>& update(const World& w, const ThreadTeam& team) override {
     // the caller's own test of these positions (set_moved), or ours
     const Told told = take_told();
-    const bool rebuild =
-        w.size() != bx_.size() || (told == Told::Nothing ? needs_rebuild(w) : told == Told::Moved);
+    const bool rebuild = w.size() != bx_.size() ||
+                         (told == Told::Nothing ? needs_rebuild(w, team) : told == Told::Moved);
     if (rebuild) {
-      build(w);
+      build(w, team);
       new_generation();
     }
     return pairs_;
@@ -53,16 +53,16 @@ class CellGrid final : public BroadPhase {
 
   // has any grain moved more than half the skin since the last build? (update() has checked
   // that the list is of these particles)
-  bool needs_rebuild(const World& w) const {
+  bool needs_rebuild(const World& w, const ThreadTeam& team) const {
     const std::size_t n = w.size();
     std::atomic<bool> moved{false};  // an OR: the same answer whatever the thread count
-    parallel_ranges(n, kParallelMinCheap, [&](std::size_t b, std::size_t e) {
+    parallel_ranges(team, n, kParallelMinCheap, [&](std::size_t b, std::size_t e) {
       if (moved_beyond(w, b, e)) moved.store(true, std::memory_order_relaxed);
     });
     return moved.load();
   }
 
-  void build(const World& w) {
+  void build(const World& w, const ThreadTeam& team) {
     std::vector<PairKey>& out = pairs_;
     out.clear();
     const std::size_t n = w.size();
@@ -141,7 +141,7 @@ class CellGrid final : public BroadPhase {
       part_.resize(static_cast<std::size_t>(nt));
       std::vector<PairKey>& mine = part_[static_cast<std::size_t>(t)];
       mine.clear();
-      const ItemRange r = thread_share(n, t, nt);
+      const ItemRange r = team.particles(n, t, nt);
       for (std::size_t i = r.begin; i < r.end; ++i) partners(w, i, mine);
     }
     std::size_t total = 0;

@@ -24,7 +24,7 @@ class RingNeighbours final : public BroadPhase {
   const char* name() const override { return "ring_neighbours"; }
 
   using BroadPhase::update;
-  const std::vector<PairKey>& update(const World& w) override {
+  const std::vector<PairKey>& update(const World& w, const ThreadTeam&) override {
     const std::size_t n = w.size();
     if (n < 2) {
       if (!keys_.empty()) new_generation();

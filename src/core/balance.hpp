@@ -183,4 +183,66 @@ class StealRanges {
   std::size_t n_ = 0;
 };
 
+/// the relative speeds of a team's threads, as the force pass measures them on its
+/// per-particle work (the vCPUs of a virtual machine can run at different, drifting speeds:
+/// docs/threads.md); a ThreadTeam splits its particles by them (core/team.hpp), so equal work
+/// takes equal time. Only where work goes changes, never a result. Updated between parallel
+/// regions by the thread that runs the team; read inside regions.
+class ThreadSpeeds {
+ public:
+  /// measured for a team of nt (> 1) threads?
+  bool has(int nt) const { return nt > 1 && static_cast<std::size_t>(nt) + 1 == cum_.size(); }
+  /// the first item of thread t's share of n (t = nt gives n)
+  std::size_t split(std::size_t n, int t) const {
+    const auto ut = static_cast<std::size_t>(t);
+    if (ut + 1 >= cum_.size()) return n;
+    return std::min(n, static_cast<std::size_t>(static_cast<double>(n) * cum_[ut]));
+  }
+  /// one measurement: thread t did items[t] in seconds[t]. Each thread's weight moves a quarter
+  /// of the way towards its share of the summed rates, and never below a quarter of an equal
+  /// share; a measurement without time or items is ignored
+  void update(const double* items, const double* seconds, int nt) {
+    if (nt < 2) return;
+    const auto unt = static_cast<std::size_t>(nt);
+    double total = 0.0;
+    rate_.assign(unt, 0.0);
+    for (std::size_t t = 0; t < unt; ++t) {
+      if (!(items[t] > 0.0) || !(seconds[t] > 0.0)) return;
+      rate_[t] = items[t] / seconds[t];
+      total += rate_[t];
+    }
+    if (!(total > 0.0) || !std::isfinite(total)) return;
+    if (!has(nt)) {  // start from equal shares
+      w_.assign(unt, 1.0 / static_cast<double>(nt));
+    }
+    double sum = 0.0;
+    for (std::size_t t = 0; t < unt; ++t) {
+      w_[t] += 0.25 * (rate_[t] / total - w_[t]);
+      w_[t] = std::max(w_[t], 0.25 / static_cast<double>(nt));
+      sum += w_[t];
+    }
+    next_.assign(unt + 1, 0.0);
+    double moved = has(nt) ? 0.0 : 1.0;
+    for (std::size_t t = 0; t < unt; ++t) {
+      next_[t + 1] = next_[t] + w_[t] / sum;
+      if (has(nt)) moved = std::max(moved, std::abs(next_[t + 1] - cum_[t + 1]));
+    }
+    next_[unt] = 1.0;
+    // the split moves only for a real difference: each particle that changes threads moves
+    // its data between the cores' caches, and the step-to-step jitter of the timings is ~3%
+    if (moved > kMinShift) cum_.swap(next_);
+  }
+  /// the smallest change of a split point (fraction of the items) that is applied
+  static constexpr double kMinShift = 0.02;
+  /// forget the measurements: equal shares again
+  void reset() {
+    cum_.clear();
+    w_.clear();
+  }
+
+ private:
+  std::vector<double> w_, cum_;      ///< weights; the applied cumulative fractions (nt + 1)
+  std::vector<double> rate_, next_;  ///< scratch
+};
+
 }  // namespace gs

@@ -4,12 +4,9 @@
 // a run's results are bitwise the same on any number of threads. Below the thresholds the
 // same bodies run as plain serial loops (no OpenMP runtime calls at all).
 #pragma once
-#include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <vector>
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -60,82 +57,12 @@ inline int max_team_size() {
   return 1;
 #endif
 }
-/// the relative speeds of a team's threads, as the force pass measures them on its
-/// per-particle work (the vCPUs of a virtual machine can run at different, drifting speeds:
-/// docs/threads.md). Every per-particle split follows them, so equal work takes equal time.
-/// Only where work goes changes, never a result. Updated between parallel regions by the
-/// thread that runs the team; read inside regions. One per process: it describes the
-/// machine, whichever simulation measured it.
-class ThreadSpeeds {
- public:
-  static ThreadSpeeds& get() {
-    static ThreadSpeeds s;
-    return s;
-  }
-  /// measured for a team of nt (> 1) threads?
-  bool has(int nt) const { return nt > 1 && static_cast<std::size_t>(nt) + 1 == cum_.size(); }
-  /// the first item of thread t's share of n (t = nt gives n)
-  std::size_t split(std::size_t n, int t) const {
-    const auto ut = static_cast<std::size_t>(t);
-    if (ut + 1 >= cum_.size()) return n;
-    return std::min(n, static_cast<std::size_t>(static_cast<double>(n) * cum_[ut]));
-  }
-  /// one measurement: thread t did items[t] in seconds[t]. Each thread's weight moves a quarter
-  /// of the way towards its share of the summed rates, and never below a quarter of an equal
-  /// share; a measurement without time or items is ignored
-  void update(const double* items, const double* seconds, int nt) {
-    if (nt < 2) return;
-    const auto unt = static_cast<std::size_t>(nt);
-    double total = 0.0;
-    rate_.assign(unt, 0.0);
-    for (std::size_t t = 0; t < unt; ++t) {
-      if (!(items[t] > 0.0) || !(seconds[t] > 0.0)) return;
-      rate_[t] = items[t] / seconds[t];
-      total += rate_[t];
-    }
-    if (!(total > 0.0) || !std::isfinite(total)) return;
-    if (!has(nt)) {  // start from equal shares
-      w_.assign(unt, 1.0 / static_cast<double>(nt));
-    }
-    double sum = 0.0;
-    for (std::size_t t = 0; t < unt; ++t) {
-      w_[t] += 0.25 * (rate_[t] / total - w_[t]);
-      w_[t] = std::max(w_[t], 0.25 / static_cast<double>(nt));
-      sum += w_[t];
-    }
-    next_.assign(unt + 1, 0.0);
-    double moved = has(nt) ? 0.0 : 1.0;
-    for (std::size_t t = 0; t < unt; ++t) {
-      next_[t + 1] = next_[t] + w_[t] / sum;
-      if (has(nt)) moved = std::max(moved, std::abs(next_[t + 1] - cum_[t + 1]));
-    }
-    next_[unt] = 1.0;
-    // the split moves only for a real difference: each particle that changes threads moves
-    // its data between the cores' caches, and the step-to-step jitter of the timings is ~3%
-    if (moved > kMinShift) cum_.swap(next_);
-  }
-  /// the smallest change of a split point (fraction of the items) that is applied
-  static constexpr double kMinShift = 0.02;
-  /// forget the measurements: equal shares again
-  void reset() {
-    cum_.clear();
-    w_.clear();
-  }
-
- private:
-  std::vector<double> w_, cum_;      ///< weights; the applied cumulative fractions (nt + 1)
-  std::vector<double> rate_, next_;  ///< scratch
-};
-
-/// thread t of nt's contiguous share of n items: [n·t/nt, n·(t+1)/nt), or by the measured
-/// thread speeds (ThreadSpeeds) when there are some for nt (every parallel loop over
-/// particles splits by this, so a thread meets the same particles in each)
+/// thread t of nt's contiguous share of n items, equal ones: [n·t/nt, n·(t+1)/nt). A
+/// simulation's particle loops split by its ThreadTeam instead (core/team.hpp)
 struct ItemRange {
   std::size_t begin, end;
 };
-inline ItemRange thread_share(std::size_t n, int t, int nt) {
-  const ThreadSpeeds& sp = ThreadSpeeds::get();
-  if (sp.has(nt)) return {sp.split(n, t), sp.split(n, t + 1)};
+inline ItemRange equal_share(std::size_t n, int t, int nt) {
   const auto ut = static_cast<std::size_t>(t), unt = static_cast<std::size_t>(nt);
   return {n * ut / unt, n * (ut + 1) / unt};
 }
@@ -167,21 +94,30 @@ class RangeFn {
 };
 
 /// body(begin, end) over [0, n): one serial call, or in parallel over contiguous ranges, one
-/// per thread (static schedule)
-template <class Body>
-void parallel_ranges(std::size_t n, std::size_t threshold, Body&& body) {
+/// per thread, thread t of nt's range share(n, t, nt) (asked once per thread and region)
+template <class Share, class Body>
+void parallel_shares(std::size_t n, std::size_t threshold, const Share& share, Body&& body) {
 #ifdef _OPENMP
   if (run_parallel(n, threshold)) {
 #pragma omp parallel
     {
-      const ItemRange r = thread_share(n, team_thread(), team_size());
+      const ItemRange r = share(n, team_thread(), team_size());
       body(r.begin, r.end);
     }
     return;
   }
 #endif
   (void)threshold;
+  (void)share;
   body(std::size_t{0}, n);
+}
+
+/// the same over equal shares (a loop outside a simulation; a simulation's particle loops take
+/// its ThreadTeam: core/team.hpp)
+template <class Body>
+void parallel_ranges(std::size_t n, std::size_t threshold, Body&& body) {
+  parallel_shares(
+      n, threshold, [](std::size_t m, int t, int nt) { return equal_share(m, t, nt); }, body);
 }
 
 /// body(begin, end) over [0, n) in chunks handed out dynamically (uneven item costs), or one

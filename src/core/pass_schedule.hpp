@@ -1,6 +1,7 @@
 // the thread scheduling of one parallel pass over chunks of items followed by per-particle
-// work (the force pass): which thread runs which chunks, places which grains and owns which
-// particles, and the timings that move those splits from step to step. Where work goes never
+// work (the force pass): which thread runs which chunks and places which grains, and the
+// timings that move those splits (and the team's particle split) from step to step; part of a
+// simulation's ThreadTeam (core/team.hpp). Where work goes never
 // changes a result: every chunk and particle writes its own slots (core/parallel.hpp)
 #pragma once
 #include <cstddef>
@@ -30,16 +31,13 @@ class PassSchedule {
 
   // ---- inside the region, thread tid of nt ----
 
-  /// the thread's particles: the ranges of parallel_ranges, as in the integrators' passes, so
-  /// a thread sums, accelerates and corrects the grains it predicted
-  static ItemRange particles(std::size_t n, int tid, int nt) { return thread_share(n, tid, nt); }
   /// place(b, e) over the thread's share of the grains to place, balanced on the placing's own
   /// time (split like the particles, the barrier after it would wait for the slower thread)
   template <class Place>
   void place(int tid, int nt, Place&& place) {
     const bool own = static_cast<std::size_t>(nt) == place_balance_.threads();
     const ItemRange r = own ? ItemRange{place_balance_.begin(tid), place_balance_.end(tid)}
-                            : particles(place_, tid, nt);
+                            : equal_share(place_, tid, nt);
     const double t0 = wall_seconds();
     place(r.begin, r.end);
     if (own) place_balance_.record(tid, wall_seconds() - t0);
@@ -49,7 +47,7 @@ class PassSchedule {
   /// from step to step (chunks handed out dynamically move them between cores: docs/threads.md)
   ItemRange chunk_range(int tid, int nt) const {
     if (planned_for(nt)) return {balance_.begin(tid), balance_.end(tid)};
-    return thread_share(chunks_, tid, nt);
+    return equal_share(chunks_, tid, nt);
   }
   /// run(c) for the thread's chunks: its own range from the front, timed for the balancer
   /// (where grains touch more a chunk costs more), then, once done, what is left of the other
@@ -76,21 +74,20 @@ class PassSchedule {
       while (steal_.take_back((t + k) % static_cast<std::size_t>(nt), c)) run(c);
     }
   }
-  /// the thread did its `items` particles in `seconds` (the next step's particle split)
+  /// the thread did its `items` particles in `seconds` (the team's next particle split)
   void record_particles(int tid, int nt, std::size_t items, double seconds) {
     if (!planned_for(nt)) return;
     items_[static_cast<std::size_t>(tid)] = static_cast<double>(items);
     seconds_[static_cast<std::size_t>(tid)] = seconds;
   }
 
-  /// after the region: the splits move towards the measured times (not when the team had
-  /// another size than planned: equal ranges, no timing)
-  void update() {
+  /// after the region: the splits, and the team's particle split `speeds`, move towards the
+  /// measured times (not when the team had another size than planned: equal ranges, no timing)
+  void update(ThreadSpeeds& speeds) {
     if (!planned_) return;
     balance_.update();
     if (place_ > 0) place_balance_.update();
-    ThreadSpeeds::get().update(items_.data(), seconds_.data(),
-                               static_cast<int>(balance_.threads()));
+    speeds.update(items_.data(), seconds_.data(), static_cast<int>(balance_.threads()));
   }
 
  private:

@@ -220,8 +220,8 @@ std::size_t ContactModel::parallel_pairs_from(bool polygons, std::size_t n) {
 // pairs in candidate order, from zero. Each particle's terms are the same in the same order
 // either way, so the forces are bitwise the same on any number of threads, serial or parallel.
 ForceStats ContactModel::evaluate(const World& w, const std::vector<PairKey>& cand, ContactSet& cs,
-                                  ForceBuffer& f, double dt, std::uint64_t generation,
-                                  RangeFn after, StageClock* clock) {
+                                  ForceBuffer& f, double dt, ThreadTeam& team,
+                                  std::uint64_t generation, RangeFn after, StageClock* clock) {
   const std::size_t n = w.size();
   const std::size_t ncand = cand.size();
   const bool poly = w.polygons();
@@ -240,7 +240,7 @@ ForceStats ContactModel::evaluate(const World& w, const std::vector<PairKey>& ca
     const bool from_touching = !poly && few_touched(cs, ncand);
     const bool reindex = !from_touching && (generation == 0 || generation != indexed_generation_ ||
                                             n != indexed_n_ || ncand != indexed_count_);
-    st = evaluate_parallel(w, cand, cs, f, dt, reindex, from_touching, placed, after, clock);
+    st = evaluate_parallel(w, cand, cs, f, dt, team, reindex, from_touching, placed, after, clock);
     if (reindex) {
       indexed_generation_ = generation;
       indexed_n_ = n;
@@ -254,7 +254,7 @@ ForceStats ContactModel::evaluate(const World& w, const std::vector<PairKey>& ca
     }
     st = evaluate_serial(w, cand, cs, f, dt);
     if (clock) clock->lap(Stage::NarrowPhase);  // the serial loop sums each pair as it goes
-    if (after) parallel_ranges(n, kParallelMinCheap, after);
+    if (after) parallel_ranges(team, n, kParallelMinCheap, after);
   }
   cs.replace(next_);
   cs.degenerate += st.degenerate;
@@ -392,8 +392,8 @@ void ContactModel::note_touched(ForceBuffer& f, std::size_t n) {
 
 ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<PairKey>& cand,
                                            const ContactSet& cs, ForceBuffer& f, double dt,
-                                           bool reindex, bool from_touching, bool placed,
-                                           RangeFn after, StageClock* clock) {
+                                           ThreadTeam& team, bool reindex, bool from_touching,
+                                           bool placed, RangeFn after, StageClock* clock) {
   const std::size_t n = w.size();
   const std::size_t ncand = cand.size();
   const bool poly = w.polygons();
@@ -412,7 +412,8 @@ ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<Pai
   const std::size_t nchunks = (ncand + chunk - 1) / chunk;
   chunk_first_.resize(nchunks);
   chunk_stats_.assign(nchunks, {});
-  schedule_.plan(nchunks, poly && !placed ? n : 0);
+  PassSchedule& schedule = team.pass();
+  schedule.plan(nchunks, poly && !placed ? n : 0);
   if (poly) {
     place_walls(w);
     shapes_.resize(n, max_sides_);
@@ -420,9 +421,9 @@ ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<Pai
 #pragma omp parallel
   {
     const int tid = team_thread(), nt = team_size();
-    const auto [p_begin, p_end] = PassSchedule::particles(n, tid, nt);
+    const auto [p_begin, p_end] = team.particles(n, tid, nt);
     if (poly && !placed) {
-      schedule_.place(tid, nt, [&](std::size_t b, std::size_t e) { place_shapes(w, b, e); });
+      schedule.place(tid, nt, [&](std::size_t b, std::size_t e) { place_shapes(w, b, e); });
 #pragma omp barrier
     }
     // the time this thread spends on its own particles (summing, the callback): the next
@@ -439,7 +440,7 @@ ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<Pai
       }
       chunk_first_[c] = touching;
     };
-    schedule_.run_chunks(tid, nt, run_chunk);
+    schedule.run_chunks(tid, nt, run_chunk);
 #pragma omp barrier
 #pragma omp single
     {
@@ -455,7 +456,7 @@ ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<Pai
       touching_k_.resize(from_touching ? total : 0);
     }
     // the compaction over the same chunks as the pair loop's own ranges
-    const ItemRange own_chunks = schedule_.chunk_range(tid, nt);
+    const ItemRange own_chunks = schedule.chunk_range(tid, nt);
     for (std::size_t c = own_chunks.begin; c < own_chunks.end; ++c) {
       std::size_t out = chunk_first_[c];
       const std::size_t k0 = c * chunk, k1 = std::min(ncand, k0 + chunk);
@@ -503,9 +504,9 @@ ForceStats ContactModel::evaluate_parallel(const World& w, const std::vector<Pai
     if (clock && tid == 0) clock->lap(Stage::Laws);
     if (after) after(p_begin, p_end);
     t_particles += wall_seconds() - tp1;
-    schedule_.record_particles(tid, nt, p_end - p_begin, t_particles);
+    schedule.record_particles(tid, nt, p_end - p_begin, t_particles);
   }  // omp parallel
-  schedule_.update();
+  team.update();
   ForceStats st;  // maxima and counts: the same whatever the chunking
   for (const ForceStats& b : chunk_stats_) {
     st.degenerate += b.degenerate;

@@ -6,8 +6,8 @@
 
 #include "contact/contact_set.hpp"
 #include "core/parallel.hpp"
-#include "core/pass_schedule.hpp"
 #include "core/stage_clock.hpp"
+#include "core/team.hpp"
 #include "force/laws/disk_law.hpp"
 #include "force/laws/polygon_law.hpp"
 #include "geometry/prepared.hpp"
@@ -61,16 +61,17 @@ class ContactModel {
   /// contact forces (f.tq: polygon models only). `generation` identifies the candidate list
   /// (BroadPhase::generation()): an unchanged list reuses its per-particle index; 0 = unknown.
   /// Pairs are evaluated in parallel, then each particle's forces are summed over its pairs in
-  /// candidate order, so the result is bitwise the same for any number of threads.
-  /// `after(b, e)`, if given, runs once the forces of particles [b, e) are final, on the
-  /// thread that summed them (each thread its own range, the ranges of parallel_ranges over
-  /// the particles, as the integrators' loops): what depends on a particle's force alone, such
+  /// candidate order, so the result is bitwise the same for any number of threads. `team`:
+  /// which thread runs, places and sums what (its pass schedule and particle split, which this
+  /// pass's timings move). `after(b, e)`, if given, runs once the forces of particles [b, e)
+  /// are final, on the thread that summed them (each thread its own range, the team's particle
+  /// split, as in the integrators' loops): what depends on a particle's force alone, such
   /// as its acceleration, is then computed where the force and the integrator's data are.
   /// `clock`, if given, gets the first thread's laps: Stage::NarrowPhase once the pairs are
   /// done and the contact set is made, Stage::Laws once its particles' forces are summed.
   ForceStats evaluate(const World& w, const std::vector<PairKey>& candidates, ContactSet& cs,
-                      ForceBuffer& f, double dt, std::uint64_t generation = 0, RangeFn after = {},
-                      StageClock* clock = nullptr);
+                      ForceBuffer& f, double dt, ThreadTeam& team, std::uint64_t generation = 0,
+                      RangeFn after = {}, StageClock* clock = nullptr);
   /// polygons: place particles [b, e) at their current state for the next evaluate(), from
   /// inside this evaluate()'s `after` (the pairs are done by then), once the caller has
   /// predicted the next step there (Simulation::run); every particle once, then
@@ -100,8 +101,9 @@ class ContactModel {
   ForceStats evaluate_serial(const World& w, const std::vector<PairKey>& cand, const ContactSet& cs,
                              ForceBuffer& f, double dt);
   ForceStats evaluate_parallel(const World& w, const std::vector<PairKey>& cand,
-                               const ContactSet& cs, ForceBuffer& f, double dt, bool reindex,
-                               bool from_touching, bool placed, RangeFn after, StageClock* clock);
+                               const ContactSet& cs, ForceBuffer& f, double dt, ThreadTeam& team,
+                               bool reindex, bool from_touching, bool placed, RangeFn after,
+                               StageClock* clock);
   void sums_from_touching(const World& w, ForceBuffer& f, std::size_t b, std::size_t e) const;
   /// did few of the candidates touch last step (a gas: under a third)? Then the disk loops
   /// take their sparse ways (the serial one's selection pass, the parallel one's sums)
@@ -172,8 +174,7 @@ class ContactModel {
   // the compaction of touching pairs into the contact set, in fixed blocks of candidates
   std::vector<std::size_t> chunk_first_;  ///< parallel loop: first contact-set slot of each chunk
   std::vector<ForceStats> chunk_stats_;
-  PassSchedule schedule_;  ///< parallel loop: which thread runs, places and sums what
-  ContactSet next_;        ///< the contact set being made (ContactSet::replace)
+  ContactSet next_;  ///< the contact set being made (ContactSet::replace)
 };
 
 }  // namespace gs

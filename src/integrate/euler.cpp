@@ -15,7 +15,7 @@ void SemiImplicitEuler::init(std::span<const Channel> ch, double dt) {
 }
 
 // forces are evaluated at the current q, v: nothing moves
-void SemiImplicitEuler::predict(std::span<const Channel> ch, double dt) {
+void SemiImplicitEuler::predict(std::span<const Channel> ch, double dt, const ThreadTeam&) {
   layout_.check(ch, "SemiImplicitEuler::predict");
   if (!(dt > 0.0)) throw std::invalid_argument("SemiImplicitEuler::predict: dt must be positive");
   dt_ = dt;
@@ -28,7 +28,7 @@ void SemiImplicitEuler::check_correct(std::span<const Channel> ch, double dt) co
     throw std::invalid_argument("SemiImplicitEuler::correct: dt differs from predict()");
 }
 
-void SemiImplicitEuler::correct(std::span<const Channel> ch, double dt) {
+void SemiImplicitEuler::correct(std::span<const Channel> ch, double dt, const ThreadTeam&) {
   check_correct(ch, dt);
   correct_range(ch, 0, static_cast<std::size_t>(-1));
 }

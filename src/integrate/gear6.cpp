@@ -77,7 +77,7 @@ void Gear6::rescale(double dt) {
   dt_ = dt;
 }
 
-void Gear6::predict(std::span<const Channel> ch, double dt) {
+void Gear6::predict(std::span<const Channel> ch, double dt, const ThreadTeam& team) {
   layout_.check(ch, "Gear6::predict");
   if (!(dt > 0.0)) throw std::invalid_argument("Gear6::predict: dt must be positive");
   // pick up caller edits since the last correct() (periodic wrap of q, kicks to v): v counts
@@ -95,7 +95,7 @@ void Gear6::predict(std::span<const Channel> ch, double dt) {
     }
     rescale(dt);
   }
-  for_channels(ch, kParallelMinGear, [&](std::size_t c, std::size_t b, std::size_t e) {
+  for_channels(team, ch, kParallelMinGear, [&](std::size_t c, std::size_t b, std::size_t e) {
     predict_dofs(ch[c], c, b, e, !rescaled);
   });
 }
@@ -142,9 +142,9 @@ void Gear6::check_correct(std::span<const Channel> ch, double dt) const {
   if (dt != dt_) throw std::invalid_argument("Gear6::correct: dt differs from predict()");
 }
 
-void Gear6::correct(std::span<const Channel> ch, double dt) {
+void Gear6::correct(std::span<const Channel> ch, double dt, const ThreadTeam& team) {
   check_correct(ch, dt);
-  for_channels(ch, kParallelMinGear,
+  for_channels(team, ch, kParallelMinGear,
                [&](std::size_t c, std::size_t b, std::size_t e) { correct_dofs(ch[c], c, b, e); });
 }
 

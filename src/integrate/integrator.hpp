@@ -21,6 +21,8 @@
 #include <string_view>
 #include <vector>
 
+#include "core/team.hpp"
+
 namespace gs {
 
 enum class IntegratorKind : std::uint8_t {
@@ -74,10 +76,13 @@ class Integrator {
   virtual IntegratorKind kind() const = 0;
   /// start from the current q, v and the accelerations a at that state
   virtual void init(std::span<const Channel> ch, double dt) = 0;
-  /// advance q and v to the predicted state at t + dt, where forces are evaluated
-  virtual void predict(std::span<const Channel> ch, double dt) = 0;
-  /// given a at the predicted state, produce the final q, v at t + dt
-  virtual void correct(std::span<const Channel> ch, double dt) = 0;
+  /// advance q and v to the predicted state at t + dt, where forces are evaluated. `team`: how
+  /// a parallel pass splits the particles among the threads (the simulation's, so that each
+  /// thread predicts the particles it later sums and corrects; a default ThreadTeam splits
+  /// equally); it never changes a result
+  virtual void predict(std::span<const Channel> ch, double dt, const ThreadTeam& team) = 0;
+  /// given a at the predicted state, produce the final q, v at t + dt (`team`: as predict's)
+  virtual void correct(std::span<const Channel> ch, double dt, const ThreadTeam& team) = 0;
   /// between steps: set every velocity of ch to zero and restart the history from rest at
   /// the current positions, as init() would with v = 0 and the last accelerations (kinetic
   /// damping, drive.quench). Positions and the stored accelerations are kept

@@ -48,8 +48,8 @@ class Gear6 final : public Integrator, public RangeStepping {
  public:
   IntegratorKind kind() const override { return IntegratorKind::Gear6; }
   void init(std::span<const Channel> ch, double dt) override;
-  void predict(std::span<const Channel> ch, double dt) override;
-  void correct(std::span<const Channel> ch, double dt) override;
+  void predict(std::span<const Channel> ch, double dt, const ThreadTeam& team) override;
+  void correct(std::span<const Channel> ch, double dt, const ThreadTeam& team) override;
   void check_correct(std::span<const Channel> ch, double dt) const override;
   void correct_range(std::span<const Channel> ch, std::size_t b, std::size_t e) override;
   bool predicts_by_range() const override { return true; }
@@ -105,8 +105,8 @@ class VelocityVerlet final : public Integrator, public RangeStepping {
       : fv_(fv), corr_(corr) {}
   IntegratorKind kind() const override { return IntegratorKind::VelocityVerlet; }
   void init(std::span<const Channel> ch, double dt) override;
-  void predict(std::span<const Channel> ch, double dt) override;
-  void correct(std::span<const Channel> ch, double dt) override;
+  void predict(std::span<const Channel> ch, double dt, const ThreadTeam& team) override;
+  void correct(std::span<const Channel> ch, double dt, const ThreadTeam& team) override;
   void check_correct(std::span<const Channel> ch, double dt) const override;
   void correct_range(std::span<const Channel> ch, std::size_t b, std::size_t e) override;
   /// the kick, with VerletCorrection::Kick
@@ -151,8 +151,8 @@ class PositionVerlet final : public Integrator, public RangeStepping {
  public:
   IntegratorKind kind() const override { return IntegratorKind::PositionVerlet; }
   void init(std::span<const Channel> ch, double dt) override;
-  void predict(std::span<const Channel> ch, double dt) override;
-  void correct(std::span<const Channel> ch, double dt) override;
+  void predict(std::span<const Channel> ch, double dt, const ThreadTeam& team) override;
+  void correct(std::span<const Channel> ch, double dt, const ThreadTeam& team) override;
   void check_correct(std::span<const Channel> ch, double dt) const override;
   void correct_range(std::span<const Channel> ch, std::size_t b, std::size_t e) override;
   void zero_velocities(std::span<const Channel> ch) override;
@@ -177,8 +177,8 @@ class SemiImplicitEuler final : public Integrator, public RangeStepping {
  public:
   IntegratorKind kind() const override { return IntegratorKind::SemiImplicitEuler; }
   void init(std::span<const Channel> ch, double dt) override;
-  void predict(std::span<const Channel> ch, double dt) override;
-  void correct(std::span<const Channel> ch, double dt) override;
+  void predict(std::span<const Channel> ch, double dt, const ThreadTeam& team) override;
+  void correct(std::span<const Channel> ch, double dt, const ThreadTeam& team) override;
   void check_correct(std::span<const Channel> ch, double dt) const override;
   void correct_range(std::span<const Channel> ch, std::size_t b, std::size_t e) override;
   void zero_velocities(std::span<const Channel> ch) override;

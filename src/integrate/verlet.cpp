@@ -91,13 +91,13 @@ std::optional<KickForm> VelocityVerlet::kick_form() const {
 
 void VelocityVerlet::set_correction(VerletCorrection corr) { corr_ = corr; }
 
-void VelocityVerlet::predict(std::span<const Channel> ch, double dt) {
+void VelocityVerlet::predict(std::span<const Channel> ch, double dt, const ThreadTeam& team) {
   layout_.check(ch, "VelocityVerlet::predict");
   check_dt(dt, "VelocityVerlet::predict");
   dt_ = dt;
   const bool half = fv_ == VerletForceVelocity::HalfStep;
   const bool kick = corr_ == VerletCorrection::Kick;
-  for_channels(ch, kParallelMinCheap, [&](std::size_t c, std::size_t b, std::size_t e) {
+  for_channels(team, ch, kParallelMinCheap, [&](std::size_t c, std::size_t b, std::size_t e) {
     const double* a = ch[c].a.data();
     if (kick)
       vv_predict<Keep::OldAcceleration>(b, e, dt, half, a, kept_[c].data(), ch[c].q.data(),
@@ -113,10 +113,10 @@ void VelocityVerlet::check_correct(std::span<const Channel> ch, double dt) const
   if (dt != dt_) throw std::invalid_argument("VelocityVerlet::correct: dt differs from predict()");
 }
 
-void VelocityVerlet::correct(std::span<const Channel> ch, double dt) {
+void VelocityVerlet::correct(std::span<const Channel> ch, double dt, const ThreadTeam& team) {
   check_correct(ch, dt);
   // a_{n+1} stays in the channels for the next step's kick
-  for_channels(ch, kParallelMinCheap,
+  for_channels(team, ch, kParallelMinCheap,
                [&](std::size_t c, std::size_t b, std::size_t e) { correct_dofs(ch[c], c, b, e); });
 }
 
@@ -188,7 +188,7 @@ void PositionVerlet::init(std::span<const Channel> ch, double dt) {
   }
 }
 
-void PositionVerlet::predict(std::span<const Channel> ch, double dt) {
+void PositionVerlet::predict(std::span<const Channel> ch, double dt, const ThreadTeam&) {
   layout_.check(ch, "PositionVerlet::predict");
   check_dt(dt, "PositionVerlet::predict");
   for (std::size_t c = 0; c < ch.size(); ++c) {
@@ -225,7 +225,7 @@ void PositionVerlet::check_correct(std::span<const Channel> ch, double dt) const
   if (dt != dt_) throw std::invalid_argument("PositionVerlet::correct: dt differs from predict()");
 }
 
-void PositionVerlet::correct(std::span<const Channel> ch, double dt) {
+void PositionVerlet::correct(std::span<const Channel> ch, double dt, const ThreadTeam&) {
   check_correct(ch, dt);
   correct_range(ch, 0, static_cast<std::size_t>(-1));
 }

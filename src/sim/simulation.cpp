@@ -47,7 +47,7 @@ Simulation::Simulation(World w, BroadPhaseKind bp)
   health_trigger_ = Trigger::every_steps(w_.scene.health.check_every);
   // forces at the initial state start the integrator
   drive();
-  exec_->run(parts(), broad_->update(w_), {}, w_.s.step, false, nullptr);
+  exec_->run(parts(), broad_->update(w_, team_), {}, w_.s.step, false, nullptr);
   auto ch = channels();
   integ_->init(ch, dt_);
   // the energy yardstick of the blow-up check: 5% of the start's kinetic + elastic energy, or
@@ -107,8 +107,8 @@ void Simulation::drive() {
 StepParts Simulation::parts() const {
   // the executor writes the parts; a const Simulation asks it only what it would do
   auto& self = const_cast<Simulation&>(*this);
-  return {self.w_,     *broad_, self.model_, self.contacts_, self.forces_,
-          self.stats_, *integ_, noise_keys_, gravity_,       dt_};
+  return {self.w_, *broad_,    self.model_, self.contacts_, self.forces_, self.stats_,
+          *integ_, self.team_, noise_keys_, gravity_,       dt_};
 }
 
 void Simulation::run(std::int64_t n) {
@@ -152,11 +152,11 @@ void Simulation::advance(bool then_predict) {
   if (ahead_)
     ++ahead_steps_;
   else
-    integ_->predict(ch, dt_);
+    integ_->predict(ch, dt_, team_);
   ahead_ = false;
   integ_->ranges().check_correct(ch, dt_);  // here: nothing may throw inside the force pass
   clock.lap(Stage::Predict);
-  const std::vector<PairKey>& candidates = broad_->update(w_);
+  const std::vector<PairKey>& candidates = broad_->update(w_, team_);
   clock.lap(Stage::BroadPhase);
   // narrow phase → laws → correct, by the executor (Fused: with the next step following at
   // once, the correction predicts it too, `ahead`)

@@ -8,6 +8,7 @@
 #include "broadphase/broadphase.hpp"
 #include "contact/contact_set.hpp"
 #include "core/stage_clock.hpp"
+#include "core/team.hpp"
 #include "core/trigger.hpp"
 #include "force/forces.hpp"
 #include "integrate/integrator.hpp"
@@ -49,6 +50,10 @@ class Simulation {
   const ForceStats& last_forces() const { return stats_; }
   const ContactModel& model() const { return model_; }
   const BroadPhase& broadphase() const { return *broad_; }
+  /// how this simulation's passes split among the threads (moved by its own timings only; a
+  /// test may feed it measurements)
+  const ThreadTeam& team() const { return team_; }
+  ThreadTeam& team() { return team_; }
   Integrator& integrator() { return *integ_; }
   const Integrator& integrator() const { return *integ_; }
   /// kinetic damping between steps (drive.quench): every velocity and angular velocity to zero
@@ -129,6 +134,7 @@ class Simulation {
   std::unique_ptr<BroadPhase> broad_;
   ContactModel model_;
   std::unique_ptr<Integrator> integ_;
+  ThreadTeam team_;  ///< which thread runs which pairs and particles, from this run's timings
   ContactSet contacts_;
   ForceBuffer forces_;
   ForceStats stats_;

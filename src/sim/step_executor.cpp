@@ -178,7 +178,7 @@ bool accelerate_kick(const AccelArrays& a, std::size_t b, std::size_t e) {
 // fixed blocks and added in block order (T.2.18), so this pass needs every particle's kick
 // before any acceleration is final: the first pass writes them to `pre`, the second the
 // final ones (and, `kick`, the integrator's kick while a_n is still in ax)
-void accelerate_ring_noise(const AccelArrays& a, std::size_t n, bool kick,
+void accelerate_ring_noise(const ThreadTeam& team, const AccelArrays& a, std::size_t n, bool kick,
                            std::vector<double>& block_sums, std::vector<double>& pre) {
   block_sums.assign((n + kSumBlock - 1) / kSumBlock, 0.0);
   pre.resize(n);
@@ -192,7 +192,7 @@ void accelerate_ring_noise(const AccelArrays& a, std::size_t n, bool kick,
   double mean = 0.0;
   for (double m : block_sums) mean += m;
   if (n > 0) mean /= static_cast<double>(n);
-  parallel_ranges(n, kParallelMinCheap, [&](std::size_t b, std::size_t e) {
+  parallel_ranges(team, n, kParallelMinCheap, [&](std::size_t b, std::size_t e) {
     const double* __restrict p = pre.data();
     const double* __restrict im = a.inv_mass;
     double* __restrict ax = a.ax;
@@ -295,21 +295,21 @@ class StagedExecutor final : public StepExecutor {
     if (ahead) throw std::logic_error("StagedExecutor: no prediction ahead");
     const std::size_t n = p.w.size();
     // narrow phase: each pair's contact and law, the contact set, the forces summed
-    p.stats =
-        p.model.evaluate(p.w, cand, p.contacts, p.forces, p.dt, p.broad.generation(), {}, clock);
+    p.stats = p.model.evaluate(p.w, cand, p.contacts, p.forces, p.dt, p.team, p.broad.generation(),
+                               {}, clock);
     // laws: body forces and each particle's acceleration
     const AccelArrays a = accel_arrays(p, index);
     dispatch(p.w, [&](auto nz, auto rg, auto sp) {
       constexpr bool kNz = decltype(nz)::value, kRg = decltype(rg)::value;
       constexpr bool kSp = decltype(sp)::value;
       if constexpr (kNz && kRg)
-        accelerate_ring_noise(a, n, false, block_sums_, pre_);
+        accelerate_ring_noise(p.team, a, n, false, block_sums_, pre_);
       else
-        parallel_ranges(n, kParallelMinCheap,
+        parallel_ranges(p.team, n, kParallelMinCheap,
                         [&](std::size_t b, std::size_t e) { accelerate<kNz, kRg, kSp>(a, b, e); });
     });
     lap(clock, Stage::Laws);
-    if (!correct.empty()) p.integ.correct(correct, p.dt);
+    if (!correct.empty()) p.integ.correct(correct, p.dt, p.team);
     lap(clock, Stage::Correct);
   }
 
@@ -360,11 +360,11 @@ void FusedExecutor::run(const StepParts& p, const std::vector<PairKey>& cand,
     constexpr bool kNz = decltype(nz)::value, kRg = decltype(rg)::value;
     [[maybe_unused]] constexpr bool kSp = decltype(sp)::value;
     if constexpr (kNz && kRg) {
-      p.stats =
-          p.model.evaluate(w, cand, p.contacts, p.forces, p.dt, p.broad.generation(), {}, clock);
-      accelerate_ring_noise(a, n, kick, block_sums_, pre_);
+      p.stats = p.model.evaluate(w, cand, p.contacts, p.forces, p.dt, p.team, p.broad.generation(),
+                                 {}, clock);
+      accelerate_ring_noise(p.team, a, n, kick, block_sums_, pre_);
       lap(clock, Stage::Laws);
-      if (!correct.empty() && !kick) p.integ.correct(correct, p.dt);
+      if (!correct.empty() && !kick) p.integ.correct(correct, p.dt, p.team);
     } else {
       auto after = [&](std::size_t b, std::size_t e) {
         StageClock* const own = team_thread() == 0 ? clock : nullptr;  // the first thread laps
@@ -387,7 +387,7 @@ void FusedExecutor::run(const StepParts& p, const std::vector<PairKey>& cand,
           }
         }
       };
-      p.stats = p.model.evaluate(w, cand, p.contacts, p.forces, p.dt, p.broad.generation(),
+      p.stats = p.model.evaluate(w, cand, p.contacts, p.forces, p.dt, p.team, p.broad.generation(),
                                  RangeFn(after), clock);
       if (ahead && kSp) p.model.placed_ahead();
       if (skin.x0 != nullptr) p.broad.set_moved(moved.load());

@@ -10,6 +10,7 @@
 #include "broadphase/broadphase.hpp"
 #include "contact/contact_set.hpp"
 #include "core/stage_clock.hpp"
+#include "core/team.hpp"
 #include "force/forces.hpp"
 #include "integrate/integrator.hpp"
 #include "world/world.hpp"
@@ -25,6 +26,7 @@ struct StepParts {
   ForceBuffer& forces;
   ForceStats& stats;
   Integrator& integ;
+  ThreadTeam& team;  ///< how the stages' passes split the work among the threads
   const std::vector<std::uint64_t>& noise_keys;  ///< the random force's stream per particle
   Vec2 gravity;                                  ///< m/s²
   double dt;                                     ///< s

@@ -61,9 +61,9 @@ struct OscillatorSystem {
   /// one full step: predict → forces at the predicted state → correct
   void step(Integrator& I, double dt) {
     auto s = spans();
-    I.predict(s, dt);
+    I.predict(s, dt, ThreadTeam{});
     forces();
-    I.correct(s, dt);
+    I.correct(s, dt, ThreadTeam{});
   }
 };
 

@@ -171,7 +171,7 @@ TEST(VelocityVerlet, KickCorrectionFollowsTheHalfStepOne) {
       a.step(own, dt);
       b.step(kick, dt);
       auto ch = c.spans();
-      caller.predict(ch, dt);
+      caller.predict(ch, dt, ThreadTeam{});
       const std::vector<double> a_old = c.a[0];
       c.forces();
       for (std::size_t i = 0; i < c.q[0].size(); ++i)

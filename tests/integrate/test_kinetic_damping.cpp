@@ -77,9 +77,9 @@ long steps_to_rest(IntegratorKind kind, bool kinetic_damping, double tol, long m
   long n = 0, zeroed = 0;
   for (; n < max_steps && c.error() >= tol; ++n) {
     auto s = c.spans();
-    I->predict(s, dt);
+    I->predict(s, dt, ThreadTeam{});
     c.forces();
-    I->correct(s, dt);
+    I->correct(s, dt, ThreadTeam{});
     // a kinetic-energy peak: every velocity to zero (what ProtocolClock/Simulation do)
     const double ke = c.kinetic();
     if (kinetic_damping && rising && ke < last) {
@@ -133,9 +133,9 @@ TEST_P(KineticDamping, ZeroVelocitiesIsAFreshStartFromRest) {
   I->init(a.spans(), dt);
   for (int k = 0; k < 37; ++k) {
     auto s = a.spans();
-    I->predict(s, dt);
+    I->predict(s, dt, ThreadTeam{});
     a.forces();
-    I->correct(s, dt);
+    I->correct(s, dt, ThreadTeam{});
   }
   I->zero_velocities(a.spans());
   for (double x : a.v) ASSERT_EQ(x, 0.0);
@@ -147,9 +147,9 @@ TEST_P(KineticDamping, ZeroVelocitiesIsAFreshStartFromRest) {
     for (Column* c : {&a, &b}) {
       auto& S = c == &a ? *I : *J;
       auto s = c->spans();
-      S.predict(s, dt);
+      S.predict(s, dt, ThreadTeam{});
       c->forces();
-      S.correct(s, dt);
+      S.correct(s, dt, ThreadTeam{});
     }
   }
   for (int i = 0; i < Column::kN; ++i) {

@@ -20,9 +20,9 @@ double stable_limit(IntegratorKind kind, double zeta) {
     in->init(c, wdt);
     bool ok = true;
     for (int s = 0; s < 5000 && ok; ++s) {
-      in->predict(c, wdt);
+      in->predict(c, wdt, ThreadTeam{});
       a[0] = -q[0] - 2 * zeta * v[0];
-      in->correct(c, wdt);
+      in->correct(c, wdt, ThreadTeam{});
       ok = 0.5 * (v[0] * v[0] + q[0] * q[0]) < 1.5;
     }
     if (!ok) break;

@@ -93,9 +93,9 @@ TEST_P(State, CallerEditsBetweenStepsArePickedUp) {
       q[0] -= L;
       v[0] += dv;
     }
-    I->predict(ch, dt);
+    I->predict(ch, dt, ThreadTeam{});
     a[0] = g;
-    I->correct(ch, dt);
+    I->correct(ch, dt, ThreadTeam{});
   }
   const double T = N * dt;
   double qe = q0 + v0 * T + g * T * T / 2.0 + dv * (T - kick * dt) - L;
@@ -158,7 +158,7 @@ TEST_P(State, LayoutAndHistoryAreChecked) {
   s.init(*I, 0.01);
   std::vector<double> q{1.0}, v{0.0}, a{0.0};
   std::vector<Channel> other{{q, v, a}};
-  EXPECT_THROW(I->predict(other, 0.01), std::invalid_argument);
+  EXPECT_THROW(I->predict(other, 0.01, ThreadTeam{}), std::invalid_argument);
   auto hist = I->save();
   for (auto k : {IntegratorKind::Gear6, IntegratorKind::VelocityVerlet,
                  IntegratorKind::PositionVerlet, IntegratorKind::SemiImplicitEuler}) {
@@ -197,7 +197,7 @@ TEST_P(State, CorrectByRangesIsCorrect) {
   for (int k = 0; k < 150; ++k) {
     s.step(*I, dt);
     auto sp = r.spans();
-    J->predict(sp, dt);
+    J->predict(sp, dt, ThreadTeam{});
     r.forces();
     J->ranges().check_correct(sp, dt);
     J->ranges().correct_range(sp, 4, 99);  // past every channel's end
@@ -210,7 +210,7 @@ TEST_P(State, CorrectByRangesIsCorrect) {
       EXPECT_EQ(r.v[c][i], s.v[c][i]) << c << " " << i;
     }
   auto sp = r.spans();
-  J->predict(sp, dt);
+  J->predict(sp, dt, ThreadTeam{});
   EXPECT_THROW(J->ranges().check_correct(sp, 2.0 * dt), std::invalid_argument);
 }
 

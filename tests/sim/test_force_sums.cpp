@@ -40,6 +40,7 @@ void expect_serial_sums(const World& w, BroadPhaseKind bpk) {
   const Threads two(2);  // the parallel path (the candidates are above its thresholds)
   auto bp = make_broadphase(bpk, w);
   ContactModel model(w);
+  ThreadTeam threads;
   ContactSet cs;
   ForceBuffer f;
   const std::vector<PairKey>& cand = bp->update(w);
@@ -47,7 +48,7 @@ void expect_serial_sums(const World& w, BroadPhaseKind bpk) {
   ASSERT_TRUE(run_parallel(cand.size(), ContactModel::parallel_pairs_from(w.polygons(), w.size())))
       << cand.size() << " candidates: below the parallel threshold";
 #endif
-  model.evaluate(w, cand, cs, f, w.scene.integrator.dt, bp->generation());
+  model.evaluate(w, cand, cs, f, w.scene.integrator.dt, threads, bp->generation());
   ASSERT_GT(cs.records.size(), w.size()) << "a dense packing: more contacts than grains";
   ASSERT_EQ(cs.keys.size(), cs.records.size());
   for (std::size_t k = 0; k < cs.keys.size(); ++k) {
@@ -66,8 +67,8 @@ void expect_serial_sums(const World& w, BroadPhaseKind bpk) {
   // touching pairs alone (no contacts the step before)
   ForceBuffer f2, f3;
   ContactSet cs2 = cs, cs3 = cs;
-  model.evaluate(w, cand, cs2, f2, w.scene.integrator.dt, bp->generation());
-  model.evaluate(w, cand, cs3, f3, w.scene.integrator.dt, 0);
+  model.evaluate(w, cand, cs2, f2, w.scene.integrator.dt, threads, bp->generation());
+  model.evaluate(w, cand, cs3, f3, w.scene.integrator.dt, threads, 0);
   EXPECT_EQ(f2.fx, f3.fx);
   EXPECT_EQ(f2.fy, f3.fy);
   EXPECT_EQ(f2.tq, f3.tq);
@@ -116,11 +117,12 @@ void expect_same_disk_paths(const World& w, std::size_t min_contacts) {
   auto bp = make_broadphase(BroadPhaseKind::Auto, w);
   const std::vector<PairKey>& cand = bp->update(w);
   ContactModel model(w);
+  ThreadTeam threads;
   ContactSet sparse, packed;  // sparse: no contacts last step; packed: as many as candidates
   packed.keys.assign(cand.size(), PairKey{0});
   ForceBuffer f1, f2;
-  model.evaluate(w, cand, sparse, f1, w.scene.integrator.dt, bp->generation());
-  model.evaluate(w, cand, packed, f2, w.scene.integrator.dt, bp->generation());
+  model.evaluate(w, cand, sparse, f1, w.scene.integrator.dt, threads, bp->generation());
+  model.evaluate(w, cand, packed, f2, w.scene.integrator.dt, threads, bp->generation());
   ASSERT_GE(sparse.keys.size(), min_contacts);
   ASSERT_LT(3 * sparse.keys.size(), cand.size()) << "not a sparse scene: the test needs one";
   expect_same_evaluation(sparse, f1, packed, f2);
@@ -212,9 +214,11 @@ TEST(ForceSums, LargestOverlapsAreTheRecordsMaxima) {
                 threads == 2);
 #endif
       ContactModel model(w);
+      ThreadTeam thread_team;
       ContactSet cs;
       ForceBuffer f;
-      const ForceStats st = model.evaluate(w, cand, cs, f, w.scene.integrator.dt, bp->generation());
+      const ForceStats st =
+          model.evaluate(w, cand, cs, f, w.scene.integrator.dt, thread_team, bp->generation());
       const auto N = static_cast<std::uint32_t>(w.size());
       double h = 0.0, rel = 0.0;
       std::size_t walls = 0;
@@ -252,23 +256,26 @@ TEST(ForceSums, DiluteLargeGasPairsOnTheTeam) {
   ASSERT_GE(cand.size(), kParallelMin);
   ASSERT_LT(cand.size(), kParallelMinCheap) << "the pairs alone would not start a region";
   ContactModel one(w), team(w);
+  ThreadTeam threads;
   ContactSet cs1, cs2, cs3, cs4, cs5;
   cs4.keys.assign(cand.size(), PairKey{0});  // "as many contacts as candidates last step"
   cs5.keys = cs4.keys;
   ForceBuffer f1, f2, f3, f4, f5;
   {
     const Threads single(1);
-    one.evaluate(w, cand, cs1, f1, w.scene.integrator.dt, bp->generation());
+    one.evaluate(w, cand, cs1, f1, w.scene.integrator.dt, threads, bp->generation());
   }
   {
     const Threads two(2);
 #ifdef _OPENMP
     ASSERT_TRUE(run_parallel(cand.size(), ContactModel::parallel_pairs_from(false, w.size())));
 #endif
-    team.evaluate(w, cand, cs2, f2, w.scene.integrator.dt, bp->generation());
-    team.evaluate(w, cand, cs3, f3, w.scene.integrator.dt, 0);
-    team.evaluate(w, cand, cs4, f4, w.scene.integrator.dt, bp->generation());  // index made
-    team.evaluate(w, cand, cs5, f5, w.scene.integrator.dt, bp->generation());  // and reused
+    team.evaluate(w, cand, cs2, f2, w.scene.integrator.dt, threads, bp->generation());
+    team.evaluate(w, cand, cs3, f3, w.scene.integrator.dt, threads, 0);
+    team.evaluate(w, cand, cs4, f4, w.scene.integrator.dt, threads,
+                  bp->generation());  // index made
+    team.evaluate(w, cand, cs5, f5, w.scene.integrator.dt, threads,
+                  bp->generation());  // and reused
   }
   ASSERT_GE(cs1.keys.size(), 400u);
   expect_same_evaluation(cs2, f2, cs1, f1);
@@ -289,14 +296,15 @@ TEST(ForceSums, ReusedBufferEqualsAFreshOne) {
   Simulation sim = forced_gas(3000, 5);
   auto bp = make_broadphase(BroadPhaseKind::Auto, sim.world());
   ContactModel model(sim.world());
+  ThreadTeam threads;
   ForceBuffer reused;
   std::size_t sparse_calls = 0, touched_max = 0;
   auto expect_fresh = [&](const World& w, const char* what) {
     const std::vector<PairKey>& cand = bp->update(w);
     ContactSet cs1, cs2;
     ForceBuffer fresh;
-    model.evaluate(w, cand, cs1, reused, w.scene.integrator.dt, 0);
-    model.evaluate(w, cand, cs2, fresh, w.scene.integrator.dt, 0);
+    model.evaluate(w, cand, cs1, reused, w.scene.integrator.dt, threads, 0);
+    model.evaluate(w, cand, cs2, fresh, w.scene.integrator.dt, threads, 0);
     ASSERT_EQ(reused.fx.size(), w.size()) << what;
     std::size_t differ = 0;
     for (std::size_t i = 0; i < w.size(); ++i)
@@ -333,8 +341,8 @@ TEST(ForceSums, ReusedBufferEqualsAFreshOne) {
   const std::vector<PairKey>& cand = bp->update(small.world());
   ContactSet cs1, cs2;
   ForceBuffer fresh;
-  model2.evaluate(small.world(), cand, cs1, reused, small.world().scene.integrator.dt, 0);
-  model2.evaluate(small.world(), cand, cs2, fresh, small.world().scene.integrator.dt, 0);
+  model2.evaluate(small.world(), cand, cs1, reused, small.world().scene.integrator.dt, threads, 0);
+  model2.evaluate(small.world(), cand, cs2, fresh, small.world().scene.integrator.dt, threads, 0);
   EXPECT_EQ(reused.fx, fresh.fx);
   EXPECT_EQ(reused.fy, fresh.fy);
 }
