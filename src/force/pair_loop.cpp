@@ -95,8 +95,8 @@ ForceStats PairLoop::serial(const Ev& ev, const World& w, const std::vector<Pair
   const double rc = ev.common_radius();
   const bool one_radius = rc > 0.0;
   std::size_t hint = 0;
-  // `at(q)`: the q-th candidate the loop visits
-  auto run = [&](std::size_t count, auto&& at) {
+  // `at(q)`: the q-th candidate the loop visits (inlined: the pair's force stays in registers)
+  auto run = [&](std::size_t count, auto&& at) __attribute__((always_inline)) {
     for (std::size_t q = 0; q < count; ++q) {
       const PairKey key = at(q);
       if (!ev.pair(w, key, cs, hint, dt, pf, r)) continue;
