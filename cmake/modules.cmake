@@ -6,8 +6,8 @@ gs_module(scene DEPS gs_geometry gs_integrate tomlplusplus::tomlplusplus)
 gs_module(world DEPS gs_scene gs_geometry)
 gs_module(broadphase DEPS gs_world box2d::box2d)
 gs_module(contact DEPS gs_broadphase)
-# force laws (force/laws/) are header-only pure functions; force/ is the loop over contacts
-gs_module(force DEPS gs_contact)
+# force/: the pair loop; force/laws/: the laws (header-only pure functions) and their pair evaluators
+gs_module(force DIRS force force/laws DEPS gs_contact)
 gs_module(drive DEPS gs_world)
 gs_module(sim DEPS gs_force gs_integrate gs_drive nlohmann_json::nlohmann_json)
 # measure: read-only observers; they hand their rows to a RecordSink (core/records.hpp) and never

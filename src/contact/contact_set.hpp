@@ -52,6 +52,12 @@ struct ContactSet {
     }
     return static_cast<std::size_t>(std::lower_bound(keys.begin(), keys.end(), key) - keys.begin());
   }
+  /// emptied, for the pair pass to fill in candidate order
+  void clear() {
+    keys.clear();
+    state.clear();
+    records.clear();
+  }
   /// the step's new set, compacted by the pair pass in candidate order, replaces the last one;
   /// the last one's storage goes back to `next` for the step after
   void replace(ContactSet& next) {

@@ -5,8 +5,15 @@
 namespace gs {
 namespace {
 
+// polygon i of a prepared store as a Poly (the general routines' form)
+Poly unprepared(const PolyRef& p) {
+  Poly q;
+  for (int k = 0; k < p.n; ++k) q.push({p.x[k], p.y[k]});
+  return q;
+}
+
 // the contact frame (docs/physics.md §2.1) from an exact polygon overlap; `toward` points from
-// i to j
+// i to j (or into the wall)
 ContactGeom from_overlap(const Overlap& ov, Vec2 toward) {
   ContactGeom g;
   if (ov.area <= 0.0) return g;
@@ -35,18 +42,29 @@ ContactGeom from_overlap(const Overlap& ov, Vec2 toward) {
 
 }  // namespace
 
+template <>
+ContactGeom narrow<BodyKind::Polygon, BodyKind::Polygon>(const PlacedBody& a, const PlacedBody& b) {
+  if (b.shift == Vec2{}) return from_overlap(overlap(*a.poly, *b.poly), b.c - a.c);
+  // a periodic image: the prepared polygon lies at the grain's own place, so shift a copy
+  // (the general routine, which gives the prepared one's bits where both apply)
+  const Poly pa = unprepared(*a.poly);
+  Poly pb = unprepared(*b.poly);
+  for (int v = 0; v < pb.n; ++v) pb.v[v] += b.shift;
+  return polygon_polygon(BodyView{a.c, a.r, &pa}, BodyView{b.c, b.r, &pb});
+}
+
+template <>
+ContactGeom narrow<BodyKind::Polygon, BodyKind::Wall>(const PlacedBody& a, const PlacedBody& b) {
+  return from_overlap(overlap(*a.poly, *b.poly), b.wall->normal);
+}
+
 ContactGeom polygon_polygon(const BodyView& a, const BodyView& b) {
   return from_overlap(overlap(*a.poly, *b.poly), b.c - a.c);
 }
 
-ContactGeom polygon_polygon(const PolyRef& a, const PolyRef& b, Vec2 toward) {
-  return from_overlap(overlap(a, b), toward);
-}
-
 ContactGeom polygon_wall(const BodyView& a, const Wall& w) {
-  const Overlap ov = overlap(*a.poly, w.poly);
   // the wall lies on the far side of its inner face: point the normal into the wall
-  return from_overlap(ov, w.normal);
+  return from_overlap(overlap(*a.poly, w.poly), w.normal);
 }
 
 }  // namespace gs

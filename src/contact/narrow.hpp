@@ -1,8 +1,11 @@
-// narrow phase: pure functions from two placed bodies to the contact geometry (the pair loop
-// picks one per model: force/forces.cpp) (docs/physics.md §2.1 for polygons, §3 for disks).
+// the narrow phase: pure functions from two placed bodies to the contact frame
+// (docs/physics.md §2.1 for polygons, §3 for disks), one per pairing of body kinds. The pair
+// loop's evaluators call them by their kinds at compile time (narrow<A, B>); kNarrowPhase is
+// the same functions as a [kind][kind] table, for callers that know the kinds only at run time.
 // Periodic images arrive as a shift already applied to the partner's position.
 #pragma once
 #include <cmath>
+#include <cstdint>
 
 #include "core/vec.hpp"
 #include "geometry/polygon.hpp"
@@ -11,7 +14,7 @@
 
 namespace gs {
 
-/// what the force laws need to know about one touching pair
+/// what the force laws need to know about one touching pair: the contact frame
 struct ContactGeom {
   bool touching = false;
   Vec2 n;                   ///< unit normal from i towards j (or into the wall)
@@ -21,21 +24,34 @@ struct ContactGeom {
   bool degenerate = false;  ///< polygons: one inside the other, no boundary crossings
 };
 
-/// one body as the narrow phase sees it: centre, bounding radius, world-frame polygon if any
-struct BodyView {
-  Vec2 c;
-  double r = 0;
-  const Poly* poly = nullptr;
+/// the kinds of body a pair joins: a grain's shape, or a wall (always the second body)
+enum class BodyKind : std::uint8_t { Disk = 0, Polygon = 1, Wall = 2 };
+inline constexpr int kBodyKinds = 3;
+constexpr BodyKind body_kind(ShapeKind s) {
+  return s == ShapeKind::Disk ? BodyKind::Disk : BodyKind::Polygon;
+}
+
+/// one body of a pair as the narrow phase reads it, placed for this step. Each function reads
+/// only the fields of its kinds: disks c and r; polygons c and their prepared polygon (a
+/// periodic image: the polygon at the grain's own place, and the shift to its image); walls
+/// their prepared polygon and the wall itself
+struct PlacedBody {
+  Vec2 c;                         ///< centre (a periodic image's: shifted), m
+  double r = 0;                   ///< disks: radius, m
+  const PolyRef* poly = nullptr;  ///< polygons, walls: the prepared world-frame polygon
+  Vec2 shift;                     ///< polygons: from the polygon's place to the image's (else 0)
+  const Wall* wall = nullptr;     ///< walls
 };
 
-ContactGeom polygon_polygon(const BodyView& a, const BodyView& b);
-ContactGeom polygon_wall(const BodyView& a, const Wall& w);
-/// the same contacts, bit for bit, from polygons prepared once per step (the hot loop);
-/// `toward` points from i to j (polygon pairs: xj − xi) or into the wall (its normal)
-ContactGeom polygon_polygon(const PolyRef& a, const PolyRef& b, Vec2 toward);
+/// the narrow phase of a body of kind A against one of kind B; pairings without a function
+/// (a disk against a polygon: a world is of one model) do not compile
+template <BodyKind A, BodyKind B>
+ContactGeom narrow(const PlacedBody& a, const PlacedBody& b) = delete;
 
-// disks are cheap enough that the call would cost as much as the test: inline
-inline ContactGeom disk_disk(const BodyView& a, const BodyView& b) {
+// disks are cheap enough that a call would cost as much as the test: inline
+template <>
+inline ContactGeom narrow<BodyKind::Disk, BodyKind::Disk>(const PlacedBody& a,
+                                                          const PlacedBody& b) {
   ContactGeom g;
   const Vec2 d = b.c - a.c;
   const double dist2 = norm2(d), rr = a.r + b.r;
@@ -48,8 +64,11 @@ inline ContactGeom disk_disk(const BodyView& a, const BodyView& b) {
   return g;
 }
 
-inline ContactGeom disk_wall(const BodyView& a, const Wall& w) {
+template <>
+inline ContactGeom narrow<BodyKind::Disk, BodyKind::Wall>(const PlacedBody& a,
+                                                          const PlacedBody& b) {
   ContactGeom g;
+  const Wall& w = *b.wall;
   // penetration of the disk through the wall's inner face (a half-plane)
   const double delta = dot(a.c, w.normal) + a.r - w.offset;
   if (delta <= 0.0) return g;
@@ -59,5 +78,36 @@ inline ContactGeom disk_wall(const BodyView& a, const Wall& w) {
   g.s = a.c + w.normal * (a.r - 0.5 * delta);
   return g;
 }
+
+/// polygons by their exact overlap (prepared: bounding circles reject separated pairs); a
+/// periodic image overlaps a shifted copy of b's polygon
+template <>
+ContactGeom narrow<BodyKind::Polygon, BodyKind::Polygon>(const PlacedBody& a, const PlacedBody& b);
+/// the wall's polygon is its slab; the normal points into the wall
+template <>
+ContactGeom narrow<BodyKind::Polygon, BodyKind::Wall>(const PlacedBody& a, const PlacedBody& b);
+
+/// the registry at run time: kNarrowPhase[A][B] is &narrow<A, B>, nullptr where A cannot meet B
+using NarrowFn = ContactGeom (*)(const PlacedBody&, const PlacedBody&);
+inline constexpr NarrowFn kNarrowPhase[kBodyKinds][kBodyKinds] = {
+    {&narrow<BodyKind::Disk, BodyKind::Disk>, nullptr, &narrow<BodyKind::Disk, BodyKind::Wall>},
+    {nullptr, &narrow<BodyKind::Polygon, BodyKind::Polygon>,
+     &narrow<BodyKind::Polygon, BodyKind::Wall>},
+    {nullptr, nullptr, nullptr},  // a wall is always the second body
+};
+constexpr NarrowFn narrow_fn(BodyKind a, BodyKind b) {
+  return kNarrowPhase[static_cast<int>(a)][static_cast<int>(b)];
+}
+
+/// one body with an unprepared world-frame polygon, for the general routines below
+struct BodyView {
+  Vec2 c;
+  double r = 0;
+  const Poly* poly = nullptr;
+};
+/// the same contacts, bit for bit, as the registry's polygon functions, from unprepared
+/// polygons: the reference they are tested against, and for callers with a polygon at hand
+ContactGeom polygon_polygon(const BodyView& a, const BodyView& b);
+ContactGeom polygon_wall(const BodyView& a, const Wall& w);
 
 }  // namespace gs

@@ -1,5 +1,6 @@
-// the narrow phase on prepared polygons (the force loop's path) against the general one:
-// identical contact geometry, bit for bit, for decagon pairs and decagon–wall pairs
+// the narrow phase on prepared polygons (the registry's, which the force loop calls) against
+// the general one: identical contact geometry, bit for bit, for decagon pairs and decagon–wall
+// pairs
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -43,7 +44,9 @@ TEST(NarrowPrepared, DecagonPairsMatchGeneral) {
     st.set_placed(1, bb, cb, tb);
     const Poly pa = place(ba, ca, ta), pb = place(bb, cb, tb);
     const ContactGeom g = polygon_polygon(BodyView{ca, ra, &pa}, BodyView{cb, rb, &pb});
-    const ContactGeom fast = polygon_polygon(st.ref(0), st.ref(1), cb - ca);
+    const PolyRef ra_ = st.ref(0), rb_ = st.ref(1);
+    const ContactGeom fast = narrow<BodyKind::Polygon, BodyKind::Polygon>(
+        PlacedBody{ca, 0.0, &ra_, {}, nullptr}, PlacedBody{cb, 0.0, &rb_, {}, nullptr});
     expect_same(fast, g);
     if (HasFatalFailure()) return;
     touching += g.touching;
@@ -69,7 +72,10 @@ TEST(NarrowPrepared, DecagonWallMatchesGeneral) {
     st.set_placed(0, body, c, th);
     const Poly p = place(body, c, th);
     const ContactGeom g = polygon_wall(BodyView{c, 9e-3, &p}, w);
-    expect_same(polygon_polygon(st.ref(0), st.ref(1), w.normal), g);
+    const PolyRef r0 = st.ref(0), r1 = st.ref(1);
+    expect_same(narrow<BodyKind::Polygon, BodyKind::Wall>(PlacedBody{c, 0.0, &r0, {}, nullptr},
+                                                          PlacedBody{{}, 0.0, &r1, {}, &w}),
+                g);
     if (HasFatalFailure()) return;
     touching += g.touching;
   }
