@@ -31,7 +31,7 @@ World settled_pile(IntegratorKind integ) {
 void BM_PileForceEvaluation(benchmark::State& st) {
   World w = settled_pile(IntegratorKind::Gear6);
   auto bp = make_broadphase(BroadPhaseKind::Box2DTree, w);
-  ContactModel model(w);
+  ContactModel model(w, contact_settings(w.scene));
   ContactSet cs;
   ForceBuffer f;
   std::vector<PairKey> cand;
@@ -79,7 +79,9 @@ BENCHMARK(BM_PileOverlaps)->Unit(benchmark::kMicrosecond);
 void BM_PileStep(benchmark::State& st) {
   const auto integ = static_cast<IntegratorKind>(st.range(0));
   const auto bpk = static_cast<BroadPhaseKind>(st.range(1));
-  Simulation sim(settled_pile(integ), bpk);
+  World w = settled_pile(integ);
+  const SimSettings settings = SimSettings::from(w.scene);
+  Simulation sim(std::move(w), settings, bpk);
   std::int64_t steps = 0;
   for (auto _ : st) steps += run_iteration(sim);
   st.SetLabel(std::string(to_string(integ)) + "/" + sim.broadphase().name());
@@ -105,8 +107,8 @@ void BM_DiskFluidStep(benchmark::State& st) {
   SceneSpec s = build::disk_gas(static_cast<int>(st.range(0)), 0.353, 0.6, 0.6, 1);
   s.drive.kind = DriveKind::RandomForce;
   World w = make_world(s);
-  place_particles(w);
-  Simulation sim(std::move(w));
+  place_particles(w, s);
+  Simulation sim(std::move(w), SimSettings::from(s));
   sim.run(200);  // leave the lattice-like start
   std::int64_t steps = 0;
   for (auto _ : st) steps += run_iteration(sim);

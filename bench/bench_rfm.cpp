@@ -26,8 +26,8 @@ namespace {
 std::unique_ptr<Simulation> warmed(const char* scene, double warm, std::vector<std::string> sets) {
   SceneSpec s = parse_scene_file(std::string(GS_SOURCE_DIR) + "/scenes/" + scene, sets);
   World w = make_world(s);
-  place_particles(w);
-  auto sim = std::make_unique<Simulation>(std::move(w));
+  place_particles(w, s);
+  auto sim = std::make_unique<Simulation>(std::move(w), SimSettings::from(s));
   sim->run(static_cast<std::int64_t>(warm / s.integrator.dt));
   return sim;
 }

@@ -113,11 +113,11 @@ PySim::PySim(const SceneSpec& scene) {
   // as `gransim run`: place the grains, start the protocol clock before the first force
   // evaluation (settling gravity), then refuse an unstable time step
   World w = make_world(scene);
-  place_particles(w);
+  place_particles(w, scene);
   clock = std::make_unique<ProtocolClock>(scene);
   clock->start(w);
-  sim = std::make_unique<Simulation>(std::move(w));
-  check_time_step(*sim);
+  sim = std::make_unique<Simulation>(std::move(w), SimSettings::from(scene));
+  check_time_step(*sim, scene);
 }
 
 void PySim::advance(std::int64_t n) {
@@ -182,15 +182,15 @@ void bind_scene_sim(py::module_& m) {
           "run_to_tap",
           [](PySim& s, long k) {
             const World& w = s.sim->world();
-            const DriveSpec& d = w.scene.drive;
+            const DriveSpec& d = s.sim->settings().drive;
             if (!is_tapping(d))
               throw InputError(w.scene.path, "drive.kind",
                                "run_to_tap needs a tapping protocol (negative_g or rotating_g)");
             const double dt = s.sim->dt();
             auto at = [&] {
               const World& ww = s.sim->world();
-              return excitation_starts_next(ww.scene.drive, ww.clock_origin, ww.s.t, dt) &&
-                     drive_phase(ww.scene.drive, ww.clock_origin, ww.s.t + dt).tap == k;
+              return excitation_starts_next(s.sim->settings().drive, ww.clock_origin, ww.s.t, dt) &&
+                     drive_phase(s.sim->settings().drive, ww.clock_origin, ww.s.t + dt).tap == k;
             };
             const DrivePhase p = drive_phase(d, w.clock_origin, w.s.t + dt);
             if (k < 0 || (!p.settling && p.tap > k) || (!p.settling && p.tap == k && !at()))
@@ -199,10 +199,10 @@ void bind_scene_sim(py::module_& m) {
                                    std::to_string(p.tap) + ")");
             while (!at()) {
               const World& ww = s.sim->world();
-              const std::int64_t m =
-                  s.clock->watches_steps()
-                      ? 1
-                      : 1 + steps_before_excitation(ww.scene.drive, ww.clock_origin, ww.s.t, dt);
+              const std::int64_t m = s.clock->watches_steps()
+                                         ? 1
+                                         : 1 + steps_before_excitation(s.sim->settings().drive,
+                                                                       ww.clock_origin, ww.s.t, dt);
               s.advance(std::max<std::int64_t>(1, m));
             }
             return tap_dict(s.sim->world(),
@@ -218,7 +218,8 @@ void bind_scene_sim(py::module_& m) {
           [](const PySim& s, const py::object& rect) {
             const World& w = s.sim->world();
             const auto r = rect_or_scene(w, rect);
-            const DrivePhase p = drive_phase(w.scene.drive, w.clock_origin, w.s.t + s.sim->dt());
+            const DrivePhase p =
+                drive_phase(s.sim->settings().drive, w.clock_origin, w.s.t + s.sim->dt());
             return tap_dict(w, measure_tap(w, s.sim->contacts(), r.data()), p.settling ? 0 : p.tap);
           },
           py::arg("rect") = py::none(), "the per-tap measurement of the pile now")
@@ -249,7 +250,8 @@ void bind_scene_sim(py::module_& m) {
           "tap",
           [](const PySim& s) {
             const World& w = s.sim->world();
-            const DrivePhase p = drive_phase(w.scene.drive, w.clock_origin, w.s.t + s.sim->dt());
+            const DrivePhase p =
+                drive_phase(s.sim->settings().drive, w.clock_origin, w.s.t + s.sim->dt());
             return p.settling ? -1L : p.tap;
           },
           "the period the next step is in (taps completed before it); -1 while settling")

@@ -121,7 +121,7 @@ Simulation restore_simulation(const Checkpoint& c) {
   w.clock_origin = c.clock_origin;
   // the constructor evaluates forces (and contacts) afresh; the stored history then replaces
   // what that evaluation produced, so the next step sees exactly the saved state
-  Simulation sim(std::move(w));
+  Simulation sim(std::move(w), SimSettings::from(scene));
   load_checkpoint_history(sim, c, true);
   return sim;
 }

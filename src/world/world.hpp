@@ -48,7 +48,11 @@ struct State {
 
 struct World {
   // constants
-  SceneSpec scene;  ///< the validated scene it was built from
+  /// the scene this world was built from, for outputs and checkpoints only (sim/checkpoint*,
+  /// sim/saved_state*, app/): the engine takes its settings structs and the fields below
+  /// (tools/check_includes.py refuses reads of it in the engine's folders)
+  SceneSpec scene;
+  ModelKind model = ModelKind::Polygon;  ///< polygon DEM (Model P) or soft disks (Model S)
   std::vector<MaterialSpec> materials;
   std::vector<Species> species;
   std::vector<Wall> walls;
@@ -72,7 +76,7 @@ struct World {
   double clock_origin = 0.0;
 
   std::size_t size() const { return s.size(); }
-  bool polygons() const { return scene.model.kind == ModelKind::Polygon; }
+  bool polygons() const { return model == ModelKind::Polygon; }
   /// append a particle of species k at rest
   void add_particle(int k, Vec2 pos, double theta, Vec2 vel = {}, double omega = 0.0);
   /// remove every particle (constants, species, walls and box stay)

@@ -37,9 +37,9 @@ std::uint64_t state_hash(const World& w) {
 
 std::unique_ptr<Simulation> start(const SceneSpec& s, double clock_origin = 0.0) {
   World w = make_world(s);
-  place_particles(w);
+  place_particles(w, s);
   w.clock_origin = clock_origin;
-  return std::make_unique<Simulation>(std::move(w));
+  return std::make_unique<Simulation>(std::move(w), SimSettings::from(s));
 }
 
 fs::path temp_file(const std::string& name) {

@@ -228,7 +228,7 @@ TEST(RenderCommand, RenderOfARunDirectoryDrawsItsParticles) {
   r.color_by = "uniform";
   r.colorbar = false;
   r.clock = false;
-  const WorldFrame wf = world_frame(w, nullptr, frame_info(w, {}), r);
+  const WorldFrame wf = world_frame(w, nullptr, frame_info(w, ViewSettings::from(w.scene), {}), r);
   const FrameData fd = build_frame(wf.particles, wf.walls, wf.overlays, wf.spec, wf.box);
   const Rgba8 fill = wf.spec.uniform_color;
   long count = 0;

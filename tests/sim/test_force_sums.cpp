@@ -39,7 +39,7 @@ void serial_sums(const World& w, const ContactSet& cs, std::vector<double>& fx,
 void expect_serial_sums(const World& w, BroadPhaseKind bpk) {
   const Threads two(2);  // the parallel path (the candidates are above its thresholds)
   auto bp = make_broadphase(bpk, w);
-  ContactModel model(w);
+  ContactModel model(w, contact_settings(w.scene));
   ContactSet cs;
   ForceBuffer f;
   const std::vector<PairKey>& cand = bp->update(w);
@@ -89,7 +89,7 @@ TEST(ForceSums, DenseDiskFluidMatchesSerialLoop) {
   // 6000 disks placed at φ = 0.5, then grown by 30 % (φ = 0.85): most disks touch several
   SceneSpec s = build::disk_gas(6000, 0.5, 0.6, 0.6, 3);
   World w = make_world(s);
-  place_particles(w);
+  place_particles(w, s);
   for (double& r : w.radius) r *= 1.3;
   w.max_radius *= 1.3;
   expect_serial_sums(w, BroadPhaseKind::CellGrid);
@@ -115,7 +115,7 @@ void expect_same_evaluation(const ContactSet& a, const ForceBuffer& fa, const Co
 void expect_same_disk_paths(const World& w, std::size_t min_contacts) {
   auto bp = make_broadphase(BroadPhaseKind::Auto, w);
   const std::vector<PairKey>& cand = bp->update(w);
-  ContactModel model(w);
+  ContactModel model(w, contact_settings(w.scene));
   ContactSet sparse, packed;  // sparse: no contacts last step; packed: as many as candidates
   packed.keys.assign(cand.size(), PairKey{0});
   ForceBuffer f1, f2;
@@ -135,8 +135,8 @@ Simulation forced_gas(int n, std::uint64_t seed) {
   SceneSpec s = build::disk_gas(n, 0.3, 0.6, 0.6, seed);
   s.drive.kind = DriveKind::RandomForce;
   World w = make_world(s);
-  place_particles(w);
-  return Simulation(std::move(w));
+  place_particles(w, s);
+  return Simulation(std::move(w), SimSettings::from(s));
 }
 
 TEST(ForceSums, DiskPrefilterKeepsThePairs) {
@@ -168,7 +168,7 @@ TEST(ForceSums, DiskPrefilterKeepsThePairs) {
     SceneSpec s = build::disk_gas(400, 0.3, 0.6, 0.6, 6);
     s.box.kind = BoxKind::Walls;
     World w = make_world(s);
-    place_particles(w);
+    place_particles(w, s);
     const double r0 = w.radius[0];
     std::size_t on_wall = 0;
     for (std::size_t i = 0; i < w.size(); ++i) {
@@ -180,9 +180,10 @@ TEST(ForceSums, DiskPrefilterKeepsThePairs) {
     expect_same_disk_paths(w, on_wall);
   }
   {  // the 1D ring
-    World w =
-        make_world(parse_scene_file(std::string(GS_SOURCE_DIR) + "/scenes/rfm1d_reference.toml"));
-    place_particles(w);
+    const SceneSpec ring =
+        parse_scene_file(std::string(GS_SOURCE_DIR) + "/scenes/rfm1d_reference.toml");
+    World w = make_world(ring);
+    place_particles(w, ring);
     // every tenth disk's forward neighbour moved to overlap it by a quarter diameter
     for (std::size_t i = 0; i + 1 < w.size(); i += 10) w.s.x[i + 1] = w.s.x[i] + 1.5 * w.radius[i];
     expect_same_disk_paths(w, w.size() / 10);
@@ -200,7 +201,7 @@ TEST(ForceSums, LargestOverlapsAreTheRecordsMaxima) {
       SceneSpec s = build::disk_gas(6000, 0.6, 0.6, 0.6, 9);
       s.box.kind = BoxKind::Walls;
       World w = make_world(s);
-      place_particles(w);
+      place_particles(w, s);
       // grown by 30% (most disks touch, some the walls); mixed: every third 2% more
       for (double& r : w.radius) r *= 1.3;
       for (std::size_t i = 1; mixed && i < w.size(); i += 3) w.radius[i] *= 1.02;
@@ -211,7 +212,7 @@ TEST(ForceSums, LargestOverlapsAreTheRecordsMaxima) {
       ASSERT_EQ(run_parallel(cand.size(), ContactModel::parallel_pairs_from(false, w.size())),
                 threads == 2);
 #endif
-      ContactModel model(w);
+      ContactModel model(w, contact_settings(w.scene));
       ContactSet cs;
       ForceBuffer f;
       const ForceStats st = model.evaluate(w, cand, cs, f, w.scene.integrator.dt, bp->generation());
@@ -239,8 +240,9 @@ TEST(ForceSums, LargestOverlapsAreTheRecordsMaxima) {
 // records and forces bit for bit: summed from the touching pairs (few touched last step), and
 // through the per-particle index, cached and made anew (many touched last step)
 TEST(ForceSums, DiluteLargeGasPairsOnTheTeam) {
-  World w = make_world(build::disk_gas(10000, 0.1, 0.6, 0.6, 8));
-  place_particles(w);
+  const SceneSpec s = build::disk_gas(10000, 0.1, 0.6, 0.6, 8);
+  World w = make_world(s);
+  place_particles(w, s);
   // every 25th disk's successor moved onto it (a quarter diameter deep): 400 contacts
   for (std::size_t i = 0; i + 1 < w.size(); i += 25) {
     w.s.x[i + 1] = w.s.x[i] + 1.5 * w.radius[i];
@@ -251,7 +253,7 @@ TEST(ForceSums, DiluteLargeGasPairsOnTheTeam) {
   ASSERT_GE(w.size(), kParallelMinCheap);
   ASSERT_GE(cand.size(), kParallelMin);
   ASSERT_LT(cand.size(), kParallelMinCheap) << "the pairs alone would not start a region";
-  ContactModel one(w), team(w);
+  ContactModel one(w, contact_settings(w.scene)), team(w, contact_settings(w.scene));
   ContactSet cs1, cs2, cs3, cs4, cs5;
   cs4.keys.assign(cand.size(), PairKey{0});  // "as many contacts as candidates last step"
   cs5.keys = cs4.keys;
@@ -288,7 +290,7 @@ TEST(ForceSums, DiluteLargeGasPairsOnTheTeam) {
 TEST(ForceSums, ReusedBufferEqualsAFreshOne) {
   Simulation sim = forced_gas(3000, 5);
   auto bp = make_broadphase(BroadPhaseKind::Auto, sim.world());
-  ContactModel model(sim.world());
+  ContactModel model(sim.world(), contact_settings(sim.world().scene));
   ForceBuffer reused;
   std::size_t sparse_calls = 0, touched_max = 0;
   auto expect_fresh = [&](const World& w, const char* what) {
@@ -328,7 +330,7 @@ TEST(ForceSums, ReusedBufferEqualsAFreshOne) {
   // a smaller world in the same buffer
   Simulation small = forced_gas(1000, 9);
   small.run(400);
-  ContactModel model2(small.world());
+  ContactModel model2(small.world(), contact_settings(small.world().scene));
   bp = make_broadphase(BroadPhaseKind::Auto, small.world());
   const std::vector<PairKey>& cand = bp->update(small.world());
   ContactSet cs1, cs2;
@@ -350,7 +352,7 @@ namespace {
 TEST(Placement, RandomSitesAreNumberedInLatticeOrder) {
   SceneSpec s = build::disk_gas(5000, 0.3, 0.6, 0.6, 7);
   World w = make_world(s);
-  place_particles(w);
+  place_particles(w, s);
   ASSERT_EQ(w.size(), 5000u);
   std::size_t backwards = 0, row_gaps = 0;
   double mean_y = 0.0;

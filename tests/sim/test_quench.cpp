@@ -35,10 +35,10 @@ Outcome tap(std::vector<std::string> overrides) {
   const SceneSpec s =
       parse_scene_file(std::string(GS_SOURCE_DIR) + "/scenes/tap_small_negative_g.toml", overrides);
   World w = make_world(s);
-  place_particles(w);
+  place_particles(w, s);
   ProtocolClock clock(s);
   clock.start(w);
-  Simulation sim(std::move(w));
+  Simulation sim(std::move(w), SimSettings::from(s));
   Outcome o;
   while (!clock.done(sim.world())) {
     sim.step();

@@ -40,7 +40,7 @@ Simulation start(const std::string& from) {
   fit_scene_to_state(scene, st);
   World w = make_world(scene);
   place_saved_state(w, st);
-  Simulation sim(std::move(w));
+  Simulation sim(std::move(w), SimSettings::from(scene));
   take_saved_history(sim, st);
   return sim;
 }
@@ -48,9 +48,10 @@ Simulation start(const std::string& from) {
 TEST(SavedState, StateFileSpringsStartAtZeroCheckpointKeepsThem) {
   const fs::path dir = fs::temp_directory_path() / "gs_saved_state";
   fs::create_directories(dir);
-  World w = make_world(parse_scene_string(kPile, "pile.toml"));
-  place_particles(w);
-  Simulation sim(std::move(w));
+  const SceneSpec scene = parse_scene_string(kPile, "pile.toml");
+  World w = make_world(scene);
+  place_particles(w, scene);
+  Simulation sim(std::move(w), SimSettings::from(scene));
   sim.run(6000);  // a settled pile with stretched springs
   ASSERT_GT(sim.contacts().keys.size(), 10u);
   ASSERT_GT(spring_sum(sim), 0.0);

@@ -36,8 +36,8 @@ SceneSpec gas(int n, int sort_every, IntegratorKind kind = IntegratorKind::Veloc
 
 Simulation make_sim(const SceneSpec& s) {
   World w = make_world(s);
-  place_particles(w);
-  return Simulation(std::move(w));
+  place_particles(w, s);
+  return Simulation(std::move(w), SimSettings::from(s));
 }
 
 // largest difference by label between two runs' positions and velocities, relative to the
@@ -196,13 +196,13 @@ TEST(SortParticles, WalledBoxFollowsTheUnsortedRun) {
     s.drive.kind = DriveKind::Gravity;
     s.integrator.sort_every = sort_every;
     World w = make_world(s);
-    place_particles(w);
+    place_particles(w, s);
     const double r0 = w.radius[0];  // the grains near the left wall and the floor pressed in
     for (std::size_t i = 0; i < w.size(); ++i) {
       w.s.x[i] -= 0.3 * r0 * (w.s.x[i] < 3 * r0);
       w.s.y[i] -= 0.3 * r0 * (w.s.y[i] < 3 * r0);
     }
-    return Simulation(std::move(w));
+    return Simulation(std::move(w), SimSettings::from(s));
   };
   Simulation plain = walled(0), sorted = walled(30);
   std::size_t wall_contacts = 0;  // summed over the steps: grains pushed off the walls
@@ -244,18 +244,18 @@ TEST(SortParticles, StateFileRowsFollowLabels) {
 
 TEST(SortParticles, AutoIntervalAndSceneChecks) {
   World big = make_world(gas(kAutoSortMinParticles, -1));
-  place_particles(big);
-  EXPECT_EQ(resolved_sort_every(big), kAutoSortEvery);
+  place_particles(big, big.scene);
+  EXPECT_EQ(resolved_sort_every(big, big.scene.integrator.sort_every), kAutoSortEvery);
   World small = make_world(gas(2000, -1));
-  place_particles(small);
-  EXPECT_EQ(resolved_sort_every(small), 0);
+  place_particles(small, small.scene);
+  EXPECT_EQ(resolved_sort_every(small, small.scene.integrator.sort_every), 0);
   World off = make_world(gas(kAutoSortMinParticles, 0));
-  place_particles(off);
-  EXPECT_EQ(resolved_sort_every(off), 0);
+  place_particles(off, off.scene);
+  EXPECT_EQ(resolved_sort_every(off, off.scene.integrator.sort_every), 0);
   const std::string src = GS_SOURCE_DIR;
   World pile = make_world(parse_scene_file(src + "/scenes/paper_pile.toml"));
-  place_particles(pile);
-  EXPECT_EQ(resolved_sort_every(pile), 0);
+  place_particles(pile, pile.scene);
+  EXPECT_EQ(resolved_sort_every(pile, pile.scene.integrator.sort_every), 0);
 
   // the scene refuses a sort where the slots carry meaning or history
   auto error_of = [&](const std::string& file, const std::string& set) {

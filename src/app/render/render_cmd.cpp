@@ -136,7 +136,8 @@ void add_render_flags(CLI::App* c, RenderFlags& f) {
 
 // the frame information of a snapshot: recorded gravity and tap win over the schedule's
 FrameInfo snapshot_info(const Snapshot& s, Vec2 scheduled_gravity) {
-  FrameInfo info = frame_info(s.world, s.gravity.value_or(scheduled_gravity));
+  FrameInfo info =
+      frame_info(s.world, ViewSettings::from(s.world.scene), s.gravity.value_or(scheduled_gravity));
   // the tap of a saved state is only known when recorded, or when no relaxation ended early
   if (s.tap)
     info.tap = s.tap;
@@ -147,7 +148,7 @@ FrameInfo snapshot_info(const Snapshot& s, Vec2 scheduled_gravity) {
 
 // draw a world: with contacts (a Simulation computes them) when the frame needs them
 Image draw(FrameMaker& maker, const Snapshot& s) {
-  Simulation sim(s.world);
+  Simulation sim(s.world, SimSettings::from(s.world.scene));
   return maker.render(sim.world(), &sim.contacts(), snapshot_info(s, sim.gravity()));
 }
 

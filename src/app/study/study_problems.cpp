@@ -69,8 +69,8 @@ SceneSpec problem_scene(const StudySizes& z, const StudyCase& c) {
 
 std::unique_ptr<Simulation> start(const SceneSpec& s) {
   World w = make_world(s);
-  place_particles(w);
-  return std::make_unique<Simulation>(std::move(w), s.integrator.broad_phase);
+  place_particles(w, s);
+  return std::make_unique<Simulation>(std::move(w), SimSettings::from(s), s.integrator.broad_phase);
 }
 
 // ⟨|v − v_cm|²⟩, m²/s² (T.2.19)
