@@ -19,11 +19,16 @@
 namespace gs {
 namespace {
 
-// the paper pile, settled: scene from scenes/, positions from bench/data (made by gransim run)
-World settled_pile(IntegratorKind integ) {
+// the paper pile's scene (scenes/) with the given integrator
+SceneSpec pile_scene(IntegratorKind integ) {
   SceneSpec s = parse_scene_file(std::string(GS_SOURCE_DIR) + "/scenes/paper_pile.toml");
   s.integrator.kind = integ;
-  World w = make_world(s);
+  return s;
+}
+
+// the paper pile, settled: positions from bench/data (made by gransim run)
+World settled_pile(IntegratorKind integ) {
+  World w = make_world(pile_scene(integ));
   read_state_file(w, std::string(GS_SOURCE_DIR) + "/bench/data/paper_pile_settled.csv");
   return w;
 }
@@ -31,7 +36,7 @@ World settled_pile(IntegratorKind integ) {
 void BM_PileForceEvaluation(benchmark::State& st) {
   World w = settled_pile(IntegratorKind::Gear6);
   auto bp = make_broadphase(BroadPhaseKind::Box2DTree, w);
-  ContactModel model(w, contact_settings(w.scene));
+  ContactModel model(w, contact_settings(pile_scene(IntegratorKind::Gear6)));
   ContactSet cs;
   ForceBuffer f;
   std::vector<PairKey> cand;
@@ -79,9 +84,7 @@ BENCHMARK(BM_PileOverlaps)->Unit(benchmark::kMicrosecond);
 void BM_PileStep(benchmark::State& st) {
   const auto integ = static_cast<IntegratorKind>(st.range(0));
   const auto bpk = static_cast<BroadPhaseKind>(st.range(1));
-  World w = settled_pile(integ);
-  const SimSettings settings = SimSettings::from(w.scene);
-  Simulation sim(std::move(w), settings, bpk);
+  Simulation sim(settled_pile(integ), SimSettings::from(pile_scene(integ)), bpk);
   std::int64_t steps = 0;
   for (auto _ : st) steps += run_iteration(sim);
   st.SetLabel(std::string(to_string(integ)) + "/" + sim.broadphase().name());

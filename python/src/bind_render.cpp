@@ -80,7 +80,7 @@ void bind_render(py::module_& m) {
   py::class_<PyRenderer>(m, "Renderer",
                          "draws frames of a simulation with its scene's [render] settings")
       .def(py::init([](const PySim& s, const std::vector<std::string>& overrides) {
-             return std::make_unique<PyRenderer>(s.sim->world().scene, overrides);
+             return std::make_unique<PyRenderer>(s.scene, overrides);
            }),
            py::arg("sim"), py::arg("overrides") = std::vector<std::string>{})
       .def("render", &PyRenderer::render, py::arg("sim"), py::arg("channels") = 3,

@@ -97,10 +97,10 @@ py::dict tap_dict(const World& w, const TapMeasurement& m, long tap) {
   return d;
 }
 
-std::array<double, 4> rect_or_scene(const World& w, const py::object& rect) {
+std::array<double, 4> rect_or_scene(const SceneSpec& scene, const py::object& rect) {
   if (rect.is_none())
-    return {w.scene.output.test_rect[0], w.scene.output.test_rect[1], w.scene.output.test_rect[2],
-            w.scene.output.test_rect[3]};
+    return {scene.output.test_rect[0], scene.output.test_rect[1], scene.output.test_rect[2],
+            scene.output.test_rect[3]};
   const auto r = rect.cast<std::vector<double>>();
   if (r.size() != 4 || !(r[2] > r[0]) || !(r[3] > r[1]))
     throw InputError("rect", "rect", "must be [x0, y0, x1, y1] with x1 > x0 and y1 > y0");
@@ -109,7 +109,7 @@ std::array<double, 4> rect_or_scene(const World& w, const py::object& rect) {
 
 }  // namespace
 
-PySim::PySim(const SceneSpec& scene) {
+PySim::PySim(const SceneSpec& spec) : scene(spec) {
   // as `gransim run`: place the grains, start the protocol clock before the first force
   // evaluation (settling gravity), then refuse an unstable time step
   World w = make_world(scene);
@@ -184,7 +184,7 @@ void bind_scene_sim(py::module_& m) {
             const World& w = s.sim->world();
             const DriveSpec& d = s.sim->settings().drive;
             if (!is_tapping(d))
-              throw InputError(w.scene.path, "drive.kind",
+              throw InputError(s.scene.path, "drive.kind",
                                "run_to_tap needs a tapping protocol (negative_g or rotating_g)");
             const double dt = s.sim->dt();
             auto at = [&] {
@@ -205,10 +205,9 @@ void bind_scene_sim(py::module_& m) {
                                                                        ww.clock_origin, ww.s.t, dt);
               s.advance(std::max<std::int64_t>(1, m));
             }
-            return tap_dict(s.sim->world(),
-                            measure_tap(s.sim->world(), s.sim->contacts(),
-                                        s.sim->world().scene.output.test_rect),
-                            k);
+            return tap_dict(
+                s.sim->world(),
+                measure_tap(s.sim->world(), s.sim->contacts(), s.scene.output.test_rect), k);
           },
           py::arg("k"),
           "run until just before the excitation after k taps (k = 0: the settled pile) and "
@@ -217,7 +216,7 @@ void bind_scene_sim(py::module_& m) {
           "measure_tap",
           [](const PySim& s, const py::object& rect) {
             const World& w = s.sim->world();
-            const auto r = rect_or_scene(w, rect);
+            const auto r = rect_or_scene(s.scene, rect);
             const DrivePhase p =
                 drive_phase(s.sim->settings().drive, w.clock_origin, w.s.t + s.sim->dt());
             return tap_dict(w, measure_tap(w, s.sim->contacts(), r.data()), p.settling ? 0 : p.tap);
@@ -226,12 +225,12 @@ void bind_scene_sim(py::module_& m) {
       .def(
           "phi",
           [](const PySim& s, const py::object& rect) {
-            const auto r = rect_or_scene(s.sim->world(), rect);
+            const auto r = rect_or_scene(s.scene, rect);
             return phi_in_rect(s.sim->world(), r[0], r[1], r[2], r[3]);
           },
           py::arg("rect") = py::none(),
           "volume fraction in [x0, y0, x1, y1] (default: output.test_rect)")
-      .def_property_readonly("scene", [](const PySim& s) { return s.sim->world().scene; })
+      .def_property_readonly("scene", [](const PySim& s) { return s.scene; })
       .def_property_readonly("t", [](const PySim& s) { return s.sim->world().s.t; })
       .def_property_readonly("step_count", [](const PySim& s) { return s.sim->world().s.step; })
       .def_property_readonly("dt", [](const PySim& s) { return s.sim->dt(); })

@@ -47,11 +47,7 @@ struct State {
 };
 
 struct World {
-  // constants
-  /// the scene this world was built from, for outputs and checkpoints only (sim/checkpoint*,
-  /// sim/saved_state*, app/): the engine takes its settings structs and the fields below
-  /// (tools/check_includes.py refuses reads of it in the engine's folders)
-  SceneSpec scene;
+  // constants: what the world is; what the step does with it is the Simulation's settings
   ModelKind model = ModelKind::Polygon;  ///< polygon DEM (Model P) or soft disks (Model S)
   std::vector<MaterialSpec> materials;
   std::vector<Species> species;

@@ -36,10 +36,10 @@ void serial_sums(const World& w, const ContactSet& cs, std::vector<double>& fx,
   }
 }
 
-void expect_serial_sums(const World& w, BroadPhaseKind bpk) {
+void expect_serial_sums(const World& w, const SimSettings& set, BroadPhaseKind bpk) {
   const Threads two(2);  // the parallel path (the candidates are above its thresholds)
   auto bp = make_broadphase(bpk, w);
-  ContactModel model(w, contact_settings(w.scene));
+  ContactModel model(w, set.contact);
   ContactSet cs;
   ForceBuffer f;
   const std::vector<PairKey>& cand = bp->update(w);
@@ -47,7 +47,7 @@ void expect_serial_sums(const World& w, BroadPhaseKind bpk) {
   ASSERT_TRUE(run_parallel(cand.size(), ContactModel::parallel_pairs_from(w.polygons(), w.size())))
       << cand.size() << " candidates: below the parallel threshold";
 #endif
-  model.evaluate(w, cand, cs, f, w.scene.integrator.dt, bp->generation());
+  model.evaluate(w, cand, cs, f, set.dt, bp->generation());
   ASSERT_GT(cs.records.size(), w.size()) << "a dense packing: more contacts than grains";
   ASSERT_EQ(cs.keys.size(), cs.records.size());
   for (std::size_t k = 0; k < cs.keys.size(); ++k) {
@@ -66,8 +66,8 @@ void expect_serial_sums(const World& w, BroadPhaseKind bpk) {
   // touching pairs alone (no contacts the step before)
   ForceBuffer f2, f3;
   ContactSet cs2 = cs, cs3 = cs;
-  model.evaluate(w, cand, cs2, f2, w.scene.integrator.dt, bp->generation());
-  model.evaluate(w, cand, cs3, f3, w.scene.integrator.dt, 0);
+  model.evaluate(w, cand, cs2, f2, set.dt, bp->generation());
+  model.evaluate(w, cand, cs3, f3, set.dt, 0);
   EXPECT_EQ(f2.fx, f3.fx);
   EXPECT_EQ(f2.fy, f3.fy);
   EXPECT_EQ(f2.tq, f3.tq);
@@ -79,10 +79,11 @@ void expect_serial_sums(const World& w, BroadPhaseKind bpk) {
 
 TEST(ForceSums, SettledDecagonPileMatchesSerialLoop) {
   const std::string src = GS_SOURCE_DIR;
-  World w = make_world(parse_scene_file(src + "/scenes/paper_pile.toml"));
+  const SceneSpec s = parse_scene_file(src + "/scenes/paper_pile.toml");
+  World w = make_world(s);
   read_state_file(w, src + "/bench/data/paper_pile_settled.csv");
-  expect_serial_sums(w, BroadPhaseKind::CellGrid);
-  expect_serial_sums(w, BroadPhaseKind::Box2DTree);
+  expect_serial_sums(w, SimSettings::from(s), BroadPhaseKind::CellGrid);
+  expect_serial_sums(w, SimSettings::from(s), BroadPhaseKind::Box2DTree);
 }
 
 TEST(ForceSums, DenseDiskFluidMatchesSerialLoop) {
@@ -92,7 +93,7 @@ TEST(ForceSums, DenseDiskFluidMatchesSerialLoop) {
   place_particles(w, s);
   for (double& r : w.radius) r *= 1.3;
   w.max_radius *= 1.3;
-  expect_serial_sums(w, BroadPhaseKind::CellGrid);
+  expect_serial_sums(w, SimSettings::from(s), BroadPhaseKind::CellGrid);
 }
 
 // two evaluations of the same pairs: the same contacts, records and forces, bit for bit
@@ -112,15 +113,15 @@ void expect_same_evaluation(const ContactSet& a, const ForceBuffer& fa, const Co
 // last step (the contact set is small against the candidates); with a large contact set it
 // visits every candidate. Both must give the same contacts and forces, bit for bit: a periodic
 // gas, a walled box with disks on the walls, and the 1D ring
-void expect_same_disk_paths(const World& w, std::size_t min_contacts) {
+void expect_same_disk_paths(const World& w, const SimSettings& set, std::size_t min_contacts) {
   auto bp = make_broadphase(BroadPhaseKind::Auto, w);
   const std::vector<PairKey>& cand = bp->update(w);
-  ContactModel model(w, contact_settings(w.scene));
+  ContactModel model(w, set.contact);
   ContactSet sparse, packed;  // sparse: no contacts last step; packed: as many as candidates
   packed.keys.assign(cand.size(), PairKey{0});
   ForceBuffer f1, f2;
-  model.evaluate(w, cand, sparse, f1, w.scene.integrator.dt, bp->generation());
-  model.evaluate(w, cand, packed, f2, w.scene.integrator.dt, bp->generation());
+  model.evaluate(w, cand, sparse, f1, set.dt, bp->generation());
+  model.evaluate(w, cand, packed, f2, set.dt, bp->generation());
   ASSERT_GE(sparse.keys.size(), min_contacts);
   ASSERT_LT(3 * sparse.keys.size(), cand.size()) << "not a sparse scene: the test needs one";
   expect_same_evaluation(sparse, f1, packed, f2);
@@ -145,7 +146,7 @@ TEST(ForceSums, DiskPrefilterKeepsThePairs) {
     Simulation sim = forced_gas(3000, 5);
     sim.run(400);
     const World& w = sim.world();
-    expect_same_disk_paths(w, 10);
+    expect_same_disk_paths(w, sim.settings(), 10);
   }
   {  // the gas with every third disk from the second 2 % larger: the selection reads each
      // pair's radii (one common radius spares those loads)
@@ -162,7 +163,7 @@ TEST(ForceSums, DiskPrefilterKeepsThePairs) {
       w.s.y[i + 3] = w.s.y[i];
     }
     ASSERT_GT(big, 10u);
-    expect_same_disk_paths(w, big);
+    expect_same_disk_paths(w, sim.settings(), big);
   }
   {  // walled box: a loose column of disks shifted onto the left wall and the floor
     SceneSpec s = build::disk_gas(400, 0.3, 0.6, 0.6, 6);
@@ -177,7 +178,7 @@ TEST(ForceSums, DiskPrefilterKeepsThePairs) {
       on_wall += w.s.x[i] < r0 || w.s.y[i] < r0;
     }
     ASSERT_GT(on_wall, 0u);
-    expect_same_disk_paths(w, on_wall);
+    expect_same_disk_paths(w, SimSettings::from(s), on_wall);
   }
   {  // the 1D ring
     const SceneSpec ring =
@@ -186,7 +187,7 @@ TEST(ForceSums, DiskPrefilterKeepsThePairs) {
     place_particles(w, ring);
     // every tenth disk's forward neighbour moved to overlap it by a quarter diameter
     for (std::size_t i = 0; i + 1 < w.size(); i += 10) w.s.x[i + 1] = w.s.x[i] + 1.5 * w.radius[i];
-    expect_same_disk_paths(w, w.size() / 10);
+    expect_same_disk_paths(w, SimSettings::from(ring), w.size() / 10);
   }
 }
 
@@ -212,10 +213,11 @@ TEST(ForceSums, LargestOverlapsAreTheRecordsMaxima) {
       ASSERT_EQ(run_parallel(cand.size(), ContactModel::parallel_pairs_from(false, w.size())),
                 threads == 2);
 #endif
-      ContactModel model(w, contact_settings(w.scene));
+      const SimSettings set = SimSettings::from(s);
+      ContactModel model(w, set.contact);
       ContactSet cs;
       ForceBuffer f;
-      const ForceStats st = model.evaluate(w, cand, cs, f, w.scene.integrator.dt, bp->generation());
+      const ForceStats st = model.evaluate(w, cand, cs, f, set.dt, bp->generation());
       const auto N = static_cast<std::uint32_t>(w.size());
       double h = 0.0, rel = 0.0;
       std::size_t walls = 0;
@@ -253,24 +255,25 @@ TEST(ForceSums, DiluteLargeGasPairsOnTheTeam) {
   ASSERT_GE(w.size(), kParallelMinCheap);
   ASSERT_GE(cand.size(), kParallelMin);
   ASSERT_LT(cand.size(), kParallelMinCheap) << "the pairs alone would not start a region";
-  ContactModel one(w, contact_settings(w.scene)), team(w, contact_settings(w.scene));
+  const SimSettings set = SimSettings::from(s);
+  ContactModel one(w, set.contact), team(w, set.contact);
   ContactSet cs1, cs2, cs3, cs4, cs5;
   cs4.keys.assign(cand.size(), PairKey{0});  // "as many contacts as candidates last step"
   cs5.keys = cs4.keys;
   ForceBuffer f1, f2, f3, f4, f5;
   {
     const Threads single(1);
-    one.evaluate(w, cand, cs1, f1, w.scene.integrator.dt, bp->generation());
+    one.evaluate(w, cand, cs1, f1, set.dt, bp->generation());
   }
   {
     const Threads two(2);
 #ifdef _OPENMP
     ASSERT_TRUE(run_parallel(cand.size(), ContactModel::parallel_pairs_from(false, w.size())));
 #endif
-    team.evaluate(w, cand, cs2, f2, w.scene.integrator.dt, bp->generation());
-    team.evaluate(w, cand, cs3, f3, w.scene.integrator.dt, 0);
-    team.evaluate(w, cand, cs4, f4, w.scene.integrator.dt, bp->generation());  // index made
-    team.evaluate(w, cand, cs5, f5, w.scene.integrator.dt, bp->generation());  // and reused
+    team.evaluate(w, cand, cs2, f2, set.dt, bp->generation());
+    team.evaluate(w, cand, cs3, f3, set.dt, 0);
+    team.evaluate(w, cand, cs4, f4, set.dt, bp->generation());  // index made
+    team.evaluate(w, cand, cs5, f5, set.dt, bp->generation());  // and reused
   }
   ASSERT_GE(cs1.keys.size(), 400u);
   expect_same_evaluation(cs2, f2, cs1, f1);
@@ -290,15 +293,16 @@ TEST(ForceSums, DiluteLargeGasPairsOnTheTeam) {
 TEST(ForceSums, ReusedBufferEqualsAFreshOne) {
   Simulation sim = forced_gas(3000, 5);
   auto bp = make_broadphase(BroadPhaseKind::Auto, sim.world());
-  ContactModel model(sim.world(), contact_settings(sim.world().scene));
+  const SimSettings& set = sim.settings();
+  ContactModel model(sim.world(), set.contact);
   ForceBuffer reused;
   std::size_t sparse_calls = 0, touched_max = 0;
   auto expect_fresh = [&](const World& w, const char* what) {
     const std::vector<PairKey>& cand = bp->update(w);
     ContactSet cs1, cs2;
     ForceBuffer fresh;
-    model.evaluate(w, cand, cs1, reused, w.scene.integrator.dt, 0);
-    model.evaluate(w, cand, cs2, fresh, w.scene.integrator.dt, 0);
+    model.evaluate(w, cand, cs1, reused, set.dt, 0);
+    model.evaluate(w, cand, cs2, fresh, set.dt, 0);
     ASSERT_EQ(reused.fx.size(), w.size()) << what;
     std::size_t differ = 0;
     for (std::size_t i = 0; i < w.size(); ++i)
@@ -330,13 +334,13 @@ TEST(ForceSums, ReusedBufferEqualsAFreshOne) {
   // a smaller world in the same buffer
   Simulation small = forced_gas(1000, 9);
   small.run(400);
-  ContactModel model2(small.world(), contact_settings(small.world().scene));
+  ContactModel model2(small.world(), small.settings().contact);
   bp = make_broadphase(BroadPhaseKind::Auto, small.world());
   const std::vector<PairKey>& cand = bp->update(small.world());
   ContactSet cs1, cs2;
   ForceBuffer fresh;
-  model2.evaluate(small.world(), cand, cs1, reused, small.world().scene.integrator.dt, 0);
-  model2.evaluate(small.world(), cand, cs2, fresh, small.world().scene.integrator.dt, 0);
+  model2.evaluate(small.world(), cand, cs1, reused, small.dt(), 0);
+  model2.evaluate(small.world(), cand, cs2, fresh, small.dt(), 0);
   EXPECT_EQ(reused.fx, fresh.fx);
   EXPECT_EQ(reused.fy, fresh.fy);
 }

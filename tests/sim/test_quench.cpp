@@ -44,7 +44,7 @@ Outcome tap(std::vector<std::string> overrides) {
     sim.step();
     if (clock.after_step(sim.world()) == ClockEvent::Quench) sim.zero_velocities();
     const World& cw = sim.world();
-    if (excitation_starts_next(cw.scene.drive, cw.clock_origin, cw.s.t, s.integrator.dt))
+    if (excitation_starts_next(s.drive, cw.clock_origin, cw.s.t, s.integrator.dt))
       o.rest_ke.push_back(cw.kinetic_energy());
   }
   o.hash = state_hash(sim.world());

@@ -56,7 +56,7 @@ TEST(SavedState, StateFileSpringsStartAtZeroCheckpointKeepsThem) {
   ASSERT_GT(sim.contacts().keys.size(), 10u);
   ASSERT_GT(spring_sum(sim), 0.0);
   write_state_file(sim.world(), (dir / "state.csv").string());
-  write_checkpoint(sim, {}, (dir / "ck.gsck").string());
+  write_checkpoint(sim, scene, {}, (dir / "ck.gsck").string());
 
   const Simulation a = start((dir / "state.csv").string());
   EXPECT_EQ(a.world().size(), 20u);

@@ -178,7 +178,7 @@ TEST(SortParticles, CheckpointResumesASortedRunBitForBit) {
     straight.run(260);
     Simulation first = make_sim(s);
     first.run(130);
-    const std::string bytes = encode_checkpoint(first, CheckpointExtras{});
+    const std::string bytes = encode_checkpoint(first, s, CheckpointExtras{});
     Simulation resumed = restore_simulation(decode_checkpoint(bytes, "memory"));
     EXPECT_EQ(resumed.world().id, first.world().id);
     resumed.run(130);
@@ -243,19 +243,16 @@ TEST(SortParticles, StateFileRowsFollowLabels) {
 }
 
 TEST(SortParticles, AutoIntervalAndSceneChecks) {
-  World big = make_world(gas(kAutoSortMinParticles, -1));
-  place_particles(big, big.scene);
-  EXPECT_EQ(resolved_sort_every(big, big.scene.integrator.sort_every), kAutoSortEvery);
-  World small = make_world(gas(2000, -1));
-  place_particles(small, small.scene);
-  EXPECT_EQ(resolved_sort_every(small, small.scene.integrator.sort_every), 0);
-  World off = make_world(gas(kAutoSortMinParticles, 0));
-  place_particles(off, off.scene);
-  EXPECT_EQ(resolved_sort_every(off, off.scene.integrator.sort_every), 0);
+  auto resolved = [](const SceneSpec& s) {
+    World w = make_world(s);
+    place_particles(w, s);
+    return resolved_sort_every(w, s.integrator.sort_every);
+  };
+  EXPECT_EQ(resolved(gas(kAutoSortMinParticles, -1)), kAutoSortEvery);
+  EXPECT_EQ(resolved(gas(2000, -1)), 0);
+  EXPECT_EQ(resolved(gas(kAutoSortMinParticles, 0)), 0);
   const std::string src = GS_SOURCE_DIR;
-  World pile = make_world(parse_scene_file(src + "/scenes/paper_pile.toml"));
-  place_particles(pile, pile.scene);
-  EXPECT_EQ(resolved_sort_every(pile, pile.scene.integrator.sort_every), 0);
+  EXPECT_EQ(resolved(parse_scene_file(src + "/scenes/paper_pile.toml")), 0);
 
   // the scene refuses a sort where the slots carry meaning or history
   auto error_of = [&](const std::string& file, const std::string& set) {

@@ -63,29 +63,6 @@ class CheckIncludes(unittest.TestCase):
             self.assertIn('src/sim/c.cpp:1: sim includes output/', r.stdout)
             self.assertNotIn('b.cpp', r.stdout)
 
-    def test_the_engine_may_not_read_the_world_scene(self):
-        # settings structs are built from the scene once; only checkpoints and app/ keep it
-        with tempfile.TemporaryDirectory() as d:
-            d = pathlib.Path(d)
-            for f in ('cmake/modules.cmake', 'tests/CMakeLists.txt'):
-                (d / f).parent.mkdir(parents=True, exist_ok=True)
-                (d / f).write_text((ROOT / f).read_text())
-            for f, text in {'src/sim/a.cpp': 'double dt = w_.scene.integrator.dt;\n',
-                            'src/view/b.cpp': 'auto d = sim->world().scene.drive;\n',
-                            'src/world/c.cpp': '  w.scene = sc;  // the copy for outputs\n',
-                            'src/sim/checkpoint.cpp': 'p.str(scene_to_toml(w.scene));\n',
-                            'src/app/d.cpp': 'f(sim.world().scene);\n',
-                            'src/measure/e.cpp': '// reads w.scene.drive no more\n'
-                                                 'RfmSettings s{x.scene_name};\n'}.items():
-                (d / f).parent.mkdir(parents=True, exist_ok=True)
-                (d / f).write_text(text)
-            r = check(d)
-            self.assertEqual(r.returncode, 1)
-            self.assertIn('src/sim/a.cpp:1: reads World::scene', r.stdout)
-            self.assertIn('src/view/b.cpp:1: reads World::scene', r.stdout)
-            for ok in ('c.cpp', 'checkpoint.cpp', 'd.cpp', 'e.cpp'):
-                self.assertNotIn(ok, r.stdout)
-
 
 if __name__ == '__main__':
     unittest.main()

@@ -167,7 +167,7 @@ int resume_command(const ResumeOptions& opt) {
   const Checkpoint c = newest_valid_checkpoint(opt.dir);
   check_scene_unchanged(opt.dir, c);
   Simulation sim = restore_simulation(c);
-  SceneSpec scene = sim.world().scene;
+  const SceneSpec scene = checkpoint_scene(c);
   ProtocolClock clock(scene);
   ByteReader ck = extra(c, "run/clock");
   clock.load(ck);
