@@ -19,11 +19,16 @@
 namespace gs {
 namespace {
 
-// the paper pile, settled: scene from scenes/, positions from bench/data (made by gransim run)
-World settled_pile(IntegratorKind integ) {
+// the paper pile's scene (scenes/) with the given integrator
+SceneSpec pile_scene(IntegratorKind integ) {
   SceneSpec s = parse_scene_file(std::string(GS_SOURCE_DIR) + "/scenes/paper_pile.toml");
   s.integrator.kind = integ;
-  World w = make_world(s);
+  return s;
+}
+
+// the paper pile, settled: positions from bench/data (made by gransim run)
+World settled_pile(IntegratorKind integ) {
+  World w = make_world(pile_scene(integ));
   read_state_file(w, std::string(GS_SOURCE_DIR) + "/bench/data/paper_pile_settled.csv");
   return w;
 }
@@ -31,7 +36,7 @@ World settled_pile(IntegratorKind integ) {
 void BM_PileForceEvaluation(benchmark::State& st) {
   World w = settled_pile(IntegratorKind::Gear6);
   auto bp = make_broadphase(BroadPhaseKind::Box2DTree, w);
-  ContactModel model(w);
+  ContactModel model(w, contact_settings(pile_scene(IntegratorKind::Gear6)));
   ThreadTeam team;
   ContactSet cs;
   ForceBuffer f;
@@ -80,7 +85,7 @@ BENCHMARK(BM_PileOverlaps)->Unit(benchmark::kMicrosecond);
 void BM_PileStep(benchmark::State& st) {
   const auto integ = static_cast<IntegratorKind>(st.range(0));
   const auto bpk = static_cast<BroadPhaseKind>(st.range(1));
-  Simulation sim(settled_pile(integ), bpk);
+  Simulation sim(settled_pile(integ), SimSettings::from(pile_scene(integ)), bpk);
   std::int64_t steps = 0;
   for (auto _ : st) steps += run_iteration(sim);
   st.SetLabel(std::string(to_string(integ)) + "/" + sim.broadphase().name());
@@ -106,8 +111,8 @@ void BM_DiskFluidStep(benchmark::State& st) {
   SceneSpec s = build::disk_gas(static_cast<int>(st.range(0)), 0.353, 0.6, 0.6, 1);
   s.drive.kind = DriveKind::RandomForce;
   World w = make_world(s);
-  place_particles(w);
-  Simulation sim(std::move(w));
+  place_particles(w, s);
+  Simulation sim(std::move(w), SimSettings::from(s));
   sim.run(200);  // leave the lattice-like start
   std::int64_t steps = 0;
   for (auto _ : st) steps += run_iteration(sim);

@@ -165,7 +165,7 @@ RenderSpec real_spec(int w, int h, int msaa, const std::string& renderer) {
 void BM_RealPileAdapter720p(benchmark::State& st) {
   const World& w = real_pile().world;
   const RenderSpec r = real_spec(1280, 720, 4, "software");
-  const FrameInfo info = frame_info(w, {0.0, -9.81});
+  const FrameInfo info = frame_info(w, ViewSettings::from(real_pile().scene), {0.0, -9.81});
   for (auto _ : st) {
     const WorldFrame f = world_frame(w, nullptr, info, r);
     benchmark::DoNotOptimize(build_frame(f.particles, f.walls, f.overlays, f.spec, f.box));
@@ -186,7 +186,7 @@ void BM_RealPileRender720p(benchmark::State& st) {
     st.SkipWithError(e.what());
     return;
   }
-  const FrameInfo info = frame_info(w, {0.0, -9.81});
+  const FrameInfo info = frame_info(w, ViewSettings::from(real_pile().scene), {0.0, -9.81});
   maker->render(w, nullptr, info);  // warm up
   for (auto _ : st) benchmark::DoNotOptimize(maker->render(w, nullptr, info).rgba.data());
   st.counters["fps"] = benchmark::Counter(st.iterations(), benchmark::Counter::kIsRate);
@@ -196,7 +196,7 @@ BENCHMARK(BM_RealPileRender720p)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)-
 
 // with contacts: force chains and pressure colouring need a Simulation's contact list
 void BM_RealPileChainsPressure720pGl(benchmark::State& st) {
-  Simulation sim(real_pile().world);
+  Simulation sim(real_pile().world, SimSettings::from(real_pile().scene));
   RenderSpec r = real_spec(1280, 720, 4, "gl");
   r.force_chains = true;
   r.color_by = "pressure";
@@ -207,7 +207,8 @@ void BM_RealPileChainsPressure720pGl(benchmark::State& st) {
     st.SkipWithError(e.what());
     return;
   }
-  const FrameInfo info = frame_info(sim.world(), sim.gravity());
+  const FrameInfo info =
+      frame_info(sim.world(), ViewSettings::from(real_pile().scene), sim.gravity());
   for (auto _ : st)
     benchmark::DoNotOptimize(maker->render(sim.world(), &sim.contacts(), info).rgba.data());
   st.counters["fps"] = benchmark::Counter(st.iterations(), benchmark::Counter::kIsRate);
@@ -235,7 +236,7 @@ void BM_RealPileRenderEncode720p(benchmark::State& st) {
   for (auto _ : st) {
     // the grains shift a little each frame, as in a movie (not a still the encoder skips)
     for (std::size_t i = 0; i < w.size(); ++i) w.s.th[i] += 0.01;
-    FrameInfo info = frame_info(w, {0.0, -9.81});
+    FrameInfo info = frame_info(w, ViewSettings::from(real_pile().scene), {0.0, -9.81});
     info.time = k++ / 30.0;
     enc.add_frame(maker->render(w, nullptr, info));
   }

@@ -21,13 +21,18 @@ std::unique_ptr<BroadPhase> make_ring_neighbours();  // broadphase/ring_neighbou
 
 namespace {
 
+// a scene of scenes/ with overrides
+SceneSpec reference(const char* scene, std::vector<std::string> sets) {
+  return parse_scene_file(std::string(GS_SOURCE_DIR) + "/scenes/" + scene, sets);
+}
+
 // the scene's fluid after `warm` seconds of driving (uniform start for the 2D fluid: the
 // square lattice of the reference scene is a dense block that takes ~0.1 s to spread)
-std::unique_ptr<Simulation> warmed(const char* scene, double warm, std::vector<std::string> sets) {
-  SceneSpec s = parse_scene_file(std::string(GS_SOURCE_DIR) + "/scenes/" + scene, sets);
+
+std::unique_ptr<Simulation> warmed(const SceneSpec& s, double warm) {
   World w = make_world(s);
-  place_particles(w);
-  auto sim = std::make_unique<Simulation>(std::move(w));
+  place_particles(w, s);
+  auto sim = std::make_unique<Simulation>(std::move(w), SimSettings::from(s));
   sim->run(static_cast<std::int64_t>(warm / s.integrator.dt));
   return sim;
 }
@@ -43,12 +48,13 @@ void rate(benchmark::State& st, const Simulation& sim, std::int64_t steps) {
 // S(k) and g(R) every 10th sample, contacts followed every step)
 void BM_Rfm2DReferenceStep(benchmark::State& st) {
   const OneThread one;  // the rate is per core
-  auto sim = warmed("rfm2d_reference.toml", 0.05, {"preparation.placement=uniform"});
+  const SceneSpec scene = reference("rfm2d_reference.toml", {"preparation.placement=uniform"});
+  auto sim = warmed(scene, 0.05);
   std::unique_ptr<RfmObserver> obs;
   const std::string dir = (std::filesystem::temp_directory_path() / "gs_bench_rfm2d").string();
   if (st.range(0)) {
     std::filesystem::create_directories(dir);
-    SceneSpec s = sim->world().scene;
+    SceneSpec s = scene;
     s.rfm.discard_time = 0.0;
     obs = std::make_unique<RfmObserver>(s, csv_records());
     obs->start(*sim, dir);
@@ -64,12 +70,13 @@ BENCHMARK(BM_Rfm2DReferenceStep)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond)-
 // the 1D ring (cell-grid broad phase, as selected by the scene)
 void BM_Rfm1DRingStep(benchmark::State& st) {
   const OneThread one;  // the rate is per core
-  auto sim = warmed("rfm1d_reference.toml", 0.05, {});
+  const SceneSpec scene = reference("rfm1d_reference.toml", {});
+  auto sim = warmed(scene, 0.05);
   std::unique_ptr<RfmObserver> obs;
   const std::string dir = (std::filesystem::temp_directory_path() / "gs_bench_rfm1d").string();
   if (st.range(0)) {
     std::filesystem::create_directories(dir);
-    SceneSpec s = sim->world().scene;
+    SceneSpec s = scene;
     s.rfm.discard_time = 0.0;
     obs = std::make_unique<RfmObserver>(s, csv_records());
     obs->start(*sim, dir);
@@ -87,7 +94,7 @@ BENCHMARK(BM_Rfm1DRingStep)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond)->MinT
 // this way: with a Verlet skin it returns its cached list when nothing moves)
 void BM_RingNeighbours(benchmark::State& st) {
   const OneThread one;  // the rate is per core
-  auto sim = warmed("rfm1d_reference.toml", 0.01, {});
+  auto sim = warmed(reference("rfm1d_reference.toml", {}), 0.01);
   auto bp = make_ring_neighbours();
   std::vector<PairKey> keys;
   for (auto _ : st) {

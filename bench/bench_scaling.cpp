@@ -42,9 +42,10 @@ const World& settled(int n) {
   static std::map<int, World> cache;
   auto it = cache.find(n);
   if (it == cache.end()) {
-    World w = make_world(fluid(n));
-    place_particles(w);
-    Simulation sim(std::move(w));
+    const SceneSpec s = fluid(n);
+    World w = make_world(s);
+    place_particles(w, s);
+    Simulation sim(std::move(w), SimSettings::from(s));
     sim.run(kSettleSteps);
     it = cache.emplace(n, sim.world()).first;
   }
@@ -90,8 +91,9 @@ Simulation& fluid_at(int n, bool mixed) {
       w = tiled(10, 10, mixed);
     else
       w = settled(n);
-    if (mixed) w.scene.integrator.sort_every = 0;
-    slot = std::make_unique<Simulation>(std::move(w));
+    SimSettings settings = SimSettings::from(fluid(n));  // the same for every n
+    if (mixed) settings.sort_every = 0;
+    slot = std::make_unique<Simulation>(std::move(w), settings);
     if (slot->sort_every() > 0) slot->sort_particles();  // as a sorting run keeps it
     slot->run(50);
   }
@@ -146,8 +148,9 @@ void BM_SortParticles(benchmark::State& st) {
   for (auto _ : st) {
     st.PauseTiming();
     World w = from;
-    w.scene.integrator.sort_every = 1000;
-    Simulation sim(std::move(w));
+    SimSettings settings = SimSettings::from(fluid(n));
+    settings.sort_every = 1000;
+    Simulation sim(std::move(w), settings);
     st.ResumeTiming();
     sim.sort_particles();
   }

@@ -49,10 +49,12 @@ namespace {
 /// applied through the scene parser so that bad values get the parser's messages
 struct PyRenderer {
   std::unique_ptr<FrameMaker> maker;
+  ViewSettings view;
   PyRenderer(const SceneSpec& scene, const std::vector<std::string>& overrides) {
     SceneSpec s =
         overrides.empty() ? scene : parse_scene_string(scene_to_toml(scene), scene.path, overrides);
     maker = std::make_unique<FrameMaker>(s.render, scene.path);
+    view = ViewSettings::from(s);
   }
   py::array render(const PySim& s, int channels) {
     const Simulation& sim = *s.sim;
@@ -60,7 +62,7 @@ struct PyRenderer {
     Image img;
     {
       py::gil_scoped_release unlocked;
-      img = maker->render(w, &sim.contacts(), frame_info(w, sim.gravity()));
+      img = maker->render(w, &sim.contacts(), frame_info(w, view, sim.gravity()));
     }
     return image_to_array(std::move(img), channels);
   }
@@ -78,7 +80,7 @@ void bind_render(py::module_& m) {
   py::class_<PyRenderer>(m, "Renderer",
                          "draws frames of a simulation with its scene's [render] settings")
       .def(py::init([](const PySim& s, const std::vector<std::string>& overrides) {
-             return std::make_unique<PyRenderer>(s.sim->world().scene, overrides);
+             return std::make_unique<PyRenderer>(s.scene, overrides);
            }),
            py::arg("sim"), py::arg("overrides") = std::vector<std::string>{})
       .def("render", &PyRenderer::render, py::arg("sim"), py::arg("channels") = 3,

@@ -97,10 +97,10 @@ py::dict tap_dict(const World& w, const TapMeasurement& m, long tap) {
   return d;
 }
 
-std::array<double, 4> rect_or_scene(const World& w, const py::object& rect) {
+std::array<double, 4> rect_or_scene(const SceneSpec& scene, const py::object& rect) {
   if (rect.is_none())
-    return {w.scene.output.test_rect[0], w.scene.output.test_rect[1], w.scene.output.test_rect[2],
-            w.scene.output.test_rect[3]};
+    return {scene.output.test_rect[0], scene.output.test_rect[1], scene.output.test_rect[2],
+            scene.output.test_rect[3]};
   const auto r = rect.cast<std::vector<double>>();
   if (r.size() != 4 || !(r[2] > r[0]) || !(r[3] > r[1]))
     throw InputError("rect", "rect", "must be [x0, y0, x1, y1] with x1 > x0 and y1 > y0");
@@ -109,15 +109,15 @@ std::array<double, 4> rect_or_scene(const World& w, const py::object& rect) {
 
 }  // namespace
 
-PySim::PySim(const SceneSpec& scene) {
+PySim::PySim(const SceneSpec& spec) : scene(spec) {
   // as `gransim run`: place the grains, start the protocol clock before the first force
   // evaluation (settling gravity), then refuse an unstable time step
   World w = make_world(scene);
-  place_particles(w);
+  place_particles(w, scene);
   clock = std::make_unique<ProtocolClock>(scene);
   clock->start(w);
-  sim = std::make_unique<Simulation>(std::move(w));
-  check_time_step(*sim);
+  sim = std::make_unique<Simulation>(std::move(w), SimSettings::from(scene));
+  check_time_step(*sim, scene);
 }
 
 void PySim::advance(std::int64_t n) {
@@ -182,15 +182,15 @@ void bind_scene_sim(py::module_& m) {
           "run_to_tap",
           [](PySim& s, long k) {
             const World& w = s.sim->world();
-            const DriveSpec& d = w.scene.drive;
+            const DriveSpec& d = s.sim->settings().drive;
             if (!is_tapping(d))
-              throw InputError(w.scene.path, "drive.kind",
+              throw InputError(s.scene.path, "drive.kind",
                                "run_to_tap needs a tapping protocol (negative_g or rotating_g)");
             const double dt = s.sim->dt();
             auto at = [&] {
               const World& ww = s.sim->world();
-              return excitation_starts_next(ww.scene.drive, ww.clock_origin, ww.s.t, dt) &&
-                     drive_phase(ww.scene.drive, ww.clock_origin, ww.s.t + dt).tap == k;
+              return excitation_starts_next(s.sim->settings().drive, ww.clock_origin, ww.s.t, dt) &&
+                     drive_phase(s.sim->settings().drive, ww.clock_origin, ww.s.t + dt).tap == k;
             };
             const DrivePhase p = drive_phase(d, w.clock_origin, w.s.t + dt);
             if (k < 0 || (!p.settling && p.tap > k) || (!p.settling && p.tap == k && !at()))
@@ -199,16 +199,15 @@ void bind_scene_sim(py::module_& m) {
                                    std::to_string(p.tap) + ")");
             while (!at()) {
               const World& ww = s.sim->world();
-              const std::int64_t m =
-                  s.clock->watches_steps()
-                      ? 1
-                      : 1 + steps_before_excitation(ww.scene.drive, ww.clock_origin, ww.s.t, dt);
+              const std::int64_t m = s.clock->watches_steps()
+                                         ? 1
+                                         : 1 + steps_before_excitation(s.sim->settings().drive,
+                                                                       ww.clock_origin, ww.s.t, dt);
               s.advance(std::max<std::int64_t>(1, m));
             }
-            return tap_dict(s.sim->world(),
-                            measure_tap(s.sim->world(), s.sim->contacts(),
-                                        s.sim->world().scene.output.test_rect),
-                            k);
+            return tap_dict(
+                s.sim->world(),
+                measure_tap(s.sim->world(), s.sim->contacts(), s.scene.output.test_rect), k);
           },
           py::arg("k"),
           "run until just before the excitation after k taps (k = 0: the settled pile) and "
@@ -217,20 +216,21 @@ void bind_scene_sim(py::module_& m) {
           "measure_tap",
           [](const PySim& s, const py::object& rect) {
             const World& w = s.sim->world();
-            const auto r = rect_or_scene(w, rect);
-            const DrivePhase p = drive_phase(w.scene.drive, w.clock_origin, w.s.t + s.sim->dt());
+            const auto r = rect_or_scene(s.scene, rect);
+            const DrivePhase p =
+                drive_phase(s.sim->settings().drive, w.clock_origin, w.s.t + s.sim->dt());
             return tap_dict(w, measure_tap(w, s.sim->contacts(), r.data()), p.settling ? 0 : p.tap);
           },
           py::arg("rect") = py::none(), "the per-tap measurement of the pile now")
       .def(
           "phi",
           [](const PySim& s, const py::object& rect) {
-            const auto r = rect_or_scene(s.sim->world(), rect);
+            const auto r = rect_or_scene(s.scene, rect);
             return phi_in_rect(s.sim->world(), r[0], r[1], r[2], r[3]);
           },
           py::arg("rect") = py::none(),
           "volume fraction in [x0, y0, x1, y1] (default: output.test_rect)")
-      .def_property_readonly("scene", [](const PySim& s) { return s.sim->world().scene; })
+      .def_property_readonly("scene", [](const PySim& s) { return s.scene; })
       .def_property_readonly("t", [](const PySim& s) { return s.sim->world().s.t; })
       .def_property_readonly("step_count", [](const PySim& s) { return s.sim->world().s.step; })
       .def_property_readonly("dt", [](const PySim& s) { return s.sim->dt(); })
@@ -249,7 +249,8 @@ void bind_scene_sim(py::module_& m) {
           "tap",
           [](const PySim& s) {
             const World& w = s.sim->world();
-            const DrivePhase p = drive_phase(w.scene.drive, w.clock_origin, w.s.t + s.sim->dt());
+            const DrivePhase p =
+                drive_phase(s.sim->settings().drive, w.clock_origin, w.s.t + s.sim->dt());
             return p.settling ? -1L : p.tap;
           },
           "the period the next step is in (taps completed before it); -1 while settling")

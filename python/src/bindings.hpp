@@ -19,6 +19,7 @@ namespace py = pybind11;
 /// a Simulation with the protocol clock that drives it, as `gransim run` sets them up; both on
 /// the heap so that NumPy views onto the World's arrays stay valid while the object lives
 struct PySim {
+  SceneSpec scene;  ///< the scene it was made from (Scene.scene, the render's [render] section)
   std::unique_ptr<Simulation> sim;
   std::unique_ptr<ProtocolClock> clock;
   explicit PySim(const SceneSpec& scene);

@@ -23,7 +23,6 @@ ContactSettings contact_settings(const SceneSpec& scene);
 class ContactModel {
  public:
   /// the world's species, materials and walls with the scene's switches
-  explicit ContactModel(const World& w) : ContactModel(w, contact_settings(w.scene)) {}
   ContactModel(const World& w, const ContactSettings& settings);
   /// evaluate every contact among the candidates, update the contact set, and set f to the
   /// contact forces (f.tq: polygon models only). `generation` identifies the candidate list

@@ -13,11 +13,12 @@
 namespace gs {
 
 // payload in the order of docs/robustness.md, then the header in front
-std::string encode_checkpoint(const Simulation& sim, const CheckpointExtras& extras) {
+std::string encode_checkpoint(const Simulation& sim, const SceneSpec& scene,
+                              const CheckpointExtras& extras) {
   const World& w = sim.world();
   const State& s = w.s;
   ByteWriter p;
-  p.str(scene_to_toml(w.scene));
+  p.str(scene_to_toml(scene));
   p.f64(w.clock_origin);
   p.f64(s.t);
   p.i64(s.step);
@@ -61,14 +62,17 @@ std::string encode_checkpoint(const Simulation& sim, const CheckpointExtras& ext
   return h.out + p.out;
 }
 
-void write_checkpoint(const Simulation& sim, const CheckpointExtras& extras,
+void write_checkpoint(const Simulation& sim, const SceneSpec& scene, const CheckpointExtras& extras,
                       const std::string& path) {
-  write_file_atomic(path, encode_checkpoint(sim, extras));
+  write_file_atomic(path, encode_checkpoint(sim, scene, extras));
+}
+
+SceneSpec checkpoint_scene(const Checkpoint& c) {
+  return parse_scene_string(c.scene_toml, c.path + " (embedded scene)");
 }
 
 Simulation restore_simulation(const Checkpoint& c) {
-  const std::string where = c.path + " (embedded scene)";
-  SceneSpec scene = parse_scene_string(c.scene_toml, where);
+  const SceneSpec scene = checkpoint_scene(c);
   if (c.integrator != static_cast<std::uint8_t>(scene.integrator.kind))
     throw InputError(c.path, "integrator.kind", "checkpoint history is for another integrator");
   // the World's constants from the scene, the particles from the file
@@ -121,7 +125,7 @@ Simulation restore_simulation(const Checkpoint& c) {
   w.clock_origin = c.clock_origin;
   // the constructor evaluates forces (and contacts) afresh; the stored history then replaces
   // what that evaluation produced, so the next step sees exactly the saved state
-  Simulation sim(std::move(w));
+  Simulation sim(std::move(w), SimSettings::from(scene));
   load_checkpoint_history(sim, c, true);
   return sim;
 }

@@ -30,7 +30,7 @@ struct CheckpointExtras {
 /// the decoded contents of a checkpoint file
 struct Checkpoint {
   std::string path;           ///< file it was read from (for messages)
-  std::string scene_toml;     ///< scene_to_toml of the World's scene
+  std::string scene_toml;     ///< scene_to_toml of the scene the run was built from
   double clock_origin = 0.0;  ///< World::clock_origin (run state, not a scene key), s
   // per-particle constants (kept, not recomputed, so nothing depends on re-derivation)
   std::vector<std::int32_t> sp;
@@ -48,10 +48,11 @@ struct Checkpoint {
 /// FNV-1a, 64 bit: the payload checksum
 std::uint64_t fnv1a64(std::string_view bytes);
 
-/// the checkpoint as bytes (header + payload)
-std::string encode_checkpoint(const Simulation& sim, const CheckpointExtras& extras);
+/// the checkpoint of `sim`, built from `scene` (stored with it), as bytes (header + payload)
+std::string encode_checkpoint(const Simulation& sim, const SceneSpec& scene,
+                              const CheckpointExtras& extras);
 /// write atomically (temporary file, fsync, rename); InputError naming the path on failure
-void write_checkpoint(const Simulation& sim, const CheckpointExtras& extras,
+void write_checkpoint(const Simulation& sim, const SceneSpec& scene, const CheckpointExtras& extras,
                       const std::string& path);
 
 /// decode bytes; InputError naming `name_for_messages` and the byte offset of the problem
@@ -59,6 +60,8 @@ Checkpoint decode_checkpoint(std::string_view bytes, const std::string& name_for
 /// read and validate a file (magic, version, endianness, sizes, checksum)
 Checkpoint read_checkpoint(const std::string& path);
 
+/// the scene stored in a checkpoint (InputError naming the checkpoint when it does not parse)
+SceneSpec checkpoint_scene(const Checkpoint& c);
 /// rebuild the World from the stored scene and continue bitwise: the next step() gives the
 /// same state as the uninterrupted run. InputError when the contents do not fit together.
 Simulation restore_simulation(const Checkpoint& c);

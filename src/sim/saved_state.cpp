@@ -177,11 +177,11 @@ void place_saved_state(World& w, const SavedState& st) {
 bool take_saved_history(Simulation& sim, const SavedState& st) {
   if (!st.checkpoint) return false;
   const Checkpoint& c = *st.checkpoint;
-  const SceneSpec& now = sim.world().scene;
+  const SimSettings& now = sim.settings();
   const SceneSpec then = parse_scene_string(c.scene_toml, c.path + " (embedded scene)");
-  if (c.integrator != static_cast<std::uint8_t>(now.integrator.kind) ||
-      then.integrator.kind != now.integrator.kind || then.integrator.dt != now.integrator.dt ||
-      then.model.kind != now.model.kind)
+  if (c.integrator != static_cast<std::uint8_t>(now.integrator) ||
+      then.integrator.kind != now.integrator || then.integrator.dt != now.dt ||
+      then.model.kind != sim.world().model)
     return false;
   // as in restore_simulation; a fork starts its own count of degenerate contacts
   load_checkpoint_history(sim, c, false);

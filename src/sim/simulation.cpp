@@ -19,32 +19,30 @@ namespace {
 
 // velocity Verlet corrects disks by the kick an executor may apply inside its force pass, and
 // polygons from the half-step velocity
-IntegratorSettings integrator_settings(const World& w) {
-  return {w.scene.integrator.kind,
-          w.polygons() ? VerletCorrection::HalfStepVelocity : VerletCorrection::Kick};
+IntegratorSettings integrator_settings(const SimSettings& s, const World& w) {
+  return {s.integrator, w.polygons() ? VerletCorrection::HalfStepVelocity : VerletCorrection::Kick};
 }
 
 }  // namespace
 
-Simulation::Simulation(World w) : Simulation(std::move(w), BroadPhaseKind::Auto) {}
-
-Simulation::Simulation(World w, BroadPhaseKind bp)
-    : w_(std::move(w)),
-      dt_(w_.scene.integrator.dt),
-      broad_kind_(bp == BroadPhaseKind::Auto ? w_.scene.integrator.broad_phase : bp),
+Simulation::Simulation(World w, const SimSettings& settings, BroadPhaseKind bp)
+    : settings_(settings),
+      w_(std::move(w)),
+      dt_(settings_.dt),
+      broad_kind_(bp == BroadPhaseKind::Auto ? settings_.broad_phase : bp),
       broad_(make_broadphase(broad_kind_, w_)),
-      model_(w_, contact_settings(w_.scene)),
-      integ_(make_integrator(integrator_settings(w_))) {
+      model_(w_, settings_.contact),
+      integ_(make_integrator(integrator_settings(settings_, w_))) {
   if (w_.id.size() != w_.size()) {  // a World assembled without add_particle: labels = slots
     w_.id.resize(w_.size());
     for (std::size_t k = 0; k < w_.size(); ++k) w_.id[k] = static_cast<std::uint32_t>(k);
   }
-  sort_every_ = resolved_sort_every(w_);
+  sort_every_ = resolved_sort_every(w_, settings_.sort_every);
   sort_trigger_ = Trigger::every_steps(sort_every_);
-  const DriveSpec& d = w_.scene.drive;
+  const DriveSpec& d = settings_.drive;
   if (d.kind == DriveKind::RandomForce && w_.box != BoxKind::Ring1D)
     drift_trigger_ = Trigger::every_steps(d.com_removal_every);
-  health_trigger_ = Trigger::every_steps(w_.scene.health.check_every);
+  health_trigger_ = Trigger::every_steps(settings_.health.check_every);
   // forces at the initial state start the integrator
   drive();
   exec_->run(parts(), broad_->update(w_, team_), {}, w_.s.step, false, nullptr);
@@ -59,7 +57,7 @@ Simulation::Simulation(World w, BroadPhaseKind bp)
 }
 
 bool Simulation::conservative_drive() const {
-  return w_.scene.drive.kind == DriveKind::None || w_.scene.drive.kind == DriveKind::Gravity;
+  return settings_.drive.kind == DriveKind::None || settings_.drive.kind == DriveKind::Gravity;
 }
 
 double Simulation::mechanical_energy() const {
@@ -82,7 +80,7 @@ void Simulation::set_verlet_correction(VerletCorrection c) {
   if (auto* vv = dynamic_cast<VelocityVerlet*>(integ_.get())) vv->set_correction(c);
 }
 
-bool Simulation::driven() const { return w_.scene.drive.kind != DriveKind::None; }
+bool Simulation::driven() const { return settings_.drive.kind != DriveKind::None; }
 
 std::vector<Channel> Simulation::channels() {
   State& s = w_.s;
@@ -94,11 +92,11 @@ std::vector<Channel> Simulation::channels() {
 
 // the drive at the current time: gravity of the moment, the random force's streams
 void Simulation::drive() {
-  gravity_ = gravity_at(w_.scene.drive, w_.clock_origin, w_.s.t);
+  gravity_ = gravity_at(settings_.drive, w_.clock_origin, w_.s.t);
   const std::size_t n = w_.size();
-  const bool noise = w_.scene.drive.kind == DriveKind::RandomForce;
+  const bool noise = settings_.drive.kind == DriveKind::RandomForce;
   if (noise && noise_keys_.size() != n) {  // each particle's stream follows its label
-    const std::vector<std::uint64_t> by_label = random_force_keys(w_.scene.prep.seed, n);
+    const std::vector<std::uint64_t> by_label = random_force_keys(settings_.seed, n);
     noise_keys_.resize(n);
     for (std::size_t k = 0; k < n; ++k) noise_keys_[k] = by_label[w_.id[k]];
   }
@@ -108,7 +106,7 @@ StepParts Simulation::parts() const {
   // the executor writes the parts; a const Simulation asks it only what it would do
   auto& self = const_cast<Simulation&>(*this);
   return {self.w_, *broad_,    self.model_, self.contacts_, self.forces_, self.stats_,
-          *integ_, self.team_, noise_keys_, gravity_,       dt_};
+          *integ_, self.team_, noise_keys_, gravity_,       dt_,          settings_.drive};
 }
 
 void Simulation::run(std::int64_t n) {
@@ -211,10 +209,10 @@ void Simulation::check_finite() const {
 void Simulation::health_check() {
   check_finite();
   const State& s = w_.s;
-  if (stats_.max_overlap_rel > w_.scene.health.max_overlap) {
+  if (stats_.max_overlap_rel > settings_.health.max_overlap) {
     std::ostringstream m;
     m << "overlap of " << stats_.max_overlap_rel
-      << " grain radii exceeds health.max_overlap = " << w_.scene.health.max_overlap << " at step "
+      << " grain radii exceeds health.max_overlap = " << settings_.health.max_overlap << " at step "
       << s.step << " (t = " << s.t
       << " s): grains interpenetrate; the force law is too soft for the driving, or dt = " << dt_
       << " s is too large (contact time " << model_.min_contact_time() << " s)";

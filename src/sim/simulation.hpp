@@ -12,19 +12,22 @@
 #include "core/trigger.hpp"
 #include "force/forces.hpp"
 #include "integrate/integrator.hpp"
+#include "sim/sim_settings.hpp"
 #include "sim/step_executor.hpp"
 #include "world/world.hpp"
 
 namespace gs {
 
-/// integrator.sort_every of w's scene with auto (−1) resolved for w: every kAutoSortEvery
-/// steps for a 2D Model S system of at least kAutoSortMinParticles particles, else 0
-std::int64_t resolved_sort_every(const World& w);
+/// integrator.sort_every with auto (−1) resolved for w: every kAutoSortEvery steps for a 2D
+/// Model S system of at least kAutoSortMinParticles particles, else 0
+std::int64_t resolved_sort_every(const World& w, int sort_every);
 
 class Simulation {
  public:
-  /// take a World with its particles placed; computes the initial forces
-  explicit Simulation(World w);
+  /// take a World with its particles placed and the settings of its scene
+  /// (SimSettings::from); computes the initial forces. `bp` other than Auto overrides the
+  /// settings' broad phase
+  Simulation(World w, const SimSettings& settings, BroadPhaseKind bp = BroadPhaseKind::Auto);
   /// throws HealthError naming the particle when a position or velocity is not finite (also
   /// part of every periodic health check; the run loop calls it after the first step too,
   /// whatever health.check_every is)
@@ -33,7 +36,6 @@ class Simulation {
   /// input): HealthError with a diagnosis. The run loop also calls it once at the end, so a
   /// run that blew up between two checks is not reported as completed
   void health_check();
-  Simulation(World w, BroadPhaseKind bp);
 
   /// advance one time step: drive → predict → broad phase → narrow phase → laws → correct →
   /// constraints/health (docs/architecture.md, "One step")
@@ -44,6 +46,7 @@ class Simulation {
   /// (velocity Verlet's kick on disks; Gear 6): one pass over the state less per step
   void run(std::int64_t n);
 
+  const SimSettings& settings() const { return settings_; }
   World& world() { return w_; }
   const World& world() const { return w_; }
   const ContactSet& contacts() const { return contacts_; }
@@ -128,6 +131,7 @@ class Simulation {
   double mechanical_energy() const;
   std::vector<Channel> channels();
 
+  SimSettings settings_;
   World w_;
   double dt_;
   BroadPhaseKind broad_kind_;

@@ -11,9 +11,8 @@
 
 namespace gs {
 
-std::int64_t resolved_sort_every(const World& w) {
-  const int k = w.scene.integrator.sort_every;
-  if (k >= 0) return k;
+std::int64_t resolved_sort_every(const World& w, int sort_every) {
+  if (sort_every >= 0) return sort_every;
   const bool eligible = !w.polygons() && w.box != BoxKind::Ring1D;
   return eligible && w.size() >= kAutoSortMinParticles ? kAutoSortEvery : 0;
 }

@@ -47,7 +47,7 @@ StepAdvice time_step_advice(const Simulation& sim) {
       zeta = std::max(zeta, -l / std::sqrt(M_PI * M_PI + l * l));
     }
   }
-  const IntegratorKind kind = sim.world().scene.integrator.kind;
+  const IntegratorKind kind = sim.settings().integrator;
   a.limit = stable_omega_dt(kind, zeta);
   a.suggested_dt = 0.5 * a.limit / a.omega;
   a.stable = a.omega_dt <= a.limit;
@@ -103,9 +103,8 @@ std::string contact_time_keys(const SceneSpec& scene) {
 
 }  // namespace
 
-void check_time_step(const Simulation& sim) {
-  const SceneSpec& sc = sim.world().scene;
-  const double dt = sc.integrator.dt, tc = sim.model().min_contact_time();
+void check_time_step(const Simulation& sim, const SceneSpec& sc) {
+  const double dt = sim.dt(), tc = sim.model().min_contact_time();
   // a contact time no practical dt resolves: the stiffness or the mass is the mistake, not dt
   if (!sc.health.allow_unstable && !(tc / 20.0 >= 1e-15))
     throw InputError(sc.path, "integrator.dt",

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "integrate/integrator.hpp"
+#include "scene/spec.hpp"
 
 namespace gs {
 
@@ -27,7 +28,8 @@ StepAdvice time_step_advice(const Simulation& sim);
 
 /// refuse a scene whose Δt is unstable for its integrator or resolves the stiffest contact
 /// with fewer than 5 steps: InputError naming the scene file and integrator.dt (with the Δt
-/// to use), unless health.allow_unstable
-void check_time_step(const Simulation& sim);
+/// to use, and the scene's keys that set the contact time), unless health.allow_unstable.
+/// `sim` is built from `scene`
+void check_time_step(const Simulation& sim, const SceneSpec& scene);
 
 }  // namespace gs

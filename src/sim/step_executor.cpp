@@ -224,7 +224,7 @@ AccelArrays accel_arrays(const StepParts& p, std::int64_t index, const KickForm&
   World& w = p.w;
   State& s = w.s;
   const std::size_t n = w.size();
-  const bool noise = w.scene.drive.kind == DriveKind::RandomForce;
+  const bool noise = p.drive.kind == DriveKind::RandomForce;
   p.forces.tq.resize(w.polygons() ? n : 0);  // evaluate() sizes them too, maybe later
   p.forces.fx.resize(n);
   p.forces.fy.resize(n);
@@ -250,19 +250,19 @@ AccelArrays accel_arrays(const StepParts& p, std::int64_t index, const KickForm&
           n >= kPrefetchFrom,
           skin,
           p.gravity,
-          noise ? std::sqrt(2.0 * w.scene.drive.D / p.dt) : 0.0,  // T.2.16
+          noise ? std::sqrt(2.0 * p.drive.D / p.dt) : 0.0,  // T.2.16
           index};
 }
 
 // body(noise, ring, spin) with the scene's three answers as compile-time constants: the
 // acceleration loops are free of the branches the other cases need
 template <class Body>
-void dispatch(const World& w, Body&& body) {
+void dispatch(const StepParts& p, Body&& body) {
   using T = std::true_type;
   using F = std::false_type;
-  const bool noise = w.scene.drive.kind == DriveKind::RandomForce;
-  const bool ring = w.box == BoxKind::Ring1D;  // x only: no ay (and no torques, disks)
-  const bool spin = w.polygons();              // polygons: contact torques
+  const bool noise = p.drive.kind == DriveKind::RandomForce;
+  const bool ring = p.w.box == BoxKind::Ring1D;  // x only: no ay (and no torques, disks)
+  const bool spin = p.w.polygons();              // polygons: contact torques
   if (noise) {
     if (ring)
       body(T{}, T{}, F{});
@@ -280,8 +280,8 @@ void dispatch(const World& w, Body&& body) {
   }
 }
 
-bool ring_noise(const World& w) {
-  return w.box == BoxKind::Ring1D && w.scene.drive.kind == DriveKind::RandomForce;
+bool ring_noise(const StepParts& p) {
+  return p.w.box == BoxKind::Ring1D && p.drive.kind == DriveKind::RandomForce;
 }
 
 // each stage one pass of its own, in the order of the step
@@ -299,7 +299,7 @@ class StagedExecutor final : public StepExecutor {
                                {}, clock);
     // laws: body forces and each particle's acceleration
     const AccelArrays a = accel_arrays(p, index);
-    dispatch(p.w, [&](auto nz, auto rg, auto sp) {
+    dispatch(p, [&](auto nz, auto rg, auto sp) {
       constexpr bool kNz = decltype(nz)::value, kRg = decltype(rg)::value;
       constexpr bool kSp = decltype(sp)::value;
       if constexpr (kNz && kRg)
@@ -324,7 +324,7 @@ class FusedExecutor final : public StepExecutor {
   // the kick predicts (disks), or the integrator after correct_range() (Gear 6; not on the
   // noisy ring, whose correction is the integrator's whole-channel correct())
   bool predicts_ahead(const StepParts& p) const override {
-    return kicks_in_pass(p) || (p.integ.ranges().predicts_by_range() && !ring_noise(p.w));
+    return kicks_in_pass(p) || (p.integ.ranges().predicts_by_range() && !ring_noise(p));
   }
   bool kicks_in_pass(const StepParts& p) const override {
     return !p.w.polygons() && p.integ.ranges().kick_form().has_value();
@@ -356,7 +356,7 @@ void FusedExecutor::run(const StepParts& p, const std::vector<PairKey>& cand,
   if (skin.n != n) skin = {};
   const AccelArrays a = accel_arrays(p, index, kick ? *steps.kick_form() : KickForm{}, ahead, skin);
   std::atomic<bool> moved{false};  // an OR: the same answer whatever the thread count
-  dispatch(w, [&](auto nz, auto rg, auto sp) {
+  dispatch(p, [&](auto nz, auto rg, auto sp) {
     constexpr bool kNz = decltype(nz)::value, kRg = decltype(rg)::value;
     [[maybe_unused]] constexpr bool kSp = decltype(sp)::value;
     if constexpr (kNz && kRg) {

@@ -30,6 +30,7 @@ struct StepParts {
   const std::vector<std::uint64_t>& noise_keys;  ///< the random force's stream per particle
   Vec2 gravity;                                  ///< m/s²
   double dt;                                     ///< s
+  const DriveSpec& drive;                        ///< the drive (random force: on, strength D)
 };
 
 enum class ExecutorKind : std::uint8_t {

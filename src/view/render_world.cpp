@@ -147,16 +147,32 @@ bool needs_contacts(const RenderSpec& r) {
   return r.force_chains || r.color_by == "contacts" || r.color_by == "pressure";
 }
 
-FrameInfo frame_info(const World& w, Vec2 gravity) {
+ViewSettings ViewSettings::from(const SceneSpec& scene) {
+  const double* t = scene.output.test_rect;
+  return {scene.drive, {t[0], t[1], t[2], t[3]}};
+}
+
+FrameInfo frame_info(const World& w, const ViewSettings& view, Vec2 gravity) {
   FrameInfo info;
   info.time = w.s.t;
   info.gravity = gravity;
-  const DriveSpec& d = w.scene.drive;
+  info.test_rect = view.test_rect;
+  const DriveSpec& d = view.drive;
   if (is_tapping(d)) {
     const DrivePhase ph = drive_phase(d, w.clock_origin, w.s.t);
     info.settling = ph.settling;
     info.exciting = ph.exciting;
     if (!ph.settling) info.tap = ph.tap + 1;
+    char buf[96];
+    if (info.settling)
+      std::snprintf(buf, sizeof buf, "settling");
+    else if (info.exciting && d.kind == DriveKind::NegativeG)
+      std::snprintf(buf, sizeof buf, "pulse: g_p = %g for %g s", d.g_p, d.t1);
+    else if (info.exciting)
+      std::snprintf(buf, sizeof buf, "rotating: f = %g Hz", d.f);
+    else
+      std::snprintf(buf, sizeof buf, "relaxing");
+    info.protocol = buf;
   }
   return info;
 }
@@ -190,25 +206,10 @@ WorldFrame world_frame(const World& w, const ContactSet* contacts, const FrameIn
     ov.has_tap = true;
     ov.tap = static_cast<int>(*info.tap);
   }
-  const DriveSpec& d = w.scene.drive;
-  if (r.clock && is_tapping(d)) {
-    char buf[96];
-    if (info.settling)
-      std::snprintf(buf, sizeof buf, "settling");
-    else if (info.exciting && d.kind == DriveKind::NegativeG)
-      std::snprintf(buf, sizeof buf, "pulse: g_p = %g for %g s", d.g_p, d.t1);
-    else if (info.exciting)
-      std::snprintf(buf, sizeof buf, "rotating: f = %g Hz", d.f);
-    else
-      std::snprintf(buf, sizeof buf, "relaxing");
-    ov.lines.push_back(buf);
-  }
+  if (r.clock && !info.protocol.empty()) ov.lines.push_back(info.protocol);
   ov.gravity = info.gravity;
   ov.show_gravity = r.gravity_arrow;
-  if (r.test_rect) {
-    const double* t = w.scene.output.test_rect;
-    ov.test_rect = std::array<double, 4>{t[0], t[1], t[2], t[3]};
-  }
+  if (r.test_rect && info.test_rect) ov.test_rect = info.test_rect;
   if (r.force_chains) ov.force_chains = force_chain_lines(w, *contacts);
   return f;
 }

@@ -1,7 +1,9 @@
 // World → frame data: the adapter between the engine and the GL-free frame builder
 // (render/frame.hpp). It is a module of its own because render/ must not depend on world/.
 #pragma once
+#include <array>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "contact/contact_set.hpp"
@@ -11,13 +13,23 @@
 
 namespace gs {
 
-/// what a frame shows beyond the particles: the clock, the protocol, gravity
+/// what the view takes of a scene beyond its [render] section, taken once: the drive (the
+/// tap phase, the protocol's line) and the φ window
+struct ViewSettings {
+  DriveSpec drive;
+  std::array<double, 4> test_rect{};  ///< [output] test_rect: x0, y0, x1, y1, m
+  static ViewSettings from(const SceneSpec& scene);
+};
+
+/// what a frame shows beyond the particles: the clock, the protocol, gravity, the φ window
 struct FrameInfo {
   double time = 0.0;         ///< simulated time, s
   Vec2 gravity{0.0, -9.81};  ///< gravity at that time, m/s²
   std::optional<long> tap;   ///< tap number (1 = the first excitation period), if tapping
   bool settling = false;     ///< before the tapping protocol starts
   bool exciting = false;     ///< inside an excitation window
+  std::string protocol;      ///< the tapping protocol's phase in words ("" if not tapping)
+  std::optional<std::array<double, 4>> test_rect;  ///< the φ window, m, if known
 };
 
 /// particles with their true shapes (regular n-gons or disks), orientations, velocities and
@@ -57,7 +69,8 @@ struct WorldFrame {
 WorldFrame world_frame(const World& w, const ContactSet* contacts, const FrameInfo& info,
                        const RenderSpec& r);
 
-/// the FrameInfo of a live world: t, the given gravity, the tap phase from its drive
-FrameInfo frame_info(const World& w, Vec2 gravity);
+/// the FrameInfo of a live world: t, the given gravity, the tap phase and the protocol's
+/// line from the drive, the φ window
+FrameInfo frame_info(const World& w, const ViewSettings& view, Vec2 gravity);
 
 }  // namespace gs

@@ -11,10 +11,10 @@ namespace gs {
 namespace {
 
 // the species of every grain to place, in a seeded random order so species mix
-std::vector<int> grain_species(const World& w, RngStream& rng) {
+std::vector<int> grain_species(const SceneSpec& sc, RngStream& rng) {
   std::vector<int> out;
-  for (std::size_t k = 0; k < w.scene.species.size(); ++k)
-    out.insert(out.end(), w.scene.species[k].count, static_cast<int>(k));
+  for (std::size_t k = 0; k < sc.species.size(); ++k)
+    out.insert(out.end(), sc.species[k].count, static_cast<int>(k));
   for (std::size_t i = out.size(); i > 1; --i)  // Fisher–Yates
     std::swap(out[i - 1], out[rng.next_u64() % i]);
   return out;
@@ -44,8 +44,7 @@ std::vector<Vec2> lattice(double x0, double y0, double x1, double y1, double a, 
 
 }  // namespace
 
-void place_particles(World& w) {
-  const SceneSpec& sc = w.scene;
+void place_particles(World& w, const SceneSpec& sc) {
   const auto& prep = sc.prep;
   RngStream rng(prep.seed, 0x7072657000ULL);  // "prep" stream
 
@@ -74,7 +73,7 @@ void place_particles(World& w) {
     return;
   }
 
-  std::vector<int> kinds = grain_species(w, rng);
+  std::vector<int> kinds = grain_species(sc, rng);
   const std::size_t n = kinds.size();
   const double a = 2.0 * w.max_radius * 1.02;  // lattice spacing: no two grains can touch
 

@@ -5,8 +5,9 @@
 
 namespace gs {
 
-/// add every species' grains to the world at the scene's placement, with initial velocities.
-/// Throws InputError when the grains do not fit.
-void place_particles(World& w);
+/// add every species' grains to the world (made from `scene`) at the scene's placement
+/// ([preparation]: counts, rule, seed), with initial velocities. Throws InputError when the
+/// grains do not fit.
+void place_particles(World& w, const SceneSpec& scene);
 
 }  // namespace gs

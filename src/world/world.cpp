@@ -125,7 +125,7 @@ int material_index(const SceneSpec& sc, const std::string& name) {
 
 World make_world(const SceneSpec& sc) {
   World w;
-  w.scene = sc;
+  w.model = sc.model.kind;
   w.materials = sc.materials;
   if (w.materials.empty()) w.materials.push_back(MaterialSpec{});
   w.box = sc.box.kind;

@@ -47,8 +47,8 @@ struct State {
 };
 
 struct World {
-  // constants
-  SceneSpec scene;  ///< the validated scene it was built from
+  // constants: what the world is; what the step does with it is the Simulation's settings
+  ModelKind model = ModelKind::Polygon;  ///< polygon DEM (Model P) or soft disks (Model S)
   std::vector<MaterialSpec> materials;
   std::vector<Species> species;
   std::vector<Wall> walls;
@@ -72,7 +72,7 @@ struct World {
   double clock_origin = 0.0;
 
   std::size_t size() const { return s.size(); }
-  bool polygons() const { return scene.model.kind == ModelKind::Polygon; }
+  bool polygons() const { return model == ModelKind::Polygon; }
   /// append a particle of species k at rest
   void add_particle(int k, Vec2 pos, double theta, Vec2 vel = {}, double omega = 0.0);
   /// remove every particle (constants, species, walls and box stay)

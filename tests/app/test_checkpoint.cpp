@@ -37,9 +37,9 @@ std::uint64_t state_hash(const World& w) {
 
 std::unique_ptr<Simulation> start(const SceneSpec& s, double clock_origin = 0.0) {
   World w = make_world(s);
-  place_particles(w);
+  place_particles(w, s);
   w.clock_origin = clock_origin;
-  return std::make_unique<Simulation>(std::move(w));
+  return std::make_unique<Simulation>(std::move(w), SimSettings::from(s));
 }
 
 fs::path temp_file(const std::string& name) {
@@ -61,7 +61,7 @@ void expect_bitwise_continuation(const SceneSpec& s, std::int64_t n, std::int64_
   ex.entries["taps.csv.offset"] = "1234";
   ex.entries["binary"] = std::string("\0\xff\x01", 3);
   const fs::path p = temp_file(tag + ".gsck");
-  write_checkpoint(*first, ex, p.string());
+  write_checkpoint(*first, s, ex, p.string());
   first.reset();
 
   const Checkpoint c = read_checkpoint(p.string());
@@ -133,9 +133,10 @@ TEST(Checkpoint, EarlierCheckpointsGiveTheClockOriginBack) {
 
 // every header field and every byte of the payload is checked
 TEST(Checkpoint, DamagedBytesAreInputErrorsNamingFileAndOffset) {
-  auto sim = start(pile(IntegratorKind::Gear6));
+  const SceneSpec s = pile(IntegratorKind::Gear6);
+  auto sim = start(s);
   sim->run(200);
-  const std::string good = encode_checkpoint(*sim, {});
+  const std::string good = encode_checkpoint(*sim, s, {});
   EXPECT_NO_THROW(decode_checkpoint(good, "good.gsck"));
   auto expect_error = [&](std::string bytes, const std::string& what) {
     try {
@@ -216,16 +217,17 @@ namespace {
 TEST(Checkpoint, WritesFuzzSeedsWhenAsked) {
   const char* dir = std::getenv("GS_WRITE_CHECKPOINT_SEEDS");
   if (!dir) GTEST_SKIP() << "set GS_WRITE_CHECKPOINT_SEEDS=DIR to write seed checkpoints";
-  auto a = start(build::decagon_pile(8, 0.06, 0.2, 3));
+  const SceneSpec p = build::decagon_pile(8, 0.06, 0.2, 3);
+  auto a = start(p);
   a->run(2000);
   CheckpointExtras ex;
   ex.entries["taps.csv.offset"] = "42";
-  write_checkpoint(*a, ex, std::string(dir) + "/pile.gsck");
+  write_checkpoint(*a, p, ex, std::string(dir) + "/pile.gsck");
   SceneSpec g = build::disk_gas(6, 0.3, 0.9, 0.9, 5);
   g.drive.kind = DriveKind::RandomForce;
   auto b = start(g);
   b->run(100);
-  write_checkpoint(*b, {}, std::string(dir) + "/gas.gsck");
+  write_checkpoint(*b, g, {}, std::string(dir) + "/gas.gsck");
 }
 
 }  // namespace

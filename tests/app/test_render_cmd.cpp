@@ -220,15 +220,16 @@ TEST(RenderCommand, RenderOfARunDirectoryDrawsItsParticles) {
   ASSERT_EQ(img.height, 300);
   // the grains are filled with the uniform colour: count those pixels against the grains'
   // area on the canvas (the camera as the frame builder fits it; outlines take a little)
-  World w = make_world(parse_scene_file((run / "scene.toml").string()));
+  const SceneSpec scene = parse_scene_file((run / "scene.toml").string());
+  World w = make_world(scene);
   read_state_file(w, (run / "state.csv").string());
-  RenderSpec r = w.scene.render;
+  RenderSpec r = scene.render;
   r.width = 400;
   r.height = 300;
   r.color_by = "uniform";
   r.colorbar = false;
   r.clock = false;
-  const WorldFrame wf = world_frame(w, nullptr, frame_info(w, {}), r);
+  const WorldFrame wf = world_frame(w, nullptr, frame_info(w, ViewSettings::from(scene), {}), r);
   const FrameData fd = build_frame(wf.particles, wf.walls, wf.overlays, wf.spec, wf.box);
   const Rgba8 fill = wf.spec.uniform_color;
   long count = 0;

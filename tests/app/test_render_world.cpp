@@ -60,9 +60,15 @@ test_rect = [0.02, 0.03, 0.18, 0.2]
 )";
 
 World world_of(const std::string& text, const std::vector<std::string>& sets = {}) {
-  World w = make_world(parse_scene_string(text, "t.toml", sets));
-  place_particles(w);
+  const SceneSpec s = parse_scene_string(text, "t.toml", sets);
+  World w = make_world(s);
+  place_particles(w, s);
   return w;
+}
+
+// what the view takes of the same scene
+ViewSettings view_of(const std::string& text, const std::vector<std::string>& sets = {}) {
+  return ViewSettings::from(parse_scene_string(text, "t.toml", sets));
 }
 
 TEST(RenderWorld, ParticlesKeepTheirShapesOrientationsAndVelocities) {
@@ -118,7 +124,7 @@ TEST(RenderWorld, SpeedColoursRunFromRestToTheFastestGrain) {
   RenderSpec r;  // defaults: colour by speed, viridis, automatic range
   r.width = 400;
   r.height = 300;
-  const WorldFrame wf = world_frame(w, nullptr, frame_info(w, {0.0, -9.81}), r);
+  const WorldFrame wf = world_frame(w, nullptr, frame_info(w, view_of(kScene), {0.0, -9.81}), r);
   const FrameData f = build_frame(wf.particles, wf.walls, wf.overlays, wf.spec, wf.box);
   // speeds 0, 0.25, 1 m/s: the range is [0, 1] and the colours sit at 0, 1/4, 1 of the map
   EXPECT_EQ(f.value_lo, 0.0);
@@ -134,7 +140,7 @@ TEST(RenderWorld, SpeedColoursRunFromRestToTheFastestGrain) {
   EXPECT_NEAR(f.polygons[1].radius, 0.006 * f.camera.scale, 1e-3);
   // a fixed range clamps: with [0, 0.2] the two moving grains are both at the top
   r.range = std::array<double, 2>{0.0, 0.2};
-  const WorldFrame w2 = world_frame(w, nullptr, frame_info(w, {}), r);
+  const WorldFrame w2 = world_frame(w, nullptr, frame_info(w, view_of(kScene), {}), r);
   const FrameData f2 = build_frame(w2.particles, w2.walls, w2.overlays, w2.spec, w2.box);
   EXPECT_EQ(f2.polygons[1].fill, v.lut[255]);
   EXPECT_EQ(f2.polygons[2].fill, v.lut[255]);
@@ -146,7 +152,7 @@ TEST(RenderWorld, OverlaysFollowTheRenderSection) {
   r.test_rect = true;
   r.gravity_arrow = true;
   r.title = "three grains";
-  FrameInfo info;
+  FrameInfo info = frame_info(w, view_of(kScene), {});  // the scene's φ window
   info.time = 1.25;
   info.gravity = {3.0, -4.0};
   const WorldFrame f = world_frame(w, nullptr, info, r);
@@ -173,19 +179,21 @@ TEST(RenderWorld, OverlaysFollowTheRenderSection) {
 
 TEST(RenderWorld, TapNumberAndPhaseFromTheProtocolClock) {
   // negative g with T = 2 s, t1 = 0.01 s, the clock started at 0.5 s (after settling)
-  World w = world_of(kScene, {"drive.kind=negative_g", "drive.period=2.0", "drive.t1=0.01"});
+  const std::vector<std::string> sets{"drive.kind=negative_g", "drive.period=2.0", "drive.t1=0.01"};
+  World w = world_of(kScene, sets);
+  const ViewSettings view = view_of(kScene, sets);
   w.clock_origin = 0.5;
   w.s.t = 0.2;
-  FrameInfo a = frame_info(w, {});
+  FrameInfo a = frame_info(w, view, {});
   EXPECT_TRUE(a.settling);
   EXPECT_FALSE(a.tap);
   w.s.t = 0.505;  // inside the first pulse
-  FrameInfo b = frame_info(w, {});
+  FrameInfo b = frame_info(w, view, {});
   EXPECT_TRUE(b.exciting);
   ASSERT_TRUE(b.tap);
   EXPECT_EQ(*b.tap, 1);
   w.s.t = 4.6;  // relaxing after the third pulse
-  FrameInfo c = frame_info(w, {});
+  FrameInfo c = frame_info(w, view, {});
   EXPECT_FALSE(c.exciting);
   EXPECT_EQ(c.tap.value_or(-1), 3);
   RenderSpec r;
@@ -234,7 +242,8 @@ kind = "none"
 
 TEST(RenderWorld, ContactCountsPressureAndChainsFromTheContacts) {
   World w = world_of(kDisks);
-  const Simulation sim(std::move(w));  // computes the contacts of the initial state
+  const SimSettings settings = SimSettings::from(parse_scene_string(kDisks, "t.toml", {}));
+  const Simulation sim(std::move(w), settings);  // computes the contacts of the initial state
   const World& sw = sim.world();
   const ContactSet& c = sim.contacts();
   EXPECT_EQ(contact_counts(sw, c), (std::vector<double>{1.0, 1.0, 1.0}));
@@ -258,7 +267,7 @@ TEST(RenderWorld, ContactCountsPressureAndChainsFromTheContacts) {
   RenderSpec rs;
   rs.color_by = "pressure";
   rs.force_chains = true;
-  const WorldFrame f = world_frame(sw, &c, frame_info(sw, sim.gravity()), rs);
+  const WorldFrame f = world_frame(sw, &c, frame_info(sw, view_of(kDisks), sim.gravity()), rs);
   EXPECT_EQ(f.particles.value_extra, p);
   EXPECT_EQ(f.spec.color_by, ColorBy::extra);
   EXPECT_EQ(f.spec.extra_unit, "N/m");

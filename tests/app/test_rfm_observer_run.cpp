@@ -225,8 +225,8 @@ TEST(RfmObserver, QuietStepsLoseNothing) {
   fs::create_directories(dir / "quiet");
   auto sim_of = [&] {
     World w = make_world(s);
-    place_particles(w);
-    return Simulation(std::move(w));
+    place_particles(w, s);
+    return Simulation(std::move(w), SimSettings::from(s));
   };
   Simulation every = sim_of(), quiet = sim_of();
   RfmObserver obs_every(s, csv_records()), obs_quiet(s, csv_records());

@@ -48,8 +48,8 @@ std::vector<std::vector<double>> read_contacts(const std::string& text) {
 TEST(Snapshots, ContactRowsAreTheForceChainsRecords) {
   SceneSpec s = parse_scene_string(testing::tiny_tapping_scene(1), "tiny.toml");
   World w = make_world(s);
-  place_particles(w);
-  Simulation sim(std::move(w));
+  place_particles(w, s);
+  Simulation sim(std::move(w), SimSettings::from(s));
   sim.run(4000);  // settling: a pile with wall and grain contacts, some sliding
   const World& cw = sim.world();
   const ContactSet& c = sim.contacts();

@@ -49,7 +49,7 @@ TEST(BroadPhase, TreeAndGridFindTheSameContactsOnDenseRandomPiles) {
   for (std::uint64_t seed : {1u, 2u, 3u, 4u, 5u}) {
     SceneSpec s = build::decagon_pile(400, 0.2, 0.25, seed);
     World w = make_world(s);
-    place_particles(w);
+    place_particles(w, s);
     // scatter the grains densely (overlaps allowed) over the box and a little into the walls
     RngStream r(seed, 99);
     for (std::size_t i = 0; i < w.size(); ++i) {
@@ -83,7 +83,7 @@ TEST(BroadPhase, TreeAndGridFindTheSameContactsOnDenseRandomPiles) {
 TEST(BroadPhase, PeriodicGridFindsPairsAcrossTheBoundary) {
   SceneSpec s = build::disk_gas(300, 0.5, 0.9, 0.9, 3);
   World w = make_world(s);
-  place_particles(w);
+  place_particles(w, s);
   RngStream r(3, 7);
   for (std::size_t i = 0; i < w.size(); ++i) {
     w.s.x[i] = r.uniform(0, w.Lx) + w.Lx * std::floor(r.uniform(-2, 2));  // unwrapped

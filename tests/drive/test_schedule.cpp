@@ -112,15 +112,14 @@ TEST(ProtocolClock, PulsesLastExactlyT1OverDtAndTriggersFireOncePerTap) {
     s.prep.settle_time = 0.3;
     s.integrator.dt = dt;
     World w;
-    w.scene = s;
     ProtocolClock(s).start(w);
     const auto steps = static_cast<long>(std::llround((0.3 + 3 * 0.5) / dt));
     int pulse_evals = 0, triggers = 0;
     double first_trigger = -1.0;
     for (long n = 0; n <= steps; ++n) {
       const double t = static_cast<double>(n) * dt;
-      if (gravity_at(w.scene.drive, w.clock_origin, t).y > 0) ++pulse_evals;
-      if (excitation_starts_next(w.scene.drive, w.clock_origin, t, dt)) {
+      if (gravity_at(s.drive, w.clock_origin, t).y > 0) ++pulse_evals;
+      if (excitation_starts_next(s.drive, w.clock_origin, t, dt)) {
         if (triggers++ == 0) first_trigger = t;
       }
     }
@@ -179,11 +178,11 @@ TEST(ProtocolClock, EarlyRestEndsARelaxationAfterTheHoldTime) {
   EXPECT_NEAR(ended_at, 1.1, 1.5 * dt);
   EXPECT_EQ(clock.early_ends(), 1);
   EXPECT_NEAR(clock.time_saved(), 3.0 - ended_at, 1e-9);
-  const DrivePhase now = drive_phase(w.scene.drive, w.clock_origin, w.s.t);
+  const DrivePhase now = drive_phase(s.drive, w.clock_origin, w.s.t);
   EXPECT_EQ(now.tap, 0);
   EXPECT_NEAR(now.t_in, 3.0 - dt / 2, 1e-9);
-  EXPECT_TRUE(excitation_starts_next(w.scene.drive, w.clock_origin, w.s.t, dt));
-  EXPECT_GT(gravity_at(w.scene.drive, w.clock_origin, w.s.t + dt).y, 0.0);  // the next pulse
+  EXPECT_TRUE(excitation_starts_next(s.drive, w.clock_origin, w.s.t, dt));
+  EXPECT_GT(gravity_at(s.drive, w.clock_origin, w.s.t + dt).y, 0.0);  // the next pulse
   EXPECT_FALSE(clock.done(w));
   EXPECT_NEAR(clock.progress(w), 3.0, 1e-9);  // counts the skipped rest as done
 }
@@ -341,7 +340,7 @@ TEST(ProtocolClock, DoneAfterTheLastTapIsMeasured) {
   EXPECT_FALSE(clock.done(w));
   w.s.t = 6.0;
   EXPECT_TRUE(clock.done(w));
-  EXPECT_TRUE(excitation_starts_next(w.scene.drive, w.clock_origin, w.s.t, s.integrator.dt));
+  EXPECT_TRUE(excitation_starts_next(s.drive, w.clock_origin, w.s.t, s.integrator.dt));
 }
 
 }  // namespace

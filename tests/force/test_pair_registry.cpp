@@ -22,10 +22,10 @@ struct Seen {
   int contacts = 0, walls = 0, images = 0;
 };
 
-Seen expect_registry_frames(const World& w) {
+Seen expect_registry_frames(const World& w, const ContactSettings& settings) {
   auto bp = make_broadphase(BroadPhaseKind::CellGrid, w);
   const std::vector<PairKey>& cand = bp->update(w);
-  ContactModel model(w);
+  ContactModel model(w, settings);
   ContactSet cs;
   ForceBuffer f;
   ThreadTeam team;
@@ -96,31 +96,36 @@ std::string scene(bool polygons, bool periodic) {
 }
 
 World world(bool polygons, bool periodic) {
-  World w = make_world(parse_scene_string(scene(polygons, periodic), "registry"));
-  place_particles(w);
+  const SceneSpec s = parse_scene_string(scene(polygons, periodic), "registry");
+  World w = make_world(s);
+  place_particles(w, s);
   return w;
 }
 
+ContactSettings settings(bool polygons, bool periodic) {
+  return contact_settings(parse_scene_string(scene(polygons, periodic), "registry"));
+}
+
 TEST(PairRegistry, PolygonsInWallsAreTheRegistrys) {
-  const Seen s = expect_registry_frames(world(true, false));
+  const Seen s = expect_registry_frames(world(true, false), settings(true, false));
   EXPECT_GE(s.contacts, 4);
   EXPECT_GE(s.walls, 2);
 }
 
 TEST(PairRegistry, PolygonImagesAreTheRegistrys) {
-  const Seen s = expect_registry_frames(world(true, true));
+  const Seen s = expect_registry_frames(world(true, true), settings(true, true));
   EXPECT_GE(s.contacts, 3);
   EXPECT_GE(s.images, 2);
 }
 
 TEST(PairRegistry, DisksInWallsAreTheRegistrys) {
-  const Seen s = expect_registry_frames(world(false, false));
+  const Seen s = expect_registry_frames(world(false, false), settings(false, false));
   EXPECT_GE(s.contacts, 4);
   EXPECT_GE(s.walls, 2);
 }
 
 TEST(PairRegistry, DiskImagesAreTheRegistrys) {
-  const Seen s = expect_registry_frames(world(false, true));
+  const Seen s = expect_registry_frames(world(false, true), settings(false, true));
   EXPECT_GE(s.contacts, 3);
   EXPECT_GE(s.images, 2);
 }

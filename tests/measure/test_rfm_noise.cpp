@@ -52,8 +52,8 @@ struct Heating {
 Heating heat(const std::string& text, double t) {
   SceneSpec s = parse_scene_string(text, "noise.toml");
   World w = make_world(s);
-  place_particles(w);
-  Simulation sim(std::move(w));
+  place_particles(w, s);
+  Simulation sim(std::move(w), SimSettings::from(s));
   Heating h;
   const auto steps = static_cast<std::int64_t>(std::llround(t / s.integrator.dt));
   for (std::int64_t k = 0; k < steps; ++k) {

@@ -72,8 +72,8 @@ TEST(RfmRing, ElasticGasHasUniformPointGaps) {
   SceneSpec s = parse_scene_string(kElasticRing, "elastic_ring.toml");
   ASSERT_TRUE(s.rfm.enabled);
   World w = make_world(s);
-  place_particles(w);
-  Simulation sim(std::move(w));
+  place_particles(w, s);
+  Simulation sim(std::move(w), SimSettings::from(s));
   const fs::path dir = temp_dir("ring");
   test::MemoryRecords records;
   RfmObserver obs(s, records);
@@ -155,7 +155,7 @@ count = )") + std::to_string(n) + "\n[box]\nkind = \"ring\"\nwidth = " +
                                          std::to_string(L) + "\n",
                                      "ring.toml");
     World w = make_world(s);
-    place_particles(w);
+    place_particles(w, s);
     auto bp = make_ring_neighbours();
     std::vector<PairKey> keys;
     for (int trial = 0; trial < 50; ++trial) {
@@ -226,8 +226,8 @@ kind = "random_force"
 )",
                                    "ring.toml");
   World w = make_world(s);
-  place_particles(w);
-  Simulation sim(std::move(w));
+  place_particles(w, s);
+  Simulation sim(std::move(w), SimSettings::from(s));
   ASSERT_STREQ(sim.broadphase().name(), "cell_grid");
   auto bp = make_ring_neighbours();
   std::vector<PairKey> keys;

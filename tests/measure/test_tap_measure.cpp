@@ -98,7 +98,7 @@ TEST(TapMeasure, ForceMomentOfAGrainRestingOnTheFloor) {
   World w = make_world(s);
   const double r = 0.009, apothem = r * std::cos(M_PI / 10);
   w.add_particle(0, {0.05, apothem + 1e-4}, 0.0);  // θ = 0: a face is horizontal at the bottom
-  Simulation sim(std::move(w));
+  Simulation sim(std::move(w), SimSettings::from(s));
   sim.run(10000);  // 0.5 s: it lands and comes to rest
   const World& v = sim.world();
   const double rect[4] = {0.0, 0.0, 0.1, 0.1};

@@ -19,8 +19,8 @@ using testing::Threads;
 
 Simulation make_sim(const SceneSpec& s, ExecutorKind k) {
   World w = make_world(s);
-  place_particles(w);
-  Simulation sim(std::move(w));
+  place_particles(w, s);
+  Simulation sim(std::move(w), SimSettings::from(s));
   sim.set_executor(k);
   return sim;
 }

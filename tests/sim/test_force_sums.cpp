@@ -36,10 +36,10 @@ void serial_sums(const World& w, const ContactSet& cs, std::vector<double>& fx,
   }
 }
 
-void expect_serial_sums(const World& w, BroadPhaseKind bpk) {
+void expect_serial_sums(const World& w, const SimSettings& set, BroadPhaseKind bpk) {
   const Threads two(2);  // the parallel path (the candidates are above its thresholds)
   auto bp = make_broadphase(bpk, w);
-  ContactModel model(w);
+  ContactModel model(w, set.contact);
   ThreadTeam threads;
   ContactSet cs;
   ForceBuffer f;
@@ -48,7 +48,7 @@ void expect_serial_sums(const World& w, BroadPhaseKind bpk) {
   ASSERT_TRUE(run_parallel(cand.size(), ContactModel::parallel_pairs_from(w.polygons(), w.size())))
       << cand.size() << " candidates: below the parallel threshold";
 #endif
-  model.evaluate(w, cand, cs, f, w.scene.integrator.dt, threads, bp->generation());
+  model.evaluate(w, cand, cs, f, set.dt, threads, bp->generation());
   ASSERT_GT(cs.records.size(), w.size()) << "a dense packing: more contacts than grains";
   ASSERT_EQ(cs.keys.size(), cs.records.size());
   for (std::size_t k = 0; k < cs.keys.size(); ++k) {
@@ -67,8 +67,8 @@ void expect_serial_sums(const World& w, BroadPhaseKind bpk) {
   // touching pairs alone (no contacts the step before)
   ForceBuffer f2, f3;
   ContactSet cs2 = cs, cs3 = cs;
-  model.evaluate(w, cand, cs2, f2, w.scene.integrator.dt, threads, bp->generation());
-  model.evaluate(w, cand, cs3, f3, w.scene.integrator.dt, threads, 0);
+  model.evaluate(w, cand, cs2, f2, set.dt, threads, bp->generation());
+  model.evaluate(w, cand, cs3, f3, set.dt, threads, 0);
   EXPECT_EQ(f2.fx, f3.fx);
   EXPECT_EQ(f2.fy, f3.fy);
   EXPECT_EQ(f2.tq, f3.tq);
@@ -80,20 +80,21 @@ void expect_serial_sums(const World& w, BroadPhaseKind bpk) {
 
 TEST(ForceSums, SettledDecagonPileMatchesSerialLoop) {
   const std::string src = GS_SOURCE_DIR;
-  World w = make_world(parse_scene_file(src + "/scenes/paper_pile.toml"));
+  const SceneSpec s = parse_scene_file(src + "/scenes/paper_pile.toml");
+  World w = make_world(s);
   read_state_file(w, src + "/bench/data/paper_pile_settled.csv");
-  expect_serial_sums(w, BroadPhaseKind::CellGrid);
-  expect_serial_sums(w, BroadPhaseKind::Box2DTree);
+  expect_serial_sums(w, SimSettings::from(s), BroadPhaseKind::CellGrid);
+  expect_serial_sums(w, SimSettings::from(s), BroadPhaseKind::Box2DTree);
 }
 
 TEST(ForceSums, DenseDiskFluidMatchesSerialLoop) {
   // 6000 disks placed at φ = 0.5, then grown by 30 % (φ = 0.85): most disks touch several
   SceneSpec s = build::disk_gas(6000, 0.5, 0.6, 0.6, 3);
   World w = make_world(s);
-  place_particles(w);
+  place_particles(w, s);
   for (double& r : w.radius) r *= 1.3;
   w.max_radius *= 1.3;
-  expect_serial_sums(w, BroadPhaseKind::CellGrid);
+  expect_serial_sums(w, SimSettings::from(s), BroadPhaseKind::CellGrid);
 }
 
 // two evaluations of the same pairs: the same contacts, records and forces, bit for bit
@@ -113,16 +114,16 @@ void expect_same_evaluation(const ContactSet& a, const ForceBuffer& fa, const Co
 // last step (the contact set is small against the candidates); with a large contact set it
 // visits every candidate. Both must give the same contacts and forces, bit for bit: a periodic
 // gas, a walled box with disks on the walls, and the 1D ring
-void expect_same_disk_paths(const World& w, std::size_t min_contacts) {
+void expect_same_disk_paths(const World& w, const SimSettings& set, std::size_t min_contacts) {
   auto bp = make_broadphase(BroadPhaseKind::Auto, w);
   const std::vector<PairKey>& cand = bp->update(w);
-  ContactModel model(w);
+  ContactModel model(w, set.contact);
   ThreadTeam threads;
   ContactSet sparse, packed;  // sparse: no contacts last step; packed: as many as candidates
   packed.keys.assign(cand.size(), PairKey{0});
   ForceBuffer f1, f2;
-  model.evaluate(w, cand, sparse, f1, w.scene.integrator.dt, threads, bp->generation());
-  model.evaluate(w, cand, packed, f2, w.scene.integrator.dt, threads, bp->generation());
+  model.evaluate(w, cand, sparse, f1, set.dt, threads, bp->generation());
+  model.evaluate(w, cand, packed, f2, set.dt, threads, bp->generation());
   ASSERT_GE(sparse.keys.size(), min_contacts);
   ASSERT_LT(3 * sparse.keys.size(), cand.size()) << "not a sparse scene: the test needs one";
   expect_same_evaluation(sparse, f1, packed, f2);
@@ -137,8 +138,8 @@ Simulation forced_gas(int n, std::uint64_t seed) {
   SceneSpec s = build::disk_gas(n, 0.3, 0.6, 0.6, seed);
   s.drive.kind = DriveKind::RandomForce;
   World w = make_world(s);
-  place_particles(w);
-  return Simulation(std::move(w));
+  place_particles(w, s);
+  return Simulation(std::move(w), SimSettings::from(s));
 }
 
 TEST(ForceSums, DiskPrefilterKeepsThePairs) {
@@ -147,7 +148,7 @@ TEST(ForceSums, DiskPrefilterKeepsThePairs) {
     Simulation sim = forced_gas(3000, 5);
     sim.run(400);
     const World& w = sim.world();
-    expect_same_disk_paths(w, 10);
+    expect_same_disk_paths(w, sim.settings(), 10);
   }
   {  // the gas with every third disk from the second 2 % larger: the selection reads each
      // pair's radii (one common radius spares those loads)
@@ -164,13 +165,13 @@ TEST(ForceSums, DiskPrefilterKeepsThePairs) {
       w.s.y[i + 3] = w.s.y[i];
     }
     ASSERT_GT(big, 10u);
-    expect_same_disk_paths(w, big);
+    expect_same_disk_paths(w, sim.settings(), big);
   }
   {  // walled box: a loose column of disks shifted onto the left wall and the floor
     SceneSpec s = build::disk_gas(400, 0.3, 0.6, 0.6, 6);
     s.box.kind = BoxKind::Walls;
     World w = make_world(s);
-    place_particles(w);
+    place_particles(w, s);
     const double r0 = w.radius[0];
     std::size_t on_wall = 0;
     for (std::size_t i = 0; i < w.size(); ++i) {
@@ -179,15 +180,16 @@ TEST(ForceSums, DiskPrefilterKeepsThePairs) {
       on_wall += w.s.x[i] < r0 || w.s.y[i] < r0;
     }
     ASSERT_GT(on_wall, 0u);
-    expect_same_disk_paths(w, on_wall);
+    expect_same_disk_paths(w, SimSettings::from(s), on_wall);
   }
   {  // the 1D ring
-    World w =
-        make_world(parse_scene_file(std::string(GS_SOURCE_DIR) + "/scenes/rfm1d_reference.toml"));
-    place_particles(w);
+    const SceneSpec ring =
+        parse_scene_file(std::string(GS_SOURCE_DIR) + "/scenes/rfm1d_reference.toml");
+    World w = make_world(ring);
+    place_particles(w, ring);
     // every tenth disk's forward neighbour moved to overlap it by a quarter diameter
     for (std::size_t i = 0; i + 1 < w.size(); i += 10) w.s.x[i + 1] = w.s.x[i] + 1.5 * w.radius[i];
-    expect_same_disk_paths(w, w.size() / 10);
+    expect_same_disk_paths(w, SimSettings::from(ring), w.size() / 10);
   }
 }
 
@@ -202,7 +204,7 @@ TEST(ForceSums, LargestOverlapsAreTheRecordsMaxima) {
       SceneSpec s = build::disk_gas(6000, 0.6, 0.6, 0.6, 9);
       s.box.kind = BoxKind::Walls;
       World w = make_world(s);
-      place_particles(w);
+      place_particles(w, s);
       // grown by 30% (most disks touch, some the walls); mixed: every third 2% more
       for (double& r : w.radius) r *= 1.3;
       for (std::size_t i = 1; mixed && i < w.size(); i += 3) w.radius[i] *= 1.02;
@@ -213,12 +215,12 @@ TEST(ForceSums, LargestOverlapsAreTheRecordsMaxima) {
       ASSERT_EQ(run_parallel(cand.size(), ContactModel::parallel_pairs_from(false, w.size())),
                 threads == 2);
 #endif
-      ContactModel model(w);
+      const SimSettings set = SimSettings::from(s);
+      ContactModel model(w, set.contact);
       ThreadTeam thread_team;
       ContactSet cs;
       ForceBuffer f;
-      const ForceStats st =
-          model.evaluate(w, cand, cs, f, w.scene.integrator.dt, thread_team, bp->generation());
+      const ForceStats st = model.evaluate(w, cand, cs, f, set.dt, thread_team, bp->generation());
       const auto N = static_cast<std::uint32_t>(w.size());
       double h = 0.0, rel = 0.0;
       std::size_t walls = 0;
@@ -243,8 +245,9 @@ TEST(ForceSums, LargestOverlapsAreTheRecordsMaxima) {
 // records and forces bit for bit: summed from the touching pairs (few touched last step), and
 // through the per-particle index, cached and made anew (many touched last step)
 TEST(ForceSums, DiluteLargeGasPairsOnTheTeam) {
-  World w = make_world(build::disk_gas(10000, 0.1, 0.6, 0.6, 8));
-  place_particles(w);
+  const SceneSpec s = build::disk_gas(10000, 0.1, 0.6, 0.6, 8);
+  World w = make_world(s);
+  place_particles(w, s);
   // every 25th disk's successor moved onto it (a quarter diameter deep): 400 contacts
   for (std::size_t i = 0; i + 1 < w.size(); i += 25) {
     w.s.x[i + 1] = w.s.x[i] + 1.5 * w.radius[i];
@@ -255,7 +258,8 @@ TEST(ForceSums, DiluteLargeGasPairsOnTheTeam) {
   ASSERT_GE(w.size(), kParallelMinCheap);
   ASSERT_GE(cand.size(), kParallelMin);
   ASSERT_LT(cand.size(), kParallelMinCheap) << "the pairs alone would not start a region";
-  ContactModel one(w), team(w);
+  const SimSettings set = SimSettings::from(s);
+  ContactModel one(w, set.contact), team(w, set.contact);
   ThreadTeam threads;
   ContactSet cs1, cs2, cs3, cs4, cs5;
   cs4.keys.assign(cand.size(), PairKey{0});  // "as many contacts as candidates last step"
@@ -263,18 +267,18 @@ TEST(ForceSums, DiluteLargeGasPairsOnTheTeam) {
   ForceBuffer f1, f2, f3, f4, f5;
   {
     const Threads single(1);
-    one.evaluate(w, cand, cs1, f1, w.scene.integrator.dt, threads, bp->generation());
+    one.evaluate(w, cand, cs1, f1, set.dt, threads, bp->generation());
   }
   {
     const Threads two(2);
 #ifdef _OPENMP
     ASSERT_TRUE(run_parallel(cand.size(), ContactModel::parallel_pairs_from(false, w.size())));
 #endif
-    team.evaluate(w, cand, cs2, f2, w.scene.integrator.dt, threads, bp->generation());
-    team.evaluate(w, cand, cs3, f3, w.scene.integrator.dt, threads, 0);
-    team.evaluate(w, cand, cs4, f4, w.scene.integrator.dt, threads,
+    team.evaluate(w, cand, cs2, f2, set.dt, threads, bp->generation());
+    team.evaluate(w, cand, cs3, f3, set.dt, threads, 0);
+    team.evaluate(w, cand, cs4, f4, set.dt, threads,
                   bp->generation());  // index made
-    team.evaluate(w, cand, cs5, f5, w.scene.integrator.dt, threads,
+    team.evaluate(w, cand, cs5, f5, set.dt, threads,
                   bp->generation());  // and reused
   }
   ASSERT_GE(cs1.keys.size(), 400u);
@@ -295,7 +299,8 @@ TEST(ForceSums, DiluteLargeGasPairsOnTheTeam) {
 TEST(ForceSums, ReusedBufferEqualsAFreshOne) {
   Simulation sim = forced_gas(3000, 5);
   auto bp = make_broadphase(BroadPhaseKind::Auto, sim.world());
-  ContactModel model(sim.world());
+  const SimSettings& set = sim.settings();
+  ContactModel model(sim.world(), set.contact);
   ThreadTeam threads;
   ForceBuffer reused;
   std::size_t sparse_calls = 0, touched_max = 0;
@@ -303,8 +308,8 @@ TEST(ForceSums, ReusedBufferEqualsAFreshOne) {
     const std::vector<PairKey>& cand = bp->update(w);
     ContactSet cs1, cs2;
     ForceBuffer fresh;
-    model.evaluate(w, cand, cs1, reused, w.scene.integrator.dt, threads, 0);
-    model.evaluate(w, cand, cs2, fresh, w.scene.integrator.dt, threads, 0);
+    model.evaluate(w, cand, cs1, reused, set.dt, threads, 0);
+    model.evaluate(w, cand, cs2, fresh, set.dt, threads, 0);
     ASSERT_EQ(reused.fx.size(), w.size()) << what;
     std::size_t differ = 0;
     for (std::size_t i = 0; i < w.size(); ++i)
@@ -336,13 +341,13 @@ TEST(ForceSums, ReusedBufferEqualsAFreshOne) {
   // a smaller world in the same buffer
   Simulation small = forced_gas(1000, 9);
   small.run(400);
-  ContactModel model2(small.world());
+  ContactModel model2(small.world(), small.settings().contact);
   bp = make_broadphase(BroadPhaseKind::Auto, small.world());
   const std::vector<PairKey>& cand = bp->update(small.world());
   ContactSet cs1, cs2;
   ForceBuffer fresh;
-  model2.evaluate(small.world(), cand, cs1, reused, small.world().scene.integrator.dt, threads, 0);
-  model2.evaluate(small.world(), cand, cs2, fresh, small.world().scene.integrator.dt, threads, 0);
+  model2.evaluate(small.world(), cand, cs1, reused, small.dt(), threads, 0);
+  model2.evaluate(small.world(), cand, cs2, fresh, small.dt(), threads, 0);
   EXPECT_EQ(reused.fx, fresh.fx);
   EXPECT_EQ(reused.fy, fresh.fy);
 }
@@ -358,7 +363,7 @@ namespace {
 TEST(Placement, RandomSitesAreNumberedInLatticeOrder) {
   SceneSpec s = build::disk_gas(5000, 0.3, 0.6, 0.6, 7);
   World w = make_world(s);
-  place_particles(w);
+  place_particles(w, s);
   ASSERT_EQ(w.size(), 5000u);
   std::size_t backwards = 0, row_gaps = 0;
   double mean_y = 0.0;

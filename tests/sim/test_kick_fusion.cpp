@@ -18,8 +18,8 @@ namespace {
 
 Simulation make_sim(const SceneSpec& s) {
   World w = make_world(s);
-  place_particles(w);
-  return Simulation(std::move(w));
+  place_particles(w, s);
+  return Simulation(std::move(w), SimSettings::from(s));
 }
 
 // a randomly forced periodic gas dense enough that ≈ 1% of the disks touch at any time

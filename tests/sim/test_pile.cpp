@@ -76,7 +76,7 @@ TEST(Determinism, SameHashForOneAndTwoThreads) {
     omp_set_num_threads(threads);
     World w = make_world(s);
     read_state_file(w, src + "/bench/data/paper_pile_settled.csv");
-    Simulation sim(std::move(w));
+    Simulation sim(std::move(w), SimSettings::from(s));
     sim.run(100);
     omp_set_num_threads(before);
     return state_hash(sim.world());
@@ -90,8 +90,8 @@ std::uint64_t threads_hash(const SceneSpec& s, int threads, std::int64_t steps) 
   const int before = omp_get_max_threads();
   omp_set_num_threads(threads);
   World w = make_world(s);
-  place_particles(w);
-  Simulation sim(std::move(w));
+  place_particles(w, s);
+  Simulation sim(std::move(w), SimSettings::from(s));
   sim.run(steps);
   omp_set_num_threads(before);
   return state_hash(sim.world());

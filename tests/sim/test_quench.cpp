@@ -35,16 +35,16 @@ Outcome tap(std::vector<std::string> overrides) {
   const SceneSpec s =
       parse_scene_file(std::string(GS_SOURCE_DIR) + "/scenes/tap_small_negative_g.toml", overrides);
   World w = make_world(s);
-  place_particles(w);
+  place_particles(w, s);
   ProtocolClock clock(s);
   clock.start(w);
-  Simulation sim(std::move(w));
+  Simulation sim(std::move(w), SimSettings::from(s));
   Outcome o;
   while (!clock.done(sim.world())) {
     sim.step();
     if (clock.after_step(sim.world()) == ClockEvent::Quench) sim.zero_velocities();
     const World& cw = sim.world();
-    if (excitation_starts_next(cw.scene.drive, cw.clock_origin, cw.s.t, s.integrator.dt))
+    if (excitation_starts_next(s.drive, cw.clock_origin, cw.s.t, s.integrator.dt))
       o.rest_ke.push_back(cw.kinetic_energy());
   }
   o.hash = state_hash(sim.world());

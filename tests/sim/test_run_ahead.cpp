@@ -21,8 +21,8 @@ using testing::Threads;
 
 Simulation make_sim(const SceneSpec& s) {
   World w = make_world(s);
-  place_particles(w);
-  return Simulation(std::move(w));
+  place_particles(w, s);
+  return Simulation(std::move(w), SimSettings::from(s));
 }
 
 // a randomly forced periodic gas with contacts, its drift removal, health check and sort at
@@ -199,9 +199,10 @@ TEST(RunAhead, NotWithTheIntegratorsOwnKick) {
 TEST(RunAhead, GearSixPredictsByRange) {
   const std::string src = GS_SOURCE_DIR;
   auto settled = [&] {
-    World w = make_world(parse_scene_file(src + "/scenes/paper_pile.toml"));
+    const SceneSpec s = parse_scene_file(src + "/scenes/paper_pile.toml");
+    World w = make_world(s);
     read_state_file(w, src + "/bench/data/paper_pile_settled.csv");
-    return Simulation(std::move(w));
+    return Simulation(std::move(w), SimSettings::from(s));
   };
   auto column = [] { return make_sim(build::decagon_pile(40, 0.2, 0.4, 1)); };
   for (bool paper : {false, true}) {

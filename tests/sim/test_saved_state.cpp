@@ -40,7 +40,7 @@ Simulation start(const std::string& from) {
   fit_scene_to_state(scene, st);
   World w = make_world(scene);
   place_saved_state(w, st);
-  Simulation sim(std::move(w));
+  Simulation sim(std::move(w), SimSettings::from(scene));
   take_saved_history(sim, st);
   return sim;
 }
@@ -48,14 +48,15 @@ Simulation start(const std::string& from) {
 TEST(SavedState, StateFileSpringsStartAtZeroCheckpointKeepsThem) {
   const fs::path dir = fs::temp_directory_path() / "gs_saved_state";
   fs::create_directories(dir);
-  World w = make_world(parse_scene_string(kPile, "pile.toml"));
-  place_particles(w);
-  Simulation sim(std::move(w));
+  const SceneSpec scene = parse_scene_string(kPile, "pile.toml");
+  World w = make_world(scene);
+  place_particles(w, scene);
+  Simulation sim(std::move(w), SimSettings::from(scene));
   sim.run(6000);  // a settled pile with stretched springs
   ASSERT_GT(sim.contacts().keys.size(), 10u);
   ASSERT_GT(spring_sum(sim), 0.0);
   write_state_file(sim.world(), (dir / "state.csv").string());
-  write_checkpoint(sim, {}, (dir / "ck.gsck").string());
+  write_checkpoint(sim, scene, {}, (dir / "ck.gsck").string());
 
   const Simulation a = start((dir / "state.csv").string());
   EXPECT_EQ(a.world().size(), 20u);

@@ -36,8 +36,8 @@ SceneSpec gas(int n, int sort_every, IntegratorKind kind = IntegratorKind::Veloc
 
 Simulation make_sim(const SceneSpec& s) {
   World w = make_world(s);
-  place_particles(w);
-  return Simulation(std::move(w));
+  place_particles(w, s);
+  return Simulation(std::move(w), SimSettings::from(s));
 }
 
 // largest difference by label between two runs' positions and velocities, relative to the
@@ -178,7 +178,7 @@ TEST(SortParticles, CheckpointResumesASortedRunBitForBit) {
     straight.run(260);
     Simulation first = make_sim(s);
     first.run(130);
-    const std::string bytes = encode_checkpoint(first, CheckpointExtras{});
+    const std::string bytes = encode_checkpoint(first, s, CheckpointExtras{});
     Simulation resumed = restore_simulation(decode_checkpoint(bytes, "memory"));
     EXPECT_EQ(resumed.world().id, first.world().id);
     resumed.run(130);
@@ -196,13 +196,13 @@ TEST(SortParticles, WalledBoxFollowsTheUnsortedRun) {
     s.drive.kind = DriveKind::Gravity;
     s.integrator.sort_every = sort_every;
     World w = make_world(s);
-    place_particles(w);
+    place_particles(w, s);
     const double r0 = w.radius[0];  // the grains near the left wall and the floor pressed in
     for (std::size_t i = 0; i < w.size(); ++i) {
       w.s.x[i] -= 0.3 * r0 * (w.s.x[i] < 3 * r0);
       w.s.y[i] -= 0.3 * r0 * (w.s.y[i] < 3 * r0);
     }
-    return Simulation(std::move(w));
+    return Simulation(std::move(w), SimSettings::from(s));
   };
   Simulation plain = walled(0), sorted = walled(30);
   std::size_t wall_contacts = 0;  // summed over the steps: grains pushed off the walls
@@ -243,19 +243,16 @@ TEST(SortParticles, StateFileRowsFollowLabels) {
 }
 
 TEST(SortParticles, AutoIntervalAndSceneChecks) {
-  World big = make_world(gas(kAutoSortMinParticles, -1));
-  place_particles(big);
-  EXPECT_EQ(resolved_sort_every(big), kAutoSortEvery);
-  World small = make_world(gas(2000, -1));
-  place_particles(small);
-  EXPECT_EQ(resolved_sort_every(small), 0);
-  World off = make_world(gas(kAutoSortMinParticles, 0));
-  place_particles(off);
-  EXPECT_EQ(resolved_sort_every(off), 0);
+  auto resolved = [](const SceneSpec& s) {
+    World w = make_world(s);
+    place_particles(w, s);
+    return resolved_sort_every(w, s.integrator.sort_every);
+  };
+  EXPECT_EQ(resolved(gas(kAutoSortMinParticles, -1)), kAutoSortEvery);
+  EXPECT_EQ(resolved(gas(2000, -1)), 0);
+  EXPECT_EQ(resolved(gas(kAutoSortMinParticles, 0)), 0);
   const std::string src = GS_SOURCE_DIR;
-  World pile = make_world(parse_scene_file(src + "/scenes/paper_pile.toml"));
-  place_particles(pile);
-  EXPECT_EQ(resolved_sort_every(pile), 0);
+  EXPECT_EQ(resolved(parse_scene_file(src + "/scenes/paper_pile.toml")), 0);
 
   // the scene refuses a sort where the slots carry meaning or history
   auto error_of = [&](const std::string& file, const std::string& set) {

@@ -13,8 +13,8 @@ namespace {
 
 Simulation make_sim(const SceneSpec& s) {
   World w = make_world(s);
-  place_particles(w);
-  return Simulation(std::move(w));
+  place_particles(w, s);
+  return Simulation(std::move(w), SimSettings::from(s));
 }
 
 // runs `steps` steps in runs of 10, every step timed, and checks the profile against the wall

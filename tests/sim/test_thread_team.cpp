@@ -21,9 +21,10 @@ using testing::Threads;
 // pass measures it
 Simulation pile_sim() {
   const std::string src = GS_SOURCE_DIR;
-  World w = make_world(parse_scene_file(src + "/scenes/paper_pile.toml"));
+  const SceneSpec s = parse_scene_file(src + "/scenes/paper_pile.toml");
+  World w = make_world(s);
   read_state_file(w, src + "/bench/data/paper_pile_settled.csv");
-  return Simulation(std::move(w));
+  return Simulation(std::move(w), SimSettings::from(s));
 }
 
 // thread 0 of the team's split of n particles ends here

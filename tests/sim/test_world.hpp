@@ -49,8 +49,8 @@ struct TestWorld {
   }
   Simulation& start() {
     World w = make_world(scene);
-    place_particles(w);
-    sim = std::make_unique<Simulation>(std::move(w));
+    place_particles(w, scene);
+    sim = std::make_unique<Simulation>(std::move(w), SimSettings::from(scene));
     return *sim;
   }
   World& world() { return sim->world(); }

@@ -18,6 +18,7 @@
 #include "output/particles/trajectory.hpp"
 #include "output/png.hpp"
 #include "output/run_dir.hpp"
+#include "scene/parse.hpp"
 #include "scene/render_section.hpp"
 #include "sim/simulation.hpp"
 #if defined(GS_HAVE_FFMPEG)
@@ -136,18 +137,19 @@ void add_render_flags(CLI::App* c, RenderFlags& f) {
 
 // the frame information of a snapshot: recorded gravity and tap win over the schedule's
 FrameInfo snapshot_info(const Snapshot& s, Vec2 scheduled_gravity) {
-  FrameInfo info = frame_info(s.world, s.gravity.value_or(scheduled_gravity));
+  FrameInfo info =
+      frame_info(s.world, ViewSettings::from(s.scene), s.gravity.value_or(scheduled_gravity));
   // the tap of a saved state is only known when recorded, or when no relaxation ended early
   if (s.tap)
     info.tap = s.tap;
-  else if (s.world.scene.drive.early_rest)
+  else if (s.scene.drive.early_rest)
     info.tap.reset();
   return info;
 }
 
 // draw a world: with contacts (a Simulation computes them) when the frame needs them
 Image draw(FrameMaker& maker, const Snapshot& s) {
-  Simulation sim(s.world);
+  Simulation sim(s.world, SimSettings::from(s.scene));
   return maker.render(sim.world(), &sim.contacts(), snapshot_info(s, sim.gravity()));
 }
 
@@ -209,9 +211,9 @@ int render_command(const RenderCommandOptions& o) {
   });
   SnapshotRequest req{o.flags.scene, o.flags.sets, o.frame};
   const Snapshot s = load_snapshot(o.input, req);
-  RenderSpec r = s.world.scene.render;
+  RenderSpec r = s.scene.render;
   apply_flags(o.flags, r);
-  FrameMaker maker(r, s.world.scene.path);
+  FrameMaker maker(r, s.scene.path);
   const Image img = draw(maker, s);
   // a picture written into a run directory waits for no writer there
   const std::string run = run_dir_of(out);
@@ -256,7 +258,7 @@ int movie_command(const MovieCommandOptions& o) {
   if (from == "trajectory" || fs::exists((is_dir ? in : in.parent_path()) / "scene.toml") ||
       !o.flags.scene.empty()) {
     scene_path = scene_for(in, req);
-    r = world_for_scene(scene_path, o.flags.sets).scene.render;
+    r = parse_scene_file(scene_path, o.flags.sets).render;
   }
   apply_flags(o.flags, r);
   MovieOptions mo;
@@ -303,7 +305,7 @@ int movie_command(const MovieCommandOptions& o) {
     progress.finish("");
   } else {
     // each trajectory frame drawn like `render` draws a state
-    Snapshot s{world_for_scene(scene_path, o.flags.sets), traj.string(), "trajectory", {}, {}};
+    Snapshot s = scene_snapshot(scene_path, o.flags.sets, traj.string(), "trajectory");
     FrameMaker maker(r, scene_path);
     TrajectoryReader reader(traj.string());
     TrajectoryFrame f;

@@ -22,25 +22,30 @@ std::string scene_for(const fs::path& input, const SnapshotRequest& req) {
                    "no scene.toml beside it; pass the scene it was made with: --scene SCENE");
 }
 
-World world_for_scene(const std::string& scene_path, const std::vector<std::string>& sets) {
-  World w = make_world(parse_scene_file(scene_path, sets));
+Snapshot scene_snapshot(const std::string& scene_path, const std::vector<std::string>& sets,
+                        const std::string& source, const std::string& kind) {
+  Snapshot s;
+  s.scene = parse_scene_file(scene_path, sets);
+  s.world = make_world(s.scene);
   // the protocol clock as a run starts it: settling first, then the schedule
-  ProtocolClock(w.scene).start(w);
-  return w;
+  ProtocolClock(s.scene).start(s.world);
+  s.source = source;
+  s.kind = kind;
+  return s;
 }
 
 namespace {
 
 // a state file (state.csv) with its scene
 Snapshot read_state(const fs::path& file, const SnapshotRequest& req) {
-  Snapshot s{world_for_scene(scene_for(file, req), req.sets), file.string(), "state file", {}, {}};
+  Snapshot s = scene_snapshot(scene_for(file, req), req.sets, file.string(), "state file");
   read_state_file(s.world, file.string());
   return s;
 }
 
 // frame req.frame (−1: the last) of a trajectory, with its scene
 Snapshot read_trajectory(const fs::path& file, const SnapshotRequest& req) {
-  Snapshot s{world_for_scene(scene_for(file, req), req.sets), file.string(), "trajectory", {}, {}};
+  Snapshot s = scene_snapshot(scene_for(file, req), req.sets, file.string(), "trajectory");
   TrajectoryReader in(file.string());
   TrajectoryFrame f, last;
   bool any = false;
@@ -66,9 +71,9 @@ Snapshot read_trajectory(const fs::path& file, const SnapshotRequest& req) {
 Snapshot read_checkpoint_file(const fs::path& file, const SnapshotRequest&) {
   const Checkpoint c = read_checkpoint(file.string());
   Simulation sim = restore_simulation(c);
-  Snapshot s{sim.world(), file.string(), "checkpoint", sim.gravity(), {}};
-  const DrivePhase p = drive_phase(s.world.scene.drive, s.world.clock_origin, s.world.s.t);
-  if (is_tapping(s.world.scene.drive) && !p.settling) s.tap = p.tap;
+  Snapshot s{checkpoint_scene(c), sim.world(), file.string(), "checkpoint", sim.gravity(), {}};
+  const DrivePhase p = drive_phase(s.scene.drive, s.world.clock_origin, s.world.s.t);
+  if (is_tapping(s.scene.drive) && !p.settling) s.tap = p.tap;
   return s;
 }
 

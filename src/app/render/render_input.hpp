@@ -22,6 +22,7 @@ struct SnapshotRequest {
 
 /// a saved state with its scene
 struct Snapshot {
+  SceneSpec scene;              ///< the scene it was made with
   World world;                  ///< constants from the scene, particles from the file
   std::string source;           ///< the file the particles came from
   std::string kind;             ///< which reader read it ("run directory", "state file", …)
@@ -47,8 +48,10 @@ Snapshot load_snapshot(const std::string& path, const SnapshotRequest& req);
 /// beside a file; InputError saying to pass --scene when there is none
 std::string scene_for(const std::filesystem::path& input, const SnapshotRequest& req);
 
-/// a World of the scene (particles not placed), with the tapping protocol clock started as a
-/// run starts it (settling first), so that gravity and tap phase follow the schedule
-World world_for_scene(const std::string& scene_path, const std::vector<std::string>& sets);
+/// a Snapshot of the scene at `scene_path` (with `sets`): its World without particles, the
+/// tapping protocol clock started as a run starts it (settling first), so that gravity and tap
+/// phase follow the schedule; `source` and `kind` say where the particles will come from
+Snapshot scene_snapshot(const std::string& scene_path, const std::vector<std::string>& sets,
+                        const std::string& source, const std::string& kind);
 
 }  // namespace gs

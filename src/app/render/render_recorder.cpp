@@ -41,7 +41,8 @@ namespace {
 
 class FrameRecorder final : public Observer {
  public:
-  explicit FrameRecorder(const SceneSpec& scene) : spec_(scene.render), where_(scene.path) {}
+  explicit FrameRecorder(const SceneSpec& scene)
+      : spec_(scene.render), view_(ViewSettings::from(scene)), where_(scene.path) {}
 
   const char* name() const override { return "frames"; }
 
@@ -51,7 +52,7 @@ class FrameRecorder final : public Observer {
                        {"frame", "t", "step", "tap", "gx", "gy"});
     // the initial state is frame 0 of the time and step schedules
     const World& w = sim.world();
-    prev_ = drive_phase(w.scene.drive, w.clock_origin, w.s.t);
+    prev_ = drive_phase(view_.drive, w.clock_origin, w.s.t);
     if (spec_.schedule == RenderSchedule::Time || spec_.schedule == RenderSchedule::Steps)
       if (due(sim)) capture(sim);
   }
@@ -68,7 +69,7 @@ class FrameRecorder final : public Observer {
     if (maker_ && !dir_.empty()) {
       const World& w = sim.world();
       write_png((fs::path(dir_) / "final.png").string(),
-                maker_->render(w, &sim.contacts(), frame_info(w, sim.gravity())));
+                maker_->render(w, &sim.contacts(), frame_info(w, view_, sim.gravity())));
     }
   }
 
@@ -85,7 +86,7 @@ class FrameRecorder final : public Observer {
     open_outputs(dir, "movie_from_" + std::to_string(count_) + ".mp4");
     index_ = CsvWriter::append((fs::path(dir) / kFrameIndexFile).string(), 6);
     const World& w = sim.world();
-    prev_ = drive_phase(w.scene.drive, w.clock_origin, w.s.t);
+    prev_ = drive_phase(view_.drive, w.clock_origin, w.s.t);
   }
 
  private:
@@ -115,7 +116,7 @@ class FrameRecorder final : public Observer {
     const World& w = sim.world();
     const double t = w.s.t, half = 0.5 * sim.dt();
     // the protocol phase: does this step begin an excitation?
-    const DriveSpec& d = w.scene.drive;
+    const DriveSpec& d = view_.drive;
     const DrivePhase now = drive_phase(d, w.clock_origin, t);
     const bool begins = is_tapping(d) && !now.settling && now.exciting &&
                         (prev_.settling || !prev_.exciting || prev_.tap != now.tap);
@@ -154,7 +155,7 @@ class FrameRecorder final : public Observer {
   // draw the frame and hand it to the PNG writer and/or the encoder
   void capture(const Simulation& sim) {
     const World& w = sim.world();
-    const FrameInfo info = frame_info(w, sim.gravity());
+    const FrameInfo info = frame_info(w, view_, sim.gravity());
     const Image img = maker_->render(w, &sim.contacts(), info);
     if (!frames_dir_.empty())
       write_png((fs::path(frames_dir_) / frame_file_name(count_)).string(), img);
@@ -167,6 +168,7 @@ class FrameRecorder final : public Observer {
   }
 
   RenderSpec spec_;
+  ViewSettings view_;
   std::string where_;  ///< the scene file, for messages
   std::unique_ptr<FrameMaker> maker_;
   std::string dir_;         ///< the run directory
@@ -185,7 +187,8 @@ class FrameRecorder final : public Observer {
 
 class TrajectoryWriter final : public Observer {
  public:
-  explicit TrajectoryWriter(int every) : every_(every) {}
+  TrajectoryWriter(int every, const SceneSpec& scene)
+      : every_(every), view_(ViewSettings::from(scene)) {}
   const char* name() const override { return "trajectory"; }
   void save(ByteWriter&) const override {}  // frames are on disk; the run truncates the file
   void resume(const Simulation&, const std::string& dir, ByteReader&) override {
@@ -212,11 +215,12 @@ class TrajectoryWriter final : public Observer {
   void write(const Simulation& sim) {
     const World& w = sim.world();
     write_trajectory_frame(out_, w, &sim.contacts(), sim.gravity(),
-                           frame_info(w, sim.gravity()).tap);
+                           frame_info(w, view_, sim.gravity()).tap);
     out_.flush();  // a frame on disk is a frame kept, whatever happens next
     if (!out_) throw OutputError(path_ + ": write failed (disk full or removed?)");
   }
   int every_;
+  ViewSettings view_;
   std::string path_;
   std::ofstream out_;
 };
@@ -233,7 +237,7 @@ void add_render_observers(const SceneSpec& scene, Observers& observers) {
     observers.push_back(std::make_unique<FrameRecorder>(scene));
   }
   if (r.trajectory_every > 0)
-    observers.push_back(std::make_unique<TrajectoryWriter>(r.trajectory_every));
+    observers.push_back(std::make_unique<TrajectoryWriter>(r.trajectory_every, scene));
 }
 
 }  // namespace gs

@@ -40,7 +40,8 @@ long snapshot_number(const std::string& name) {
 
 class SnapshotWriter final : public Observer {
  public:
-  explicit SnapshotWriter(const SceneSpec& scene) : spec_(scene.output.snapshots) {}
+  explicit SnapshotWriter(const SceneSpec& scene)
+      : spec_(scene.output.snapshots), view_(ViewSettings::from(scene)) {}
 
   const char* name() const override { return "snapshots"; }
 
@@ -57,7 +58,7 @@ class SnapshotWriter final : public Observer {
     const World& w = sim.world();
     const double dt = sim.dt();
     std::int64_t m = std::int64_t{1} << 40;
-    if (spec_.at_taps) m = steps_before_excitation(w.scene.drive, w.clock_origin, w.s.t, dt);
+    if (spec_.at_taps) m = steps_before_excitation(view_.drive, w.clock_origin, w.s.t, dt);
     // the steps that certainly end before the next scheduled time (two fewer: round-off)
     const double next = next_time();
     if (std::isfinite(next)) {
@@ -141,8 +142,7 @@ class SnapshotWriter final : public Observer {
       while (next_i_ < spec_.times.size() && spec_.times[next_i_] <= now) ++next_i_;
     }
     // the tap observer's test, so that every taps.csv row has its snapshot
-    at_tap_ =
-        spec_.at_taps && excitation_starts_next(w.scene.drive, w.clock_origin, w.s.t, sim.dt());
+    at_tap_ = spec_.at_taps && excitation_starts_next(view_.drive, w.clock_origin, w.s.t, sim.dt());
     return at_time_ || at_tap_;
   }
 
@@ -156,8 +156,8 @@ class SnapshotWriter final : public Observer {
     e.at_tap = at_tap_;
     e.at_time = at_time_;
     // a measurement's tap as taps.csv numbers it; otherwise the tap in progress, if any
-    const std::optional<long> running = frame_info(w, sim.gravity()).tap;
-    if (at_tap_) e.tap = drive_phase(w.scene.drive, w.clock_origin, w.s.t + sim.dt()).tap;
+    const std::optional<long> running = frame_info(w, view_, sim.gravity()).tap;
+    if (at_tap_) e.tap = drive_phase(view_.drive, w.clock_origin, w.s.t + sim.dt()).tap;
     const std::optional<long> tap = at_tap_ ? std::optional<long>(e.tap) : running;
     const fs::path dir(dir_);
     if (spec_.vtp)
@@ -189,6 +189,7 @@ class SnapshotWriter final : public Observer {
   }
 
   SnapshotSpec spec_;
+  ViewSettings view_;
   std::string dir_;                        ///< DIR/snapshots
   std::vector<SnapshotEntry> taken_;       ///< every snapshot so far, in order
   std::int64_t next_k_ = 0;                ///< every_time: index of the next grid time

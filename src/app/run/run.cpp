@@ -120,14 +120,14 @@ int run_command(const RunOptions& opt) {
   if (saved)
     place_saved_state(world, *saved);
   else
-    place_particles(world);
+    place_particles(world, scene);
   // the protocol clock starts after preparation.settle_time (constant gravity until then); it
   // is set before the first force evaluation so the initial accelerations see settling gravity
   ProtocolClock clock(scene);
   clock.start(world);
-  Simulation sim(std::move(world));
+  Simulation sim(std::move(world), SimSettings::from(scene));
   const bool history = saved && take_saved_history(sim, *saved);
-  check_time_step(sim);
+  check_time_step(sim, scene);
   const std::string out = opt.out.empty() ? default_out(scene.name) : opt.out;
   const DirLock lock(out, "run");
   prepare_run_dir(out, opt.force);
@@ -167,7 +167,7 @@ int resume_command(const ResumeOptions& opt) {
   const Checkpoint c = newest_valid_checkpoint(opt.dir);
   check_scene_unchanged(opt.dir, c);
   Simulation sim = restore_simulation(c);
-  SceneSpec scene = sim.world().scene;
+  const SceneSpec scene = checkpoint_scene(c);
   ProtocolClock clock(scene);
   ByteReader ck = extra(c, "run/clock");
   clock.load(ck);

@@ -85,7 +85,7 @@ void write_run_checkpoint(const RunSession& rs, double wall) {
   for (const auto& [name, size] : output_sizes(rs.out))
     ex.entries["file/" + name] = std::to_string(size);
   const std::string path = checkpoint_path(rs.out, rs.sim->world().s.step);
-  write_checkpoint(*rs.sim, ex, path);
+  write_checkpoint(*rs.sim, rs.scene, ex, path);
   // keep the newest two
   const auto all = list_checkpoints(rs.out);
   std::error_code ec;

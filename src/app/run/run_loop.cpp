@@ -132,12 +132,12 @@ int run_session(RunSession& rs) {
     return sim.world().s.step + std::llround(clock.time_saved() / dt) >= nsteps;
   };
   auto settling = [&] {
-    return drive_phase(sim.world().scene.drive, sim.world().clock_origin, sim.world().s.t + dt)
+    return drive_phase(sim.settings().drive, sim.world().clock_origin, sim.world().s.t + dt)
         .settling;
   };
   auto taps_done = [&]() -> long {
     const DrivePhase p =
-        drive_phase(sim.world().scene.drive, sim.world().clock_origin, sim.world().s.t + dt);
+        drive_phase(sim.settings().drive, sim.world().clock_origin, sim.world().s.t + dt);
     return is_tapping(scene.drive) && !p.settling ? p.tap : 0;
   };
   install_stop_handlers();
@@ -168,7 +168,7 @@ int run_session(RunSession& rs) {
       if (every > 0) m = std::min(m, every - step % every);
     };
     // taps: the clock's end, the tap checkpoints and the tap measurement are at excitations
-    m = std::min(m, 1 + steps_before_excitation(sim.world().scene.drive, sim.world().clock_origin,
+    m = std::min(m, 1 + steps_before_excitation(sim.settings().drive, sim.world().clock_origin,
                                                 sim.world().s.t, dt));
     to_next(out.series_every);
     m = std::min(m, checkpoints.steps_to_next(step));
@@ -197,8 +197,7 @@ int run_session(RunSession& rs) {
       if (step % out.series_every == 0) write_series_row(rs);
       // checkpoints between two steps, after every output of this step is written
       const bool due = checkpoints.fires(
-          {step,
-           tap_boundary(sim.world().scene.drive, sim.world().clock_origin, sim.world().s.t, dt),
+          {step, tap_boundary(sim.settings().drive, sim.world().clock_origin, sim.world().s.t, dt),
            wall_now()});
       if (since_check >= kProgressEvery) {
         since_check = 0;

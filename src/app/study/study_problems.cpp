@@ -69,8 +69,8 @@ SceneSpec problem_scene(const StudySizes& z, const StudyCase& c) {
 
 std::unique_ptr<Simulation> start(const SceneSpec& s) {
   World w = make_world(s);
-  place_particles(w);
-  return std::make_unique<Simulation>(std::move(w), s.integrator.broad_phase);
+  place_particles(w, s);
+  return std::make_unique<Simulation>(std::move(w), SimSettings::from(s), s.integrator.broad_phase);
 }
 
 // ⟨|v − v_cm|²⟩, m²/s² (T.2.19)
@@ -131,8 +131,7 @@ void run_two_body(Simulation& sim, double speed, double flight, StudyOutcome& o)
 // Haff: relax 0.015 s, then fit a line to T^{-1/2}(t) every 0.002 s; value = slope/predicted
 void run_haff(Simulation& sim, const StudySizes& z, StudyOutcome& o) {
   const World& w = sim.world();
-  const SceneSpec& s = w.scene;
-  const double phi = 0.1, eps = 0.9, L = s.box.width, sigma = 3e-3;
+  const double phi = 0.1, eps = 0.9, L = w.Lx, sigma = 3e-3;  // L: the periodic box's side
   const double chi = (1 - 7 * phi / 16) / ((1 - phi) * (1 - phi));
   const double slope = (z.haff_n / (L * L)) * chi * sigma * (1 - eps * eps) * std::sqrt(M_PI / 8);
   const std::int64_t relax = steps_for(0.015, o.dt), every = steps_for(0.002, o.dt);

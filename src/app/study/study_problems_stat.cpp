@@ -81,10 +81,10 @@ void run_tapping(const StudySizes& z, const StudyCase& c, StudyOutcome& o) {
   SceneSpec s = tapping_scene(z, c);
   s.integrator.dt = o.dt;
   World w = make_world(s);
-  place_particles(w);
+  place_particles(w, s);
   ProtocolClock clock(s);
   clock.start(w);
-  Simulation sim(std::move(w), s.integrator.broad_phase);
+  Simulation sim(std::move(w), SimSettings::from(s), s.integrator.broad_phase);
   o.particles = static_cast<int>(sim.world().size());
   std::vector<double> phis;
   const auto w0 = WallClock::now();
@@ -95,9 +95,9 @@ void run_tapping(const StudySizes& z, const StudyCase& c, StudyOutcome& o) {
     ++o.steps;
     if (clock.after_step(sim.world()) == ClockEvent::Quench) sim.zero_velocities();
     const World& cw = sim.world();
-    if (!excitation_starts_next(cw.scene.drive, cw.clock_origin, cw.s.t, o.dt)) continue;
+    if (!excitation_starts_next(sim.settings().drive, cw.clock_origin, cw.s.t, o.dt)) continue;
     // the row of tap k: the pile after k pulses (k = 0: settled); the first `discard` dropped
-    const long k = drive_phase(cw.scene.drive, cw.clock_origin, cw.s.t + o.dt).tap;
+    const long k = drive_phase(sim.settings().drive, cw.clock_origin, cw.s.t + o.dt).tap;
     if (k == 0) wall_settled = seconds_since(w0);
     ++measured;
     if (k > z.tap_discard) phis.push_back(measure_tap(cw, sim.contacts(), s.output.test_rect).phi);
@@ -153,8 +153,8 @@ void run_rfm(const StudySizes& z, const StudyCase& c, StudyOutcome& o) {
   SceneSpec s = rfm_scene(z, c);
   s.integrator.dt = o.dt;
   World w = make_world(s);
-  place_particles(w);
-  Simulation sim(std::move(w), s.integrator.broad_phase);
+  place_particles(w, s);
+  Simulation sim(std::move(w), SimSettings::from(s), s.integrator.broad_phase);
   const World& cw = sim.world();
   o.particles = static_cast<int>(cw.size());
   const std::int64_t discard = steps_of(z.rfm_discard, o.dt), every = steps_of(z.rfm_sample, o.dt);
@@ -203,8 +203,10 @@ double stat_problem_contact_time(const StudySizes& z, StudyProblem p) {
     s = rfm_scene(z, c);
   }
   World w = make_world(s);
-  place_particles(w);
-  return Simulation(std::move(w), s.integrator.broad_phase).model().min_contact_time();
+  place_particles(w, s);
+  return Simulation(std::move(w), SimSettings::from(s), s.integrator.broad_phase)
+      .model()
+      .min_contact_time();
 }
 
 void run_stat_problem(const StudySizes& z, const StudyCase& c, StudyOutcome& o) {
