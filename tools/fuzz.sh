@@ -63,7 +63,7 @@ build_one() {
     csv) build csv fuzz/fuzz_csv.cpp src/analysis/*.cpp src/core/*.cpp ;;
     restore) build restore fuzz/fuzz_restore.cpp src/sim/*.cpp src/world/*.cpp src/scene/*.cpp \
                src/geometry/*.cpp src/integrate/*.cpp src/core/*.cpp src/broadphase/*.cpp \
-               src/contact/*.cpp src/force/*.cpp src/drive/*.cpp \
+               src/contact/*.cpp src/force/*.cpp src/force/laws/*.cpp src/drive/*.cpp \
                src/output/run_dir.cpp src/output/csv.cpp -lbox2d ;;
     *) echo "unknown target $t (scene, checkpoint, state, csv, restore)" >&2; exit 2 ;;
   esac
