@@ -42,11 +42,13 @@ void prepare_run_dir(const std::string& dir, bool force) {
   ::unlink(probe.c_str());
 }
 
-DirLock::DirLock(const std::string& dir, const std::string& what) {
+DirLock::DirLock(const std::string& dir, const std::string& what) : DirLock(dir, what, ".lock") {}
+
+DirLock::DirLock(const std::string& dir, const std::string& what, const std::string& name) {
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec) throw InputError(dir, "", "cannot create the directory: " + ec.message());
-  const std::string path = dir + "/.lock";
+  const std::string path = dir + "/" + name;
   fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
   if (fd_ < 0) throw InputError(dir, "", std::string("cannot write: ") + std::strerror(errno));
   if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {

@@ -21,6 +21,8 @@ class DirLock {
   /// creates DIR if needed and takes the lock; throws InputError naming DIR and the holder's
   /// PID when another process holds it (`what` says what wanted it: "run", "sweep", …)
   DirLock(const std::string& dir, const std::string& what);
+  /// the same with another lock file in DIR (`name`), for a second writer of one directory
+  DirLock(const std::string& dir, const std::string& what, const std::string& name);
   ~DirLock();
   DirLock(const DirLock&) = delete;
   DirLock& operator=(const DirLock&) = delete;

@@ -3,6 +3,8 @@ every claim with a verdict, and report.html opens in headless Chromium without e
 a page that is not blank. Needs GS_BINARY (the gransim executable); GS_STUDY picks one study.
 Run: GS_BINARY=build/gransim python3 -m unittest tests/tools/test_reproduce_smoke.py"""
 import csv
+import fcntl
+import json
 import os
 import shutil
 import subprocess
@@ -62,6 +64,30 @@ class ReproduceSmoke(unittest.TestCase):
         p = subprocess.run([BINARY, "reproduce", study, "--budget", "smoke", "--out", out, "-q"],
                            capture_output=True, text=True, timeout=600)
         self.assertEqual(p.returncode, 0, p.stderr[-3000:])
+        self.check_locks(study, out)
+
+    def check_locks(self, study, out):
+        """while another process writes the runs, --report-only reports beside it (and adds no
+        sitting) but a second writer is refused; two reports at once are refused too"""
+        base = [BINARY, "reproduce", study, "--budget", "smoke", "--out", out, "-q"]
+        with open(os.path.join(out, "progress.json")) as f:
+            before = json.load(f)
+        with open(os.path.join(out, ".lock"), "a+") as held:
+            fcntl.flock(held, fcntl.LOCK_EX | fcntl.LOCK_NB)
+            p = subprocess.run(base, capture_output=True, text=True, timeout=600)
+            self.assertEqual(p.returncode, 2, p.stderr[-3000:])
+            self.assertIn("is writing here", p.stderr)
+            p = subprocess.run(base + ["--report-only"], capture_output=True, text=True,
+                               timeout=600)
+            self.assertEqual(p.returncode, 0, p.stderr[-3000:])
+        with open(os.path.join(out, "progress.json")) as f:
+            self.assertEqual(json.load(f), before)
+        with open(os.path.join(out, ".report.lock"), "a+") as held:
+            fcntl.flock(held, fcntl.LOCK_EX | fcntl.LOCK_NB)
+            p = subprocess.run(base + ["--report-only"], capture_output=True, text=True,
+                               timeout=600)
+            self.assertEqual(p.returncode, 2, p.stderr[-3000:])
+            self.assertIn("is writing here; reproduce --report-only refused", p.stderr)
 
     def check_html(self, path, ids):
         exe = chromium()

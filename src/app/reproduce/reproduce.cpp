@@ -95,8 +95,9 @@ double add_wall_time(const fs::path& out, double seconds) {
     }
   }
   const double total = j.value("wall_seconds", 0.0) + seconds;
+  if (seconds <= 0.0) return total;  // a report of what is there changes no tally
   j["wall_seconds"] = total;
-  if (seconds > 0.0) j["sittings"] = j.value("sittings", 0) + 1;
+  j["sittings"] = j.value("sittings", 0) + 1;
   std::ofstream o(f);
   o << j.dump(2) << '\n';
   if (!o) throw OutputError(f.string() + ": cannot be written");
@@ -138,13 +139,18 @@ int reproduce_command(const ReproduceOptions& opt) {
   for (const auto& s : plan.sweeps) scenes.push_back(find_scenes_dir(s.scene) + "/" + s.scene);
   const fs::path dir(out);
   std::error_code ec;
-  std::unique_ptr<DirLock> lock;
-  if (root) lock = std::make_unique<DirLock>(out, "reproduce");
+  // the runs' writer holds DIR/.lock, whoever analyses and reports DIR/.report.lock: a report
+  // of a study still running can be made beside it (--report-only), one report at a time
+  std::unique_ptr<DirLock> lock, report_lock;
+  if (root && !opt.report_only) lock = std::make_unique<DirLock>(out, "reproduce");
+  if (root && opt.report_only)
+    report_lock = std::make_unique<DirLock>(out, "reproduce --report-only", ".report.lock");
   fs::create_directories(dir / "sweeps", ec);
   if (ec) throw OutputError(out + ": cannot create the directory: " + ec.message());
   std::string command =
       "gransim reproduce " + opt.study + " --budget " + opt.budget + " --out " + shell_quote(out);
-  if (root) write_plan_json(plan, dir, command);
+  if (root && (!opt.report_only || !fs::exists(dir / "plan.json")))
+    write_plan_json(plan, dir, command);
 
   // the sweeps: completed runs are kept, interrupted ones resume from their checkpoints
   const auto t0 = std::chrono::steady_clock::now();
@@ -182,7 +188,7 @@ int reproduce_command(const ReproduceOptions& opt) {
 
   // the analyses: tapping over both protocols at once (the joint quadron fit needs both);
   // each RFM sweep on its own
-  fs::create_directories(dir / "analysis", ec);
+  if (!report_lock) report_lock = std::make_unique<DirLock>(out, "reproduce", ".report.lock");
   if (plan.study == "tapping") {
     AnalyzeOptions ao;
     for (const auto& s : plan.sweeps) ao.dirs.push_back((dir / "sweeps" / s.name).string());
