@@ -116,6 +116,11 @@ def rot_crossover(st, budget):
                             f"f={x[0]:g} Hz: {_pm(y[0], e[0])}; f={x[-1]:g} Hz: {_pm(y[-1], e[-1])}",
                             v, f"low f: {lo.reason}; high f: {hi.reason}", "", chart,
                             {"phi_low_f": y[0], "phi_high_f": y[-1]}))
+    else:  # a study still running, before its rotating-g runs
+        claims.append(Claim("rot-levels", "Rotating g", "φ̄ ≃ 0.814 at low frequency, φ̄ ≃ 0.821 "
+                            "at high frequency", "Fig. 6a, section IV", meas or "no runs yet",
+                            UNRESOLVED, "fewer than 2 rotating-g runs", f"the {budget} budget "
+                            "once its rotating-g runs are done", chart))
     return claims
 
 

@@ -189,14 +189,25 @@ int reproduce_command(const ReproduceOptions& opt) {
   // the analyses: tapping over both protocols at once (the joint quadron fit needs both);
   // each RFM sweep on its own
   if (!report_lock) report_lock = std::make_unique<DirLock>(out, "reproduce", ".report.lock");
+  // a report of a study still running covers the sweeps that have begun
+  std::vector<PlannedSweep> begun;
+  for (const auto& s : plan.sweeps) {
+    if (fs::is_directory(dir / "sweeps" / s.name))
+      begun.push_back(s);
+    else
+      std::fprintf(stderr, "reproduce: sweep %s has not begun; the report leaves it out\n",
+                   s.name.c_str());
+  }
+  if (begun.empty())
+    throw InputError(out, "", "no sweep of the study has begun: nothing to report");
   if (plan.study == "tapping") {
     AnalyzeOptions ao;
-    for (const auto& s : plan.sweeps) ao.dirs.push_back((dir / "sweeps" / s.name).string());
+    for (const auto& s : begun) ao.dirs.push_back((dir / "sweeps" / s.name).string());
     ao.out = (dir / "analysis").string();
     ao.quiet = opt.quiet;
     code = analyze_command(ao);
   } else {
-    for (const auto& s : plan.sweeps) {
+    for (const auto& s : begun) {
       AnalyzeOptions ao;
       ao.dirs = {(dir / "sweeps" / s.name).string()};
       ao.out = (dir / "analysis" / s.name).string();
