@@ -6,6 +6,7 @@ usage: reproduce_report.py --study tapping|rfm --budget B [--wall S] [--cores N]
                            [--command TEXT] DIR
 """
 import argparse
+import csv
 import datetime
 import glob
 import json
@@ -19,6 +20,22 @@ import matplotlib  # noqa: E402
 matplotlib.use("Agg")
 
 import report  # noqa: E402
+
+
+def planned_runs(folder):
+    """how many runs plan.json asks for (each sweep: the product of its parameters' values)"""
+    try:
+        with open(os.path.join(folder, "plan.json")) as f:
+            plan = json.load(f)
+    except (OSError, ValueError):
+        return 0
+    total = 0
+    for sw in plan.get("sweeps", []):
+        n = 1
+        for p in sw.get("params", []):
+            n *= len(p.split("=", 1)[1].split(","))
+        total += n
+    return total
 
 
 def main():
@@ -40,13 +57,25 @@ def main():
     title, intro, claims, notes = study.claims(a.dir, a.budget)
     hours = a.wall / 3600.0
     # the runs' own wall times (one thread each): the cost whatever the sittings were
-    core_s, runs = 0.0, 0
+    core_s, runs, unfinished = 0.0, 0, []
+    taps = {}  # the taps each run has written, as the analysis counted them
+    try:
+        with open(os.path.join(a.dir, "analysis", "runs.csv"), newline="") as f:
+            taps = {os.path.realpath(r["dir"]): r["taps"] for r in csv.DictReader(f)}
+    except (OSError, KeyError):
+        pass
     for sweep in sorted(glob.glob(os.path.join(a.dir, "sweeps", "*", "*", "run.json"))):
         try:
             with open(sweep) as f:
-                core_s += float(json.load(f).get("wall_time_s", 0.0))
+                rj = json.load(f)
+            core_s += float(rj.get("wall_time_s", 0.0))
             runs += 1
-        except (OSError, ValueError):
+            if rj.get("status") != "completed":
+                name = os.path.relpath(os.path.dirname(sweep), os.path.join(a.dir, "sweeps"))
+                n = taps.get(os.path.realpath(os.path.dirname(sweep)), rj.get("taps_done"))
+                done = f": {n} of {rj['taps_requested']} taps" if "taps_requested" in rj else ""
+                unfinished.append(f"{name}{done}")
+        except (OSError, ValueError, KeyError):
             pass
     meta = [("study", a.study), ("budget", a.budget),
             ("command", a.command or f"gransim reproduce {a.study} --budget {a.budget}"),
@@ -56,6 +85,11 @@ def main():
             ("run time", f"{core_s / 3600:.2f} core-hours: the wall times of its {runs} runs "
                          "(one thread each) added up"),
             ("written", datetime.datetime.now().strftime("%Y-%m-%d %H:%M"))]
+    planned = planned_runs(a.dir)
+    if unfinished or (planned and runs < planned):
+        meta.append(("in progress", f"{runs - len(unfinished)} of {planned or '?'} planned runs "
+                     "complete; this report covers the taps there are so far"
+                     + (": " + "; ".join(unfinished) if unfinished else "")))
     report.write_report(a.dir, title, intro, meta, claims, notes)
     print(f"reproduce_report: {len(claims)} claims → {a.dir}/report.md, report.html, claims.csv")
 

@@ -65,6 +65,27 @@ class ReproduceSmoke(unittest.TestCase):
                            capture_output=True, text=True, timeout=600)
         self.assertEqual(p.returncode, 0, p.stderr[-3000:])
         self.check_locks(study, out)
+        self.check_partial(study, out)
+
+    def check_partial(self, study, out):
+        """a report of a study whose last sweep has not begun: every claim is still listed and
+        the report says what it lacks"""
+        part = tempfile.mkdtemp(prefix=f"gs-reproduce-{study}-part-")
+        self.addCleanup(shutil.rmtree, part, ignore_errors=True)
+        shutil.copytree(out, part, dirs_exist_ok=True)
+        with open(os.path.join(part, "plan.json")) as f:
+            last = json.load(f)["sweeps"][-1]["name"]
+        shutil.rmtree(os.path.join(part, "sweeps", last))
+        p = subprocess.run([BINARY, "reproduce", study, "--budget", "smoke", "--out", part, "-q",
+                            "--report-only"], capture_output=True, text=True, timeout=600)
+        self.assertEqual(p.returncode, 0, p.stderr[-3000:])
+        self.assertIn(f"sweep {last} has not begun", p.stderr)
+        with open(os.path.join(part, "claims.csv"), newline="") as f:
+            ids = [r["id"] for r in csv.DictReader(f)]
+        if study in CLAIMS:
+            self.assertEqual(ids, CLAIMS[study])
+        with open(os.path.join(part, "report.md")) as f:
+            self.assertIn("**in progress**", f.read())
 
     def check_locks(self, study, out):
         """while another process writes the runs, --report-only reports beside it (and adds no
