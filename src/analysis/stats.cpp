@@ -342,4 +342,43 @@ NormalityTest normality_chi2(const std::vector<double>& x, double alpha, int bin
   return r;
 }
 
+Truncation mser_truncation(const std::vector<double>& x, int batch) {
+  Truncation t;
+  const std::size_t b = static_cast<std::size_t>(std::max(batch, 1));
+  const std::size_t m = x.size() / b;  // whole batches; a partial last batch is left out
+  if (m < 4) return t;
+  std::vector<double> z(m);
+  for (std::size_t j = 0; j < m; ++j) {
+    double sum = 0.0;
+    for (std::size_t k = 0; k < b; ++k) sum += x[j * b + k];
+    z[j] = sum / static_cast<double>(b);
+  }
+  // centred first, so that the sums of squares below lose no digits to a large mean
+  double centre = 0.0;
+  for (double v : z) centre += v;
+  centre /= static_cast<double>(m);
+  for (double& v : z) v -= centre;
+  // suffix sums give every candidate's mean and sum of squares in one pass
+  std::vector<double> s1(m + 1, 0.0), s2(m + 1, 0.0);
+  for (std::size_t j = m; j-- > 0;) {
+    s1[j] = s1[j + 1] + z[j];
+    s2[j] = s2[j + 1] + z[j] * z[j];
+  }
+  const std::size_t last = m / 2;
+  double best = 0.0;
+  std::size_t arg = 0;
+  for (std::size_t k = 0; k <= last; ++k) {
+    const double n = static_cast<double>(m - k);
+    const double ss = std::max(s2[k] - s1[k] * s1[k] / n, 0.0);  // Σ (z − z̄_k)²
+    const double stat = ss / (n * n);
+    if (k == 0 || stat < best) {
+      best = stat;
+      arg = k;
+    }
+  }
+  t.drop = static_cast<int>(arg * b);
+  t.steady = arg < last;
+  return t;
+}
+
 }  // namespace gs

@@ -69,6 +69,16 @@ struct AutocorrTime {
 /// The autocovariance uses the biased 1/n estimator around the sample mean.
 AutocorrTime autocorr_time(const std::vector<double>& x, double c = 5.0);
 
+/// where the steady part of a series begins, by the marginal standard error rule (MSER-b;
+/// White 1997, White, Cobb & Spratt 2000): over the means of consecutive batches of `batch`
+/// samples, the truncation d that minimises s²_d/(n − d), the squared standard error of the mean
+/// of what is left, searched over d ≤ n/2
+struct Truncation {
+  int drop = 0;        ///< samples to drop from the start (a multiple of the batch)
+  bool steady = true;  ///< false when the minimum sits at n/2: no steady part was found
+};
+Truncation mser_truncation(const std::vector<double>& x, int batch = 5);
+
 // ---- normality --------------------------------------------------------------------------
 
 /// result of a binned chi-square test against a fitted normal distribution

@@ -25,9 +25,10 @@ std::string format_control(double c) {
 }
 
 // per-run statistics (docs/physics.md §2.6): φ̄, σ_φ with CIs, τ_int, normality, the halves
-TapRunSummary summarize(const TapRunInput& run, const std::vector<double>& phi,
+TapRunSummary summarize(const TapRunInput& run, const std::vector<double>& phi, int discard,
                         const TapAnalysisOptions& opts) {
   TapRunSummary s;
+  s.discard = discard;
   s.label = tap_run_label(run);
   s.protocol = run.protocol;
   s.control = run.control;
@@ -44,8 +45,8 @@ TapRunSummary summarize(const TapRunInput& run, const std::vector<double>& phi,
   s.sigma_ci_tau = stddev_ci(phi, opts.level, tau);
   s.normality = normality_chi2(phi, opts.alpha);
   // the halves of the test rectangle: σ ratio to the whole ≈ √2 for a large enough region
-  const auto left = tail(run.series.phi_left, opts.discard);
-  const auto right = tail(run.series.phi_right, opts.discard);
+  const auto left = tail(run.series.phi_left, discard);
+  const auto right = tail(run.series.phi_right, discard);
   if (left.size() == phi.size() && right.size() == phi.size() && phi.size() >= 2) {
     s.has_halves = true;
     s.mean_left = mean(left);
@@ -106,11 +107,19 @@ TapAnalysisResult run_tap_analysis(const std::vector<TapRunInput>& runs,
     const std::string label = tap_run_label(run);
     if (!labels.insert(label).second)
       throw InputError(run.series.source, "label", "duplicate run label '" + label + "'");
-    phis.push_back(tail(run.series.phi, opts.discard));
+    int discard = opts.discard;
+    Truncation cut;
+    if (opts.discard_auto) {
+      // the cut keeps the 20 taps the statistics need (a short run: its transient stays in part)
+      cut = mser_truncation(run.series.phi);
+      const int n = static_cast<int>(run.series.phi.size());
+      discard = std::max(discard, std::min(cut.drop, n - 20));
+    }
+    phis.push_back(tail(run.series.phi, discard));
     if (phis.back().size() < 20)
       throw InputError(run.series.source, "phi",
                        "run '" + label + "' has " + std::to_string(phis.back().size()) +
-                           " taps after discarding " + std::to_string(opts.discard) +
+                           " taps after discarding " + std::to_string(discard) +
                            " (needs at least 20)");
     // a constant φ has no distribution: no bandwidth, no test, no fit
     const auto [lo, hi] = std::minmax_element(phis.back().begin(), phis.back().end());
@@ -119,7 +128,11 @@ TapAnalysisResult run_tap_analysis(const std::vector<TapRunInput>& runs,
                        "run '" + label + "': φ is the same (" + std::to_string(*lo) + ") at all " +
                            std::to_string(phis.back().size()) +
                            " taps after the transient; there is no distribution to analyse");
-    r.runs.push_back(summarize(run, phis.back(), opts));
+    r.runs.push_back(summarize(run, phis.back(), discard, opts));
+    r.runs.back().steady = cut.steady;
+    if (!cut.steady)
+      r.notes.push_back("run '" + label + "': no steady part found (MSER cuts at half the run); " +
+                        "its statistics are those of a series still drifting");
     if (!r.runs.back().tau.converged)
       r.notes.push_back("run '" + label + "': no autocorrelation window M ≥ 5τ below n/2; " +
                         "τ_int and the τ-corrected intervals are unreliable (series too short)");

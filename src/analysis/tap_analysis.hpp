@@ -49,18 +49,20 @@ TapRunInput load_tap_run(const std::string& path, const std::string& protocol, d
 
 /// choices of the analysis
 struct TapAnalysisOptions {
-  int discard = 10;         ///< transient taps dropped from the start of each run
-  double level = 0.95;      ///< confidence level of the intervals
-  double alpha = 0.05;      ///< significance of the normality test
-  double test_area = 0.16;  ///< area V_T of the test rectangle, m² (V_g = V_T φ̄_ref)
-  std::string reference;    ///< label of the reference run; empty: the paper's choice, the
-                            ///< negative_g run with g_p nearest 6, else the first run
-  std::string reference2;   ///< second reference; empty: the next run of the reference's
-                            ///< protocol (none if it has no other run)
-  OverlapOptions overlap;   ///< density method, bins, 5 % threshold
-  int kde_points = 200;     ///< grid points of each written KDE
-  QuadronParams quadron;    ///< φ_rlp, φ_rcp of (P.26)
-  int bootstrap = 100;      ///< bootstrap replicas of the multiple-histogram errors
+  int discard = 10;           ///< transient taps dropped from the start of each run
+  bool discard_auto = false;  ///< per run, drop the larger of `discard` and the MSER-5 cut
+                              ///< (mser_truncation): a slow transient is left out whole
+  double level = 0.95;        ///< confidence level of the intervals
+  double alpha = 0.05;        ///< significance of the normality test
+  double test_area = 0.16;    ///< area V_T of the test rectangle, m² (V_g = V_T φ̄_ref)
+  std::string reference;      ///< label of the reference run; empty: the paper's choice, the
+                              ///< negative_g run with g_p nearest 6, else the first run
+  std::string reference2;     ///< second reference; empty: the next run of the reference's
+                              ///< protocol (none if it has no other run)
+  OverlapOptions overlap;     ///< density method, bins, 5 % threshold
+  int kde_points = 200;       ///< grid points of each written KDE
+  QuadronParams quadron;      ///< φ_rlp, φ_rcp of (P.26)
+  int bootstrap = 100;        ///< bootstrap replicas of the multiple-histogram errors
 };
 
 /// statistics of one run (after the transient)
@@ -70,6 +72,8 @@ struct TapRunSummary {
   double control = 0.0;      ///< control parameter (g_p or f, Hz)
   int n_total = 0;           ///< taps in the file
   int n_used = 0;            ///< taps after the transient
+  int discard = 0;           ///< taps dropped as the transient
+  bool steady = true;        ///< false: MSER found no steady part (discard_auto only)
   double phi_mean = 0.0;     ///< φ̄, dimensionless
   double phi_err = 0.0;      ///< standard error of φ̄ with τ_int: s √(2τ_int/n)
   Interval phi_mean_ci;      ///< CI of φ̄ treating taps as independent

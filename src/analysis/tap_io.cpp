@@ -223,7 +223,7 @@ void write_tap_analysis(const TapAnalysisResult& r, const std::vector<TapRunInpu
     f << "label,protocol,control,n_total,n_used,phi_mean,phi_err,phi_mean_lo,phi_mean_hi,"
          "phi_mean_lo_tau,phi_mean_hi_tau,sigma,sigma_lo,sigma_hi,sigma_lo_tau,sigma_hi_tau,"
          "tau_int,tau_err,tau_window,chi2,chi2_bins,chi2_dof,chi2_p,normal,mean_left,"
-         "mean_right,sigma_left,sigma_right,ratio_left,ratio_right\n";
+         "mean_right,sigma_left,sigma_right,ratio_left,ratio_right,discard,steady\n";
     for (const auto& s : r.runs) {
       const double nan = std::nan("");
       f << s.label << ',' << s.protocol << ',' << num(s.control) << ',' << s.n_total << ','
@@ -238,7 +238,8 @@ void write_tap_analysis(const TapAnalysisResult& r, const std::vector<TapRunInpu
         << num(s.has_halves ? s.mean_right : nan) << ',' << num(s.has_halves ? s.sigma_left : nan)
         << ',' << num(s.has_halves ? s.sigma_right : nan) << ','
         << num(s.has_halves ? s.sigma_left / s.sigma : nan) << ','
-        << num(s.has_halves ? s.sigma_right / s.sigma : nan) << '\n';
+        << num(s.has_halves ? s.sigma_right / s.sigma : nan) << ',' << s.discard << ','
+        << (s.steady ? 1 : 0) << '\n';
     }
   }
 
@@ -251,7 +252,7 @@ void write_tap_analysis(const TapAnalysisResult& r, const std::vector<TapRunInpu
       for (std::size_t k = 0; k < s.phi.size(); ++k)
         f << r.runs[i].label << ',' << r.runs[i].protocol << ',' << num(r.runs[i].control) << ','
           << num(k < s.tap.size() ? s.tap[k] : static_cast<double>(k)) << ',' << num(s.phi[k])
-          << ',' << (static_cast<int>(k) >= opts.discard ? 1 : 0) << '\n';
+          << ',' << (static_cast<int>(k) >= r.runs[i].discard ? 1 : 0) << '\n';
     }
   }
 
@@ -349,9 +350,11 @@ void write_tap_analysis(const TapAnalysisResult& r, const std::vector<TapRunInpu
   // analysis.json: options, references, per-run digest, the two-reference check, notes
   {
     auto f = open_out(dir / "analysis.json");
-    f << "{\n  \"discard\": " << opts.discard << ",\n  \"level\": " << jnum(opts.level)
-      << ",\n  \"alpha\": " << jnum(opts.alpha) << ",\n  \"test_area\": " << jnum(opts.test_area)
-      << ",\n  \"v_g\": " << jnum(r.v_g) << ",\n  \"density_method\": "
+    f << "{\n  \"discard\": " << opts.discard
+      << ",\n  \"discard_auto\": " << (opts.discard_auto ? "true" : "false")
+      << ",\n  \"level\": " << jnum(opts.level) << ",\n  \"alpha\": " << jnum(opts.alpha)
+      << ",\n  \"test_area\": " << jnum(opts.test_area) << ",\n  \"v_g\": " << jnum(r.v_g)
+      << ",\n  \"density_method\": "
       << jstr(opts.overlap.method == DensityMethod::Histogram ? "histogram" : "kde")
       << ",\n  \"kernel\": " << jstr(kernel_name(opts.overlap.kernel))
       << ",\n  \"min_fraction\": " << jnum(opts.overlap.min_fraction)
@@ -364,8 +367,10 @@ void write_tap_analysis(const TapAnalysisResult& r, const std::vector<TapRunInpu
       const auto& s = r.runs[i];
       f << (i ? ",\n    " : "\n    ") << "{\"label\": " << jstr(s.label)
         << ", \"protocol\": " << jstr(s.protocol) << ", \"control\": " << jnum(s.control)
-        << ", \"n_used\": " << s.n_used << ", \"phi_mean\": " << jnum(s.phi_mean)
-        << ", \"sigma\": " << jnum(s.sigma) << ", \"tau_int\": " << jnum(s.tau.tau_int)
+        << ", \"n_used\": " << s.n_used << ", \"discard\": " << s.discard
+        << ", \"steady\": " << (s.steady ? "true" : "false")
+        << ", \"phi_mean\": " << jnum(s.phi_mean) << ", \"sigma\": " << jnum(s.sigma)
+        << ", \"tau_int\": " << jnum(s.tau.tau_int)
         << ", \"normal\": " << (s.normality.normal ? "true" : "false")
         << ", \"chi2_p\": " << jnum(s.normality.p_value) << ", \"sigma_ratio_halves\": "
         << jnum(s.has_halves ? 0.5 * (s.sigma_left + s.sigma_right) / s.sigma : std::nan(""))

@@ -109,6 +109,9 @@ int run_cli(int argc, char** argv) {
   analyze
       ->add_option("--discard", ao.discard, "transient taps to drop (default: output.discard_taps)")
       ->check(CLI::NonNegativeNumber);
+  analyze->add_flag("--discard-auto", ao.discard_auto,
+                    "per run, drop the larger of --discard and the transient the marginal "
+                    "standard error rule (MSER-5) finds");
   analyze->add_option("--reference", ao.reference,
                       "reference run label, e.g. negative_g_6 (default: g_p nearest 6)");
   analyze->add_option("--reference2", ao.reference2, "second reference run label");

@@ -2,6 +2,7 @@
 // autocorrelation time of an AR(1) process, and the chi-square normality test
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <vector>
@@ -166,6 +167,81 @@ TEST(Stats, NormalityTestSize) {
   const double sd = std::sqrt(0.05 * 0.95 / reps);
   EXPECT_GT(rate, 0.05 - 3.0 * sd);
   EXPECT_LT(rate, upper + 3.0 * sd);
+}
+
+// MSER-5 against series whose steady part is known. A 5σ step over the first 40 samples:
+// leaving any of it in raises the squared error far more than one batch's noise, so the cut is
+// never before 40; past it, a steady batch is dropped only when it lies unusually far from the
+// mean (a χ²₁ tail): the median cut is at 40 and nine in ten within four batches of it
+TEST(Stats, MserCutsAStepWhereItEnds) {
+  RngStream rng(91, 0);
+  std::vector<int> drops;
+  for (int trial = 0; trial < 200; ++trial) {
+    auto x = normal_sample(rng, 250, 0.0, 1.0);
+    for (int i = 0; i < 40; ++i) x[i] += 5.0;
+    const Truncation t = mser_truncation(x);
+    EXPECT_GE(t.drop, 40) << trial;
+    EXPECT_EQ(t.drop % 5, 0);
+    drops.push_back(t.drop);
+  }
+  std::sort(drops.begin(), drops.end());
+  EXPECT_EQ(drops[100], 40);  // the median
+  EXPECT_LE(drops[180], 60);  // the 90th percentile
+}
+
+// an exponential transient A e^{−i/τ} (A = 10σ, τ = 20) on white noise: the cut balances the
+// bias left against the batch means' noise σ/√5, i.e. A e^{−d/τ} ≈ σ/√5, d ≈ τ ln(A√5/σ) = 62;
+// the median cut lies within a τ of it and no cut leaves the first 1.5τ (bias > 2σ) in
+TEST(Stats, MserCutsAnExponentialTransientWhereItFallsBelowTheNoise) {
+  RngStream rng(92, 0);
+  std::vector<int> drops;
+  for (int trial = 0; trial < 200; ++trial) {
+    auto x = normal_sample(rng, 250, 0.0, 1.0);
+    for (int i = 0; i < 250; ++i) x[i] += 10.0 * std::exp(-i / 20.0);
+    drops.push_back(mser_truncation(x).drop);
+  }
+  std::sort(drops.begin(), drops.end());
+  EXPECT_GE(drops.front(), 30);
+  EXPECT_NEAR(drops[100], 62.0, 20.0);
+}
+
+// a stationary series needs no cut: the median is 0 and a cut past n/4 is rare (MSER's known
+// over-truncation on noise: ≈ 2 % of white and 3 % of AR(1) ρ = 0.5 series of 250; bound 6 %)
+TEST(Stats, MserLeavesAStationarySeriesWhole) {
+  RngStream rng(93, 0);
+  for (double rho : {0.0, 0.5}) {
+    std::vector<int> drops;
+    int deep = 0;
+    for (int trial = 0; trial < 400; ++trial) {
+      const Truncation t = mser_truncation(ar1(rng, 250, rho));
+      EXPECT_TRUE(t.steady || t.drop == 125);
+      drops.push_back(t.drop);
+      deep += t.drop > 62;
+    }
+    std::sort(drops.begin(), drops.end());
+    EXPECT_EQ(drops[200], 0) << rho;
+    EXPECT_LT(deep, 24) << rho;
+  }
+}
+
+// a series that drifts throughout (20σ over its length) has no steady part: the minimum sits
+// at the search's end, n/2, in ≈ 97 % of series; a short series is never cut
+TEST(Stats, MserSaysWhenNoSteadyPartIsFound) {
+  RngStream rng(94, 0);
+  int unsteady = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    auto x = normal_sample(rng, 250, 0.0, 1.0);
+    for (int i = 0; i < 250; ++i) x[i] += 20.0 * i / 249.0;
+    const Truncation t = mser_truncation(x);
+    unsteady += !t.steady;
+    if (!t.steady) {
+      EXPECT_EQ(t.drop, 125);
+    }
+  }
+  EXPECT_GE(unsteady, 180);
+  const Truncation s = mser_truncation({3.0, 1.0, 2.0, 5.0, 4.0, 9.0, 8.0, 7.0});
+  EXPECT_EQ(s.drop, 0);
+  EXPECT_TRUE(s.steady);
 }
 
 }  // namespace

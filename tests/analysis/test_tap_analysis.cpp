@@ -172,6 +172,41 @@ TEST(TapAnalysis, ComparesRunsAtTheSameControlValue) {
   EXPECT_GT(r.pairs[1].test.mean_diff, 0.0);  // larger β → denser
 }
 
+// with discard_auto each run drops its own transient: a run that compacts over its first 80
+// taps (φ rising by 8 spreads, e^{−tap/20}) loses them and keeps its steady mean, a stationary
+// run keeps all but the fixed 10; without it both drop 10 and the first mean is biased low
+TEST(TapAnalysis, DiscardAutoDropsEachRunsOwnTransient) {
+  QuadronGasSpec gas;
+  const double scale = quadron_gas_a(gas) / gas.limits.delta_inv();
+  std::vector<TapRunInput> runs;
+  for (int k = 0; k < 2; ++k) {
+    TapRunInput r;
+    r.protocol = "negative_g";
+    r.control = 2 + 4 * k;
+    r.series = quadron_gas_taps(1.2 * scale, 250, gas, 7, 300 + k);
+    runs.push_back(r);
+  }
+  const TapRunSummary plain = run_tap_analysis(runs, TapAnalysisOptions{}).runs[0];
+  const double spread = plain.sigma;
+  for (std::size_t i = 0; i < runs[0].series.phi.size(); ++i)
+    runs[0].series.phi[i] -= 8.0 * spread * std::exp(-static_cast<double>(i) / 20.0);
+  TapAnalysisOptions o;
+  const TapAnalysisResult fixed = run_tap_analysis(runs, o);
+  EXPECT_EQ(fixed.runs[0].discard, 10);
+  EXPECT_EQ(fixed.runs[1].discard, 10);
+  EXPECT_LT(fixed.runs[0].phi_mean, plain.phi_mean - 2.0 * plain.phi_err);
+  o.discard_auto = true;
+  const TapAnalysisResult cut = run_tap_analysis(runs, o);
+  // the bias left falls below the batch means' noise where 8σ e^{−d/20} ≈ σ/√5: d ≈ 58
+  EXPECT_GE(cut.runs[0].discard, 30);  // the first 1.5 decay lengths (bias > 1.8σ) go
+  EXPECT_LE(cut.runs[0].discard, 100);
+  EXPECT_EQ(cut.runs[0].n_used, 250 - cut.runs[0].discard);
+  EXPECT_NEAR(cut.runs[0].phi_mean, plain.phi_mean, 3.0 * plain.phi_err);
+  EXPECT_TRUE(cut.runs[0].steady);
+  EXPECT_LT(cut.runs[1].discard, 40);
+  EXPECT_GE(cut.runs[1].discard, 10);
+}
+
 // the default reference is the paper's (negative g, g_p nearest 6), wherever it is listed;
 // an explicit label overrides it, and an unknown label is an input error
 TEST(TapAnalysis, ReferenceSelection) {

@@ -13,10 +13,12 @@ from verdicts import (AGREES, DISAGREES, UNRESOLVED, below_bound, chi2_sf,
 
 def transient(st, budget):
     """Fig. 4: the steady state within ~10 taps"""
-    worst, rows = 0.0, []
+    worst, rows, cuts = 0.0, [], []
     fig, ax = _fig()
     for r in st.runs():
         lab = r["label"]
+        if math.isfinite(r.get("discard", float("nan"))):
+            cuts.append(f"{lab} {int(r['discard'])}" + ("" if r.get("steady", 1) else " (no steady part)"))
         (w, ew), (m, em) = steady_window(lab, st, 6, 10)
         if not (math.isfinite(w) and math.isfinite(m)):
             continue
@@ -39,7 +41,9 @@ def transient(st, budget):
     return Claim("steady-state", "Transient", "The mean volume fraction reaches a steady state "
                  "value very quickly (after approximately < 10 taps)", "Fig. 4, section IV",
                  "(mean of taps 6–10 − steady φ̄)/σ per run: "
-                 + "; ".join(f"{lab} {z:+.1f}" for lab, z in rows),
+                 + "; ".join(f"{lab} {z:+.1f}" for lab, z in rows)
+                 + (". Taps dropped as the transient (the larger of 10 and the MSER-5 cut): "
+                    + "; ".join(cuts) if cuts else ""),
                  v, why, "" if v != UNRESOLVED else f"the {NEXT[budget]} budget", chart,
                  {"max_z": worst})
 
@@ -259,7 +263,7 @@ def segregation(st, budget):
             continue
         d = (column(taps, "z_big") - column(taps, "z_small")) * 1000.0  # mm
         k = column(taps, "tap")
-        m, e = mean_err(d[k > st.discard])
+        m, e = mean_err(d[st.cut(r["label"]):])
         rows.append((r["label"], m - d[0], e))
         ax.plot(k, d - d[0], lw=0.8, label=r["label"])
     ax.axhline(0, color="k", lw=1, label="paper: no segregation")
@@ -303,7 +307,9 @@ def claims(folder, budget):
     out += [stress(st, budget), segregation(st, budget)]
     runs = st.runs()
     taps = ", ".join(f"{r['label']} {r['n_used']:.0f}" for r in runs)
-    notes = [f"Taps used per run after the first {st.discard}: {taps}.",
+    rule = (f"the larger of {st.discard} and the cut of the marginal standard error rule "
+            "(MSER-5)") if st.info.get("discard_auto") else f"the first {st.discard}"
+    notes = [f"Taps used per run after its transient ({rule}): {taps}.",
              "Errors are standard errors with the integrated autocorrelation time (n_eff = n/2τ); "
              "intervals are 95 %. β̂ of runs that do not overlap the reference come from the joint "
              "multiple-histogram fit (analysis/beta_multi.csv, beside the direct and chained "

@@ -68,10 +68,16 @@ class Study:
             self._taps[label] = read_csv(os.path.join(d, "taps.csv")) if d else []
         return self._taps[label]
 
+    def cut(self, label):
+        """the taps the analysis dropped from the start of a run as its transient"""
+        for r in self.summary:
+            if r["label"] == label and isinstance(r.get("discard"), float):
+                return int(r["discard"])
+        return self.discard
+
     def used(self, label, key):
-        """a taps.csv column after tap 0 and the discarded transient"""
-        rows = [r for r in self.taps(label) if r.get("tap", 0) > self.discard]
-        return column(rows, key)
+        """a taps.csv column after the run's discarded transient (the rows the analysis used)"""
+        return column(self.taps(label)[self.cut(label):], key)
 
     def segregation(self, label):
         d = self.run_dir.get(label, "")

@@ -164,6 +164,7 @@ int analyze_plain(const AnalyzeOptions& opt, const std::string& out) {
                      "test_area column in the manifest): V_g = area·φ̄ of the reference");
   TapAnalysisOptions ao;
   ao.discard = opt.discard >= 0 ? opt.discard : 10;
+  ao.discard_auto = opt.discard_auto;
   ao.test_area = area;
   ao.reference = opt.reference;
   ao.reference2 = opt.reference2;
@@ -242,6 +243,7 @@ int analyze_command(const AnalyzeOptions& opt) {
   const SceneSpec first = parse_scene_file((fs::path(found[0].dir) / "scene.toml").string());
   TapAnalysisOptions ao;
   ao.discard = opt.discard >= 0 ? opt.discard : first.output.discard_taps;
+  ao.discard_auto = opt.discard_auto;
   const double* rect = first.output.test_rect;
   ao.test_area = (rect[2] - rect[0]) * (rect[3] - rect[1]);
   ao.reference = opt.reference;

@@ -11,11 +11,12 @@ namespace gs {
 struct AnalyzeOptions {
   std::vector<std::string> dirs;  ///< run directories and/or sweep directories
   std::string out;                ///< analysis folder (default DIR/analysis for one DIR)
-  int discard = -1;        ///< transient taps to drop (−1: the scenes' output.discard_taps)
-  std::string reference;   ///< reference run label (default: the library's choice)
-  std::string reference2;  ///< second reference label
-  bool charts = true;      ///< run the chart scripts
-  bool quiet = false;      ///< no summary table
+  int discard = -1;           ///< transient taps to drop (−1: the scenes' output.discard_taps)
+  bool discard_auto = false;  ///< per run, the larger of discard and the MSER-5 cut
+  std::string reference;      ///< reference run label (default: the library's choice)
+  std::string reference2;     ///< second reference label
+  bool charts = true;         ///< run the chart scripts
+  bool quiet = false;         ///< no summary table
   // plain φ series from anywhere (experiments, other simulators): no run directory needed
   std::vector<std::string> series;  ///< "PROTOCOL:CONTROL:FILE" (a CSV with a phi column)
   std::string manifest;             ///< a CSV: file,protocol,control[,label][,test_area]

@@ -205,6 +205,7 @@ int reproduce_command(const ReproduceOptions& opt) {
     for (const auto& s : begun) ao.dirs.push_back((dir / "sweeps" / s.name).string());
     ao.out = (dir / "analysis").string();
     ao.quiet = opt.quiet;
+    ao.discard_auto = true;  // a weak pulse compacts the pile over far more than 10 taps
     code = analyze_command(ao);
   } else {
     for (const auto& s : begun) {
