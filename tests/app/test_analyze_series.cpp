@@ -2,10 +2,13 @@
 // every table is written and the charts that the columns allow; mistakes name the argument
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "analysis/tap_synthetic.hpp"
 #include "binary.hpp"
@@ -87,6 +90,58 @@ TEST_F(AnalyzeSeries, SeriesOnTheCommandLineAndTheirMistakes) {
                  dir_ / "log.txt");
   EXPECT_EQ(o.code, 2);
   EXPECT_NE(o.output.find("bad.csv:3"), std::string::npos) << o.output;
+}
+
+// the last two columns of summary.csv's first row: the taps dropped and whether steady
+std::pair<int, int> first_cut(const fs::path& summary) {
+  std::ifstream f(summary);
+  std::string line;
+  std::getline(f, line);
+  std::getline(f, line);
+  const auto last = line.rfind(',');
+  const auto before = line.rfind(',', last - 1);
+  return {std::stoi(line.substr(before + 1, last - before - 1)), std::stoi(line.substr(last + 1))};
+}
+
+// --discard-auto: a series that compacts over its first taps (8 spreads, e^{−tap/20}) loses
+// them (the MSER-5 cut, near 58 taps), against the fixed 10 without it
+TEST_F(AnalyzeSeries, DiscardAutoDropsASlowTransient) {
+  std::ifstream in(dir_ / "s0.csv");
+  std::vector<double> phi;
+  std::string line;
+  std::getline(in, line);
+  while (std::getline(in, line)) phi.push_back(std::stod(line.substr(line.find(',') + 1)));
+  double m = 0.0, v = 0.0;
+  for (double x : phi) m += x / phi.size();
+  for (double x : phi) v += (x - m) * (x - m) / (phi.size() - 1);
+  std::ofstream out(dir_ / "slow.csv");
+  out << "phi\n";
+  for (std::size_t i = 0; i < phi.size(); ++i)
+    out << phi[i] - 8.0 * std::sqrt(v) * std::exp(-static_cast<double>(i) / 20.0) << "\n";
+  out.close();
+  const std::vector<std::string> args = {"analyze",
+                                         "--series",
+                                         "negative_g:2:" + (dir_ / "slow.csv").string(),
+                                         "--series",
+                                         "negative_g:6:" + (dir_ / "s1.csv").string(),
+                                         "--test-area",
+                                         "0.13",
+                                         "--no-charts",
+                                         "-q"};
+  auto with = [&](const std::string& out_dir, bool automatic) {
+    std::vector<std::string> a = args;
+    a.push_back("--out");
+    a.push_back((dir_ / out_dir).string());
+    if (automatic) a.push_back("--discard-auto");
+    const auto o = run_binary(a, dir_ / "log.txt");
+    EXPECT_EQ(o.code, 0) << o.output;
+    return first_cut(dir_ / out_dir / "summary.csv");
+  };
+  EXPECT_EQ(with("fixed", false).first, 10);
+  const auto [cut, steady] = with("auto", true);
+  EXPECT_GE(cut, 30);
+  EXPECT_LE(cut, 100);
+  EXPECT_EQ(steady, 1);
 }
 
 // a stand-in `python3` in a folder of its own, for the interpreter choice
