@@ -27,6 +27,7 @@ from ._gransim import (  # noqa: F401  (re-exported)
     fit_quadron,
     have_movie,
     have_osmesa,
+    mser_truncation,
     normality_chi2,
     quadron_gas_phi,
     quadron_lnz,
@@ -44,7 +45,7 @@ __version__ = _gransim.__version__
 __all__ = [
     "HealthError", "InputError", "OutputError", "RenderError", "Renderer", "Scene", "Simulation",
     "autocorr_time", "beta_from_phi", "beta_from_volume", "fit_quadron", "have_movie",
-    "have_osmesa", "load_scene", "normality_chi2", "quadron_gas_phi", "quadron_lnz",
+    "have_osmesa", "load_scene", "mser_truncation", "normality_chi2", "quadron_gas_phi", "quadron_lnz",
     "quadron_phi", "read_csv", "read_png", "read_run", "rfm", "scene_toml", "tap_analysis",
     "write_movie", "write_png",
 ]

@@ -85,6 +85,8 @@ py::dict summary_dict(const TapRunSummary& s) {
   d["control"] = s.control;
   d["n_total"] = s.n_total;
   d["n_used"] = s.n_used;
+  d["discard"] = s.discard;
+  d["steady"] = s.steady;
   d["phi_mean"] = s.phi_mean;
   d["phi_err"] = s.phi_err;
   d["phi_mean_ci"] = interval(s.phi_mean_ci);
@@ -125,7 +127,8 @@ void bind_tapping(py::module_& m) {
       "tap_analysis",
       [](const py::list& runs, int discard, double level, double alpha, double test_area,
          const std::string& reference, const std::string& reference2, const std::string& method,
-         int bins, double phi_rlp, double phi_rcp, int bootstrap, const std::string& out_dir) {
+         int bins, double phi_rlp, double phi_rcp, int bootstrap, const std::string& out_dir,
+         bool discard_auto) {
         std::vector<TapRunInput> in;
         for (const auto& item : runs) {
           const auto run = item.cast<py::dict>();
@@ -146,6 +149,7 @@ void bind_tapping(py::module_& m) {
         }
         TapAnalysisOptions o;
         o.discard = discard;
+        o.discard_auto = discard_auto;
         o.level = level;
         o.alpha = alpha;
         o.test_area = test_area;
@@ -198,6 +202,7 @@ void bind_tapping(py::module_& m) {
       py::arg("test_area") = 0.16, py::arg("reference") = "", py::arg("reference2") = "",
       py::arg("method") = "histogram", py::arg("bins") = 0, py::arg("phi_rlp") = 0.81,
       py::arg("phi_rcp") = 0.855, py::arg("bootstrap") = 100, py::arg("out_dir") = "",
+      py::arg("discard_auto") = false,
       "the tapping analysis (as `gransim analyze`) of runs given as dicts with 'phi' (per tap) "
       "and optionally 'label', 'protocol', 'control', 'tap', 'phi_left', 'phi_right'");
 
@@ -273,6 +278,17 @@ void bind_tapping(py::module_& m) {
         return d;
       },
       py::arg("x"), py::arg("c") = 5.0, "integrated autocorrelation time (Sokal's window)");
+  m.def(
+      "mser_truncation",
+      [](const Series& x, int batch) {
+        const Truncation t = mser_truncation(x, batch);
+        py::dict d;
+        d["drop"] = t.drop;
+        d["steady"] = t.steady;
+        return d;
+      },
+      py::arg("x"), py::arg("batch") = 5,
+      "the start of a series' steady part by the marginal standard error rule (MSER-batch)");
   m.def(
       "normality_chi2",
       [](const Series& x, double alpha, int bins) {

@@ -64,6 +64,22 @@ def test_autocorr_and_normality(gransim):
     assert not gransim.normality_chi2(rng.exponential(size=5000))["normal"]
 
 
+def test_mser_truncation_and_discard_auto(gransim):
+    # a 5σ step over the first 40 taps is cut where it ends (the C++ tests give the statistics)
+    rng = np.random.default_rng(3)
+    x = rng.normal(size=250)
+    x[:40] += 5.0
+    t = gransim.mser_truncation(x)
+    assert 40 <= t["drop"] <= 60 and t["steady"]
+    runs = [{"phi": 0.83 + 0.002 * x, "control": 2.0},
+            {"phi": 0.82 + 0.002 * rng.normal(size=250), "control": 6.0}]
+    fixed = gransim.tap_analysis(runs, bootstrap=0)["runs"]
+    auto = gransim.tap_analysis(runs, discard_auto=True, bootstrap=0)["runs"]
+    assert fixed[0]["discard"] == 10 and auto[0]["discard"] == t["drop"]
+    assert auto[0]["phi_mean"] == pytest.approx(0.83, abs=0.001)
+    assert fixed[0]["phi_mean"] > auto[0]["phi_mean"] + 0.001  # the step left in
+
+
 def test_rfm_moments_temperature_and_fits(gransim):
     rfm = gransim.rfm
     rng = np.random.default_rng(2)

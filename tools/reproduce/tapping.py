@@ -263,7 +263,7 @@ def segregation(st, budget):
             continue
         d = (column(taps, "z_big") - column(taps, "z_small")) * 1000.0  # mm
         k = column(taps, "tap")
-        m, e = mean_err(d[st.cut(r["label"]):])
+        m, e = mean_err(d[k > st.cut(r["label"])])
         rows.append((r["label"], m - d[0], e))
         ax.plot(k, d - d[0], lw=0.8, label=r["label"])
     ax.axhline(0, color="k", lw=1, label="paper: no segregation")

@@ -77,7 +77,8 @@ class Study:
 
     def used(self, label, key):
         """a taps.csv column after the run's discarded transient (the rows the analysis used)"""
-        return column(self.taps(label)[self.cut(label):], key)
+        cut = self.cut(label)  # taps 1…cut (tap 0 is the prepared pile, never used)
+        return column([r for r in self.taps(label) if r.get("tap", 0) > cut], key)
 
     def segregation(self, label):
         d = self.run_dir.get(label, "")
