@@ -26,8 +26,12 @@ def transient(st, budget):
         rows.append((lab, z))
         worst = max(worst, abs(z))
         taps = st.taps(lab)
-        ax.plot(column(taps, "tap"), column(taps, "phi") - m, lw=0.8, label=lab)
+        tap, phi = column(taps, "tap"), column(taps, "phi") - m
+        line, = ax.plot(tap, phi, lw=0.8, label=lab)
+        at = tap == st.cut(lab)  # where the analysis' steady part begins
+        ax.plot(tap[at], phi[at], "o", ms=4, color=line.get_color())
     ax.axvline(10, color="k", ls="--", lw=1, label="paper: steady after < 10 taps")
+    ax.plot([], [], "o", ms=4, color="gray", label="each run's cut (MSER-5, at least 10)")
     chart = _finish(st, fig, ax, "tap", "φ − steady φ̄", "transient", 6, ncol=2)
     if not rows:
         v, why = UNRESOLVED, "no run has taps 6–10 and a steady part"
