@@ -4,6 +4,7 @@ a page that is not blank. Needs GS_BINARY (the gransim executable); GS_STUDY pic
 Run: GS_BINARY=build/gransim python3 -m unittest tests/tools/test_reproduce_smoke.py"""
 import csv
 import fcntl
+import glob
 import json
 import os
 import shutil
@@ -41,9 +42,10 @@ class ReproduceSmoke(unittest.TestCase):
     def run_study(self, study):
         out = tempfile.mkdtemp(prefix=f"gs-reproduce-{study}-")
         self.addCleanup(shutil.rmtree, out, ignore_errors=True)
-        p = subprocess.run([BINARY, "reproduce", study, "--budget", "smoke", "--out", out, "-q"],
-                           capture_output=True, text=True, timeout=1500)
+        p = subprocess.run([BINARY, "reproduce", study, "--budget", "smoke", "--out", out, "-q",
+                            "--jobs", "2"], capture_output=True, text=True, timeout=1500)
         self.assertEqual(p.returncode, 0, p.stdout[-3000:] + p.stderr[-3000:])
+        self.check_pool(out, p.stderr)
         for f in ("report.md", "report.html", "claims.csv", "plan.json", "progress.json"):
             self.assertTrue(os.path.exists(os.path.join(out, f)), f)
         with open(os.path.join(out, "claims.csv"), newline="") as f:
@@ -86,6 +88,23 @@ class ReproduceSmoke(unittest.TestCase):
             self.assertEqual(ids, CLAIMS[study])
         with open(os.path.join(part, "report.md")) as f:
             self.assertIn("**in progress**", f.read())
+
+    def check_pool(self, out, stderr):
+        """the study's runs are one pool: the second sweep's first run starts (writes its
+        scene.toml) before the first sweep's last run ends (writes its final run.json). With two
+        slots and three runs in the first sweep this holds unless its third run is shorter than
+        the gap between the ends of the first two, which runs of one pile never are"""
+        with open(os.path.join(out, "plan.json")) as f:
+            names = [s["name"] for s in json.load(f)["sweeps"]]
+        if len(names) < 2:
+            return
+        self.assertIn("with the other sweeps' runs", stderr)
+        first = glob.glob(os.path.join(out, "sweeps", names[0], "*", "run.json"))
+        second = glob.glob(os.path.join(out, "sweeps", names[1], "*", "scene.toml"))
+        if len(first) < 3:
+            return
+        self.assertLess(min(os.path.getmtime(f) for f in second),
+                        max(os.path.getmtime(f) for f in first))
 
     def check_locks(self, study, out):
         """while another process writes the runs, --report-only reports beside it (and adds no

@@ -159,7 +159,9 @@ int reproduce_command(const ReproduceOptions& opt) {
   };
   int code = kExitOk;
   if (!opt.report_only) {
-    for (std::size_t i = 0; i < plan.sweeps.size() && code == kExitOk; ++i) {
+    // the study's runs as one pool: a run of the next sweep starts as soon as a slot is free
+    std::vector<SweepOptions> all;
+    for (std::size_t i = 0; i < plan.sweeps.size(); ++i) {
       const PlannedSweep& s = plan.sweeps[i];
       SweepOptions so;
       so.scene = scenes[i];
@@ -168,9 +170,9 @@ int reproduce_command(const ReproduceOptions& opt) {
       so.out = (dir / "sweeps" / s.name).string();
       so.jobs = opt.jobs;
       so.quiet = opt.quiet;
-      if (root && !opt.quiet) std::printf("reproduce: sweep %s\n", s.name.c_str());
-      code = sweep_command(so);
+      all.push_back(so);
     }
+    code = sweeps_command(all, opt.jobs);
   }
   if (!root) return code;
   const double wall = add_wall_time(dir, opt.report_only ? 0.0 : elapsed());

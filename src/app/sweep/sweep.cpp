@@ -2,10 +2,12 @@
 // in sweep_exec.cpp (child processes on this machine) and sweep_mpi.cpp (over MPI ranks)
 #include "app/sweep/sweep.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <set>
 #include <sstream>
 #include <thread>
@@ -263,6 +265,34 @@ int sweep_command(const SweepOptions& opt) {
   const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   const int width = std::max(1, std::min(opt.jobs > 0 ? opt.jobs : cores, std::max(pending, 1)));
   return sweep_detail::run_jobs(plan, width, std::max(1, cores / width), nullptr);
+}
+
+int sweeps_command(const std::vector<SweepOptions>& opts, int jobs) {
+  if (opts.empty()) return kExitOk;
+  // under MPI each sweep spreads over the ranks in turn
+  if (sweep_detail::mpi_launch_detected()) {
+    int code = kExitOk;
+    for (const SweepOptions& o : opts) {
+      code = sweep_command(o);
+      if (code != kExitOk) return code;
+    }
+    return code;
+  }
+  std::vector<std::unique_ptr<DirLock>> locks;
+  std::vector<SweepPlan> plans;
+  for (const SweepOptions& o : opts) {
+    locks.push_back(std::make_unique<DirLock>(sweep_detail::plan_sweep(o, false).out, "sweep"));
+    plans.push_back(sweep_detail::plan_sweep(o, true));
+  }
+  std::vector<SweepPlan*> all;
+  int pending = 0;
+  for (SweepPlan& p : plans) {
+    all.push_back(&p);
+    for (const Job& j : p.jobs) pending += j.state == "pending";
+  }
+  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const int width = std::max(1, std::min(jobs > 0 ? jobs : cores, std::max(pending, 1)));
+  return sweep_detail::run_jobs(all, width, std::max(1, cores / width), nullptr);
 }
 
 }  // namespace gs

@@ -41,4 +41,9 @@ std::vector<SweepRun> sweep_runs(const std::vector<SweepParam>& params);
 /// is started), 3/4/1 the worst exit of a run (unstable, interrupted, failure)
 int sweep_command(const SweepOptions& opt);
 
+/// several sweeps as one pool of runs, `jobs` at a time (0: the number of cores): a run of the
+/// next sweep starts as soon as a slot is free, so no core idles while the last runs of a
+/// sweep finish. Exit codes as sweep_command's; under MPI the sweeps run one after the other
+int sweeps_command(const std::vector<SweepOptions>& opts, int jobs);
+
 }  // namespace gs

@@ -92,5 +92,7 @@ int sweep_mpi(const SweepOptions& opt);
 /// rank 0 (or the only process): run every pending job, `width` at a time here, the rest on
 /// `remote` when given; one progress display; returns the worst exit code
 int run_jobs(SweepPlan& plan, int width, int threads, RemoteSlots* remote);
+/// the same over several sweeps' plans as one pool of runs (no `remote` with more than one)
+int run_jobs(const std::vector<SweepPlan*>& plans, int width, int threads, RemoteSlots* remote);
 
 }  // namespace gs::sweep_detail

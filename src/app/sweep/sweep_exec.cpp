@@ -141,30 +141,50 @@ void write_manifest(const SweepPlan& plan, bool finished) {
 }
 
 int run_jobs(SweepPlan& plan, int width, int threads, RemoteSlots* remote) {
-  const SweepOptions& opt = plan.opt;
-  std::vector<Job>& jobs = plan.jobs;
+  return run_jobs(std::vector<SweepPlan*>{&plan}, width, threads, remote);
+}
+
+int run_jobs(const std::vector<SweepPlan*>& plans, int width, int threads, RemoteSlots* remote) {
+  if (remote && plans.size() != 1)
+    throw std::logic_error("run_jobs: the MPI ranks share one sweep's plan");
+  const bool quiet = plans.front()->opt.quiet;
+  // every job of every plan in one list, plan by plan: a job's place in it is its index
+  // (under MPI, one plan: the same index as in the plan the workers computed)
+  struct Slot {
+    SweepPlan* plan;
+    Job* job;
+  };
+  std::vector<Slot> jobs;
+  for (SweepPlan* p : plans)
+    for (Job& j : p->jobs) jobs.push_back({p, &j});
   int pending = 0;
   double total = 0.0;
-  for (const Job& j : jobs)
-    if (j.state == "pending") {
+  for (const Slot& s : jobs)
+    if (s.job->state == "pending") {
       ++pending;
-      total += j.nominal;
+      total += s.job->nominal;
     }
   const int slots = width + (remote ? remote->open() : 0);
-  std::fprintf(stderr, "gransim sweep: %zu runs in %s (%zu already completed), %d at a time%s\n",
-               jobs.size(), plan.out.c_str(), jobs.size() - static_cast<std::size_t>(pending),
-               slots, remote ? " over MPI ranks" : "");
-  write_manifest(plan, false);
+  for (SweepPlan* p : plans) {
+    int left = 0;
+    for (const Job& j : p->jobs) left += j.state == "pending";
+    std::fprintf(
+        stderr, "gransim sweep: %zu runs in %s (%zu already completed), %d at a time%s%s\n",
+        p->jobs.size(), p->out.c_str(), p->jobs.size() - static_cast<std::size_t>(left), slots,
+        remote ? " over MPI ranks" : "", plans.size() > 1 ? " with the other sweeps' runs" : "");
+    write_manifest(*p, false);
+  }
   std::vector<std::string> env = child_environment(threads);
   install_stop_handlers();
-  Progress progress("sweep", std::max(total, 1e-9), "s", opt.quiet);
+  Progress progress("sweep", std::max(total, 1e-9), "s", quiet);
   int worst = kExitOk;
   bool stopping = false;
   double done_work = 0.0;
   auto last_progress = std::chrono::steady_clock::now() - std::chrono::seconds(1);
 
   // a run has finished here or on a worker rank
-  auto finish = [&](Job& j, int code, double wall) {
+  auto finish = [&](const Slot& s, int code, double wall) {
+    Job& j = *s.job;
     j.wall = wall;
     j.exit_code = code;
     j.pid = -1;
@@ -172,19 +192,19 @@ int run_jobs(SweepPlan& plan, int width, int threads, RemoteSlots* remote) {
     j.state = code == kExitOk ? "completed" : code == kExitInterrupted ? "interrupted" : "failed";
     done_work += j.nominal;
     worst = worse_exit(worst, code);
-    if (!opt.quiet || code != kExitOk)
+    if (!quiet || code != kExitOk)
       std::fprintf(
-          stderr, "%s%s: %s (exit %d, %s)%s\n", opt.quiet ? "" : "\n", j.run.name.c_str(),
+          stderr, "%s%s: %s (exit %d, %s)%s\n", quiet ? "" : "\n", j.run.name.c_str(),
           j.state.c_str(), code, format_duration(wall).c_str(),
-          code == kExitOk ? "" : (", log " + plan.out + "/logs/" + j.run.name + ".log").c_str());
-    write_manifest(plan, false);
+          code == kExitOk ? "" : (", log " + s.plan->out + "/logs/" + j.run.name + ".log").c_str());
+    write_manifest(*s.plan, false);
   };
   // the next pending run, marked running on `rank`; -1 when none (or stopping)
   auto take = [&](int rank) -> int {
     if (stopping) return -1;
     for (std::size_t i = 0; i < jobs.size(); ++i)
-      if (jobs[i].state == "pending") {
-        Job& j = jobs[i];
+      if (jobs[i].job->state == "pending") {
+        Job& j = *jobs[i].job;
         j.state = "running";
         j.rank = rank;
         j.started = std::chrono::steady_clock::now();
@@ -195,27 +215,28 @@ int run_jobs(SweepPlan& plan, int width, int threads, RemoteSlots* remote) {
   };
   auto remote_done = [&](int index, int code, double wall) {
     if (index < 0 || index >= static_cast<int>(jobs.size())) return;
+    const Slot& s = jobs[static_cast<std::size_t>(index)];
     if (code < 0)
-      jobs[static_cast<std::size_t>(index)].state = "pending";  // a stopping worker refused it
+      s.job->state = "pending";  // a stopping worker refused it
     else
-      finish(jobs[static_cast<std::size_t>(index)], code, wall);
+      finish(s, code, wall);
   };
 
   for (;;) {
     // a signal: stop the children here cleanly (they write their state), start nothing new
     if (stop_requested() && !stopping) {
       stopping = true;
-      for (const Job& j : jobs)
-        if (j.state == "running" && j.pid > 0) kill(j.pid, SIGTERM);
+      for (const Slot& s : jobs)
+        if (s.job->state == "running" && s.job->pid > 0) kill(s.job->pid, SIGTERM);
     }
     // start what fits here
     int here = 0;
-    for (const Job& j : jobs) here += j.state == "running" && j.pid > 0;
+    for (const Slot& s : jobs) here += s.job->state == "running" && s.job->pid > 0;
     while (here < width) {
       const int i = take(0);
       if (i < 0) break;
-      Job& j = jobs[static_cast<std::size_t>(i)];
-      j.pid = spawn_run(plan, j, env);
+      const Slot& s = jobs[static_cast<std::size_t>(i)];
+      s.job->pid = spawn_run(*s.plan, *s.job, env);
       ++here;
     }
     // the worker ranks: collect their results, hand them the next runs
@@ -223,11 +244,12 @@ int run_jobs(SweepPlan& plan, int width, int threads, RemoteSlots* remote) {
     if (here == 0 && (!remote || remote->open() == 0)) break;
     // collect finished children
     bool reaped = false;
-    for (Job& j : jobs) {
+    for (const Slot& s : jobs) {
+      Job& j = *s.job;
       if (j.state != "running" || j.pid <= 0) continue;
       int status = 0;
       if (waitpid(j.pid, &status, WNOHANG) != j.pid) continue;
-      finish(j, child_exit_code(status),
+      finish(s, child_exit_code(status),
              std::chrono::duration<double>(std::chrono::steady_clock::now() - j.started).count());
       reaped = true;
     }
@@ -240,7 +262,8 @@ int run_jobs(SweepPlan& plan, int width, int threads, RemoteSlots* remote) {
     last_progress = tick;
     double now = done_work;
     int active = 0, finished = 0;
-    for (const Job& j : jobs) {
+    for (const Slot& s : jobs) {
+      const Job& j = *s.job;
       if (j.state == "running") {
         now += std::min(last_series_time(j.dir, j.spawned), j.nominal);
         ++active;
@@ -250,12 +273,16 @@ int run_jobs(SweepPlan& plan, int width, int threads, RemoteSlots* remote) {
     progress.update(now, std::to_string(finished) + "/" + std::to_string(pending) + " runs done, " +
                              std::to_string(active) + " running");
   }
-  write_manifest(plan, true);
   if (stopping && worst == kExitOk) worst = kExitInterrupted;
-  int completed = 0;
-  for (const Job& j : jobs) completed += j.state == "completed" || j.state == "skipped";
-  std::string summary = std::to_string(completed) + "/" + std::to_string(jobs.size()) +
-                        " runs completed; manifest " + plan.out + "/sweep.json";
+  std::string summary;
+  for (SweepPlan* p : plans) {
+    write_manifest(*p, true);
+    int completed = 0;
+    for (const Job& j : p->jobs) completed += j.state == "completed" || j.state == "skipped";
+    summary += (summary.empty() ? "" : "; ") + std::to_string(completed) + "/" +
+               std::to_string(p->jobs.size()) + " runs completed; manifest " + p->out +
+               "/sweep.json";
+  }
   if (worst == kExitOk)
     progress.finish(summary);
   else
