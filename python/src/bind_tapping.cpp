@@ -282,10 +282,7 @@ void bind_tapping(py::module_& m) {
       "mser_truncation",
       [](const Series& x, int batch) {
         const Truncation t = mser_truncation(x, batch);
-        py::dict d;
-        d["drop"] = t.drop;
-        d["steady"] = t.steady;
-        return d;
+        return py::dict(py::arg("drop") = t.drop, py::arg("steady") = t.steady);
       },
       py::arg("x"), py::arg("batch") = 5,
       "the start of a series' steady part by the marginal standard error rule (MSER-batch)");
