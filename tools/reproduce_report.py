@@ -81,7 +81,10 @@ def main():
             ("command", a.command or f"gransim reproduce {a.study} --budget {a.budget}"),
             ("machine", report.machine()),
             ("wall time", f"{a.wall:.0f} s ({hours:.2f} h) of `gransim reproduce` on {a.cores} "
-                          "cores, all sittings"),
+                          "cores, all sittings" if not a.wall * a.cores < 0.5 * core_s else
+                          f"not tallied ({a.wall:.0f} s): most runs were made outside `gransim "
+                          "reproduce` (by `gransim sweep` into its folders) and adopted; the run "
+                          "time below is their cost"),
             ("run time", f"{core_s / 3600:.2f} core-hours: the wall times of its {runs} runs "
                          "(one thread each) added up"),
             ("written", datetime.datetime.now().strftime("%Y-%m-%d %H:%M"))]
