@@ -10,6 +10,7 @@ import csv
 import datetime
 import glob
 import json
+import math
 import os
 import sys
 
@@ -77,11 +78,13 @@ def main():
                 unfinished.append(f"{name}{done}")
         except (OSError, ValueError, KeyError):
             pass
+    # sittings of `reproduce` that cannot have run half of the runs' cost did not make them
+    tallied = not math.isfinite(a.wall) or a.wall * a.cores >= 0.5 * core_s
     meta = [("study", a.study), ("budget", a.budget),
             ("command", a.command or f"gransim reproduce {a.study} --budget {a.budget}"),
             ("machine", report.machine()),
             ("wall time", f"{a.wall:.0f} s ({hours:.2f} h) of `gransim reproduce` on {a.cores} "
-                          "cores, all sittings" if not a.wall * a.cores < 0.5 * core_s else
+                          "cores, all sittings" if tallied else
                           f"not tallied ({a.wall:.0f} s): most runs were made outside `gransim "
                           "reproduce` (by `gransim sweep` into its folders) and adopted; the run "
                           "time below is their cost"),

@@ -256,15 +256,7 @@ SweepPlan plan_sweep(const SweepOptions& opt, bool check_dirs) {
 int sweep_command(const SweepOptions& opt) {
   // started by mpirun/srun: the MPI driver (sweep_mpi.cpp) spreads the runs over the ranks
   if (sweep_detail::mpi_launch_detected()) return sweep_detail::sweep_mpi(opt);
-  // one sweep at a time in a directory: the lock is taken before the plan looks at the runs
-  const SweepPlan preview = sweep_detail::plan_sweep(opt, false);
-  const DirLock lock(preview.out, "sweep");
-  SweepPlan plan = sweep_detail::plan_sweep(opt, true);
-  int pending = 0;
-  for (const Job& j : plan.jobs) pending += j.state == "pending";
-  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  const int width = std::max(1, std::min(opt.jobs > 0 ? opt.jobs : cores, std::max(pending, 1)));
-  return sweep_detail::run_jobs(plan, width, std::max(1, cores / width), nullptr);
+  return sweeps_command({opt}, opt.jobs);
 }
 
 int sweeps_command(const std::vector<SweepOptions>& opts, int jobs) {
@@ -273,11 +265,12 @@ int sweeps_command(const std::vector<SweepOptions>& opts, int jobs) {
   if (sweep_detail::mpi_launch_detected()) {
     int code = kExitOk;
     for (const SweepOptions& o : opts) {
-      code = sweep_command(o);
+      code = sweep_detail::sweep_mpi(o);
       if (code != kExitOk) return code;
     }
     return code;
   }
+  // one sweep at a time in a directory: each lock is taken before its plan looks at the runs
   std::vector<std::unique_ptr<DirLock>> locks;
   std::vector<SweepPlan> plans;
   for (const SweepOptions& o : opts) {
