@@ -24,6 +24,18 @@ class Claim:
     resolve: str = ""        # when not resolved: the budget that would resolve it
     chart: str = ""          # PNG path relative to the report folder
     values: dict = field(default_factory=dict)  # numbers for claims.csv
+    null: str = ""           # the test's null hypothesis
+    alternative: str = ""    # the alternative the source names or shows, with its size
+    power: float = float("nan")  # the test's power against it at the run's length
+
+
+def test_of(v):
+    """the null, alternative and power of a verdicts.Verdict, as Claim keywords"""
+    return dict(null=v.null, alternative=v.alternative, power=v.power)
+
+
+def _power(c):
+    return f"{c.power:.2f}" if c.power == c.power else "–"
 
 
 BADGE = {AGREES: "#1a7f37", DISAGREES: "#c62828", UNRESOLVED: "#8a6d00"}
@@ -61,10 +73,11 @@ def write_csv(path, claims):
     keys = sorted({k for c in claims for k in c.values})
     with open(path, "w", newline="") as f:
         w = csv.writer(f)
-        w.writerow(["id", "topic", "where", "verdict", "measured", "reason"] + keys)
+        w.writerow(["id", "topic", "where", "verdict", "power", "null", "alternative", "measured",
+                    "reason"] + keys)
         for c in claims:
-            w.writerow([c.id, c.topic, c.where, c.verdict, c.measured, c.reason]
-                       + [c.values.get(k, "") for k in keys])
+            w.writerow([c.id, c.topic, c.where, c.verdict, _power(c), c.null, c.alternative,
+                        c.measured, c.reason] + [c.values.get(k, "") for k in keys])
 
 
 def write_markdown(path, title, intro, meta, claims, notes):
@@ -73,13 +86,14 @@ def write_markdown(path, title, intro, meta, claims, notes):
     lines += [f"- **{k}**: {v}" for k, v in meta]
     lines += ["", f"**Verdicts**: {n[AGREES]} agree, {n[DISAGREES]} disagree, "
               f"{n[UNRESOLVED]} not resolved at this budget.", "",
-              "| claim | source says | program measured | verdict |", "|---|---|---|---|"]
+              "| claim | source says | program measured | verdict | power |",
+              "|---|---|---|---|---|"]
     def cell(t):
         return t.replace("|", "\\|").replace("\n", " ")
 
     for c in claims:
         lines.append(f"| [{c.id}](#{c.id}) | {cell(c.source)} ({cell(c.where)}) | "
-                     f"{cell(c.measured)} | **{c.verdict}** |")
+                     f"{cell(c.measured)} | **{c.verdict}** | {_power(c)} |")
     topic = None
     for c in claims:
         if c.topic != topic:
@@ -88,6 +102,9 @@ def write_markdown(path, title, intro, meta, claims, notes):
         lines += ["", f"### {c.id}", "", f"<a id=\"{c.id}\"></a>", "",
                   f"> {c.source}", ">", f"> — {c.where}", "",
                   f"**Measured**: {c.measured}", "", f"**Verdict: {c.verdict}** — {c.reason}"]
+        if c.null or c.alternative:
+            lines += ["", f"**Test**: null: {c.null or '–'}; alternative: {c.alternative or '–'}; "
+                      f"power {_power(c)}"]
         if c.resolve:
             lines += ["", f"**To resolve**: {c.resolve}"]
         if c.chart:
@@ -128,7 +145,7 @@ def write_html(path, title, intro, meta, claims, notes):
     out += ["</ul>", f"<p><b>Verdicts</b>: {n[AGREES]} agree, {n[DISAGREES]} disagree, "
             f"{n[UNRESOLVED]} not resolved at this budget.</p>",
             "<table><tr><th>claim</th><th>source says</th><th>program measured</th>"
-            "<th>verdict</th></tr>"]
+            "<th>verdict</th><th>power</th></tr>"]
 
     def badge(v):
         return f'<span class="badge" style="background:{BADGE[v]}">{e(v)}</span>'
@@ -136,7 +153,7 @@ def write_html(path, title, intro, meta, claims, notes):
     for c in claims:
         out.append(f'<tr><td><a href="#{e(c.id)}">{e(c.id)}</a></td><td>{e(c.source)} '
                    f"<i>({e(c.where)})</i></td><td>{e(c.measured)}</td><td>{badge(c.verdict)}"
-                   "</td></tr>")
+                   f"</td><td>{_power(c)}</td></tr>")
     out.append("</table>")
     topic = None
     for c in claims:
@@ -147,6 +164,9 @@ def write_html(path, title, intro, meta, claims, notes):
                 f"<blockquote>{e(c.source)}<br>— <i>{e(c.where)}</i></blockquote>",
                 f"<p><b>Measured</b>: {e(c.measured)}</p>",
                 f"<p><b>Verdict</b>: {e(c.reason)}</p>"]
+        if c.null or c.alternative:
+            out.append(f"<p><b>Test</b>: null: {e(c.null or '–')}; alternative: "
+                       f"{e(c.alternative or '–')}; power {_power(c)}</p>")
         if c.resolve:
             out.append(f"<p><b>To resolve</b>: {e(c.resolve)}</p>")
         out.append(_img(folder, c.chart))
