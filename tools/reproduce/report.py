@@ -27,11 +27,12 @@ class Claim:
     null: str = ""           # the test's null hypothesis
     alternative: str = ""    # the alternative the source names or shows, with its size
     power: float = float("nan")  # the test's power against it at the run's length
+    power_at: object = None  # k ↦ the power at k times the run's length (not written)
 
 
 def test_of(v):
     """the null, alternative and power of a verdicts.Verdict, as Claim keywords"""
-    return dict(null=v.null, alternative=v.alternative, power=v.power)
+    return dict(null=v.null, alternative=v.alternative, power=v.power, power_at=v.power_at)
 
 
 def _power(c):

@@ -146,7 +146,7 @@ def rot_crossover(st, budget):
     cross = Claim("rot-crossover", "Rotating g", quote, "Fig. 6a, section IV", meas, step.verdict,
                   f"change from the lowest to the highest f: {step.reason}",
                   _need(step, n, "taps per value"), chart, **test_of(step))
-    parts, vs, pws, need = [], [], [], []
+    parts, vs, pws, need, ats = [], [], [], [], []
     for k, j, src, side in ((0, 1, 0.814, "low f"), (-1, -2, 0.821, "high f")):
         c = compare_value(float(y[k]), float(e[k]), src, tolerance=0.0005, alternative=0.001,
                           precision="printed to three decimals")
@@ -165,6 +165,7 @@ def rot_crossover(st, budget):
             if c.verdict == UNRESOLVED:
                 need.append(c.need(n, "taps per value"))
         pws.append(c.power)
+        ats.append(c.power_at)
     v = DISAGREES if DISAGREES in vs else (AGREES if set(vs) == {AGREES} else UNRESOLVED)
     lev = Claim("rot-levels", "Rotating g", levels, "Fig. 6a, section IV",
                 f"f={x[0]:g} Hz: {_pm(y[0], e[0])}; f={x[-1]:g} Hz: {_pm(y[-1], e[-1])}",
@@ -172,7 +173,7 @@ def rot_crossover(st, budget):
                 chart, {"phi_low_f": y[0], "phi_high_f": y[-1]},
                 null="each level = the source's ± 0.0005",
                 alternative="a level 0.001 away (the neighbouring printed value)",
-                power=float(min(pws)))
+                power=float(min(pws)), power_at=lambda k: min(f(k) for f in ats))
     return [cross, lev]
 
 
@@ -234,7 +235,8 @@ def halves(st, budget):
                          _need(weakest[0], weakest[4], "taps per value"),
                          chart, {"worst": worst[2], "worst_err": worst[3]},
                          null=f"{unit} = 0 in every run", alternative=f"{unit} at the bound "
-                         f"{bound:g} (the source's)", power=float(weakest[0].power)))
+                         f"{bound:g} (the source's)", power=float(weakest[0].power),
+                         power_at=weakest[0].power_at))
     return out
 
 

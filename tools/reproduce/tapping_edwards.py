@@ -175,7 +175,8 @@ def reference_overlap(st, budget):
                  {"largest_separation": max((x[1] for x in rows), default=float("nan"))},
                  null="the two distributions coincide", alternative="the 5 %-of-maximum windows "
                  "just touch (the paper's overlap criterion)",
-                 power=float(weak[2].power) if weak else float("nan"))
+                 power=min(x[2].power for x in rows) if rows else float("nan"),
+                 power_at=(lambda k: min(x[2].power_at(k) for x in rows)) if rows else None)
 
 
 def two_references(st, budget):
@@ -203,12 +204,13 @@ def two_references(st, budget):
             w.append(1 / (by[(r1, lab)]["dbeta_err"] ** 2 + by[(r2, lab)]["dbeta_err"] ** 2))
         d, w = np.array(d), np.array(w)
         lam = float(np.sum(w * (d - np.sum(w * d) / np.sum(w)) ** 2)) if len(d) else 0.0
-        pw = chi2_power(lam, dof)
-        k = scale_for(lambda k: chi2_power(lam * k, dof))
+        def at(k):
+            return chi2_power(lam * k, dof)
+        pw, k = at(1.0), float("nan")
         v = decide(p, pw, "β̂ from the two references differ by a constant",
                    f"Gaussian pairs with the measured φ̄, σ_φ (App. A, A3–A4; noncentrality "
                    f"{lam:.3g})", f"χ² = {chi2:.3g} for {dof} degrees of freedom around a "
-                   "constant offset", k)
+                   "constant offset", k, power_at=at)
     fig, ax = _fig()
     for ref, mk in ((r1, "s"), (r2, "o")):
         rr = [r for r in st.beta if r.get("reference") == ref and r.get("valid") == 1]
