@@ -24,19 +24,17 @@ class Claim:
     resolve: str = ""        # when not resolved: the budget that would resolve it
     chart: str = ""          # PNG path relative to the report folder
     values: dict = field(default_factory=dict)  # numbers for claims.csv
+    power: str = ""          # the test's power against the source's alternative at this length
     null: str = ""           # the test's null hypothesis
     alternative: str = ""    # the alternative the source names or shows, with its size
-    power: float = float("nan")  # the test's power against it at the run's length
     power_at: object = None  # k ↦ the power at k times the run's length (not written)
 
 
 def test_of(v):
     """the null, alternative and power of a verdicts.Verdict, as Claim keywords"""
-    return dict(null=v.null, alternative=v.alternative, power=v.power, power_at=v.power_at)
-
-
-def _power(c):
-    return f"{c.power:.2f}" if c.power == c.power else "–"
+    p = v.power
+    return dict(power=f"{p:.2f}" if p is not None and p == p else "", null=v.null,
+                alternative=v.alternative, power_at=v.power_at)
 
 
 BADGE = {AGREES: "#1a7f37", DISAGREES: "#c62828", UNRESOLVED: "#8a6d00"}
@@ -74,11 +72,11 @@ def write_csv(path, claims):
     keys = sorted({k for c in claims for k in c.values})
     with open(path, "w", newline="") as f:
         w = csv.writer(f)
-        w.writerow(["id", "topic", "where", "verdict", "power", "null", "alternative", "measured",
-                    "reason"] + keys)
+        w.writerow(["id", "topic", "where", "verdict", "power", "measured", "reason", "null",
+                    "alternative"] + keys)
         for c in claims:
-            w.writerow([c.id, c.topic, c.where, c.verdict, _power(c), c.null, c.alternative,
-                        c.measured, c.reason] + [c.values.get(k, "") for k in keys])
+            w.writerow([c.id, c.topic, c.where, c.verdict, c.power, c.measured, c.reason, c.null,
+                        c.alternative] + [c.values.get(k, "") for k in keys])
 
 
 def write_markdown(path, title, intro, meta, claims, notes):
@@ -94,7 +92,7 @@ def write_markdown(path, title, intro, meta, claims, notes):
 
     for c in claims:
         lines.append(f"| [{c.id}](#{c.id}) | {cell(c.source)} ({cell(c.where)}) | "
-                     f"{cell(c.measured)} | **{c.verdict}** | {_power(c)} |")
+                     f"{cell(c.measured)} | **{c.verdict}** | {cell(c.power) or '—'} |")
     topic = None
     for c in claims:
         if c.topic != topic:
@@ -103,9 +101,9 @@ def write_markdown(path, title, intro, meta, claims, notes):
         lines += ["", f"### {c.id}", "", f"<a id=\"{c.id}\"></a>", "",
                   f"> {c.source}", ">", f"> — {c.where}", "",
                   f"**Measured**: {c.measured}", "", f"**Verdict: {c.verdict}** — {c.reason}"]
-        if c.null or c.alternative:
-            lines += ["", f"**Test**: null: {c.null or '–'}; alternative: {c.alternative or '–'}; "
-                      f"power {_power(c)}"]
+        if c.power or c.null:
+            lines += ["", f"**Power**: {c.power or '—'} (null: {c.null or '—'}; alternative: "
+                      f"{c.alternative or '—'})"]
         if c.resolve:
             lines += ["", f"**To resolve**: {c.resolve}"]
         if c.chart:
@@ -154,7 +152,7 @@ def write_html(path, title, intro, meta, claims, notes):
     for c in claims:
         out.append(f'<tr><td><a href="#{e(c.id)}">{e(c.id)}</a></td><td>{e(c.source)} '
                    f"<i>({e(c.where)})</i></td><td>{e(c.measured)}</td><td>{badge(c.verdict)}"
-                   f"</td><td>{_power(c)}</td></tr>")
+                   f"</td><td>{e(c.power) or '—'}</td></tr>")
     out.append("</table>")
     topic = None
     for c in claims:
@@ -165,9 +163,9 @@ def write_html(path, title, intro, meta, claims, notes):
                 f"<blockquote>{e(c.source)}<br>— <i>{e(c.where)}</i></blockquote>",
                 f"<p><b>Measured</b>: {e(c.measured)}</p>",
                 f"<p><b>Verdict</b>: {e(c.reason)}</p>"]
-        if c.null or c.alternative:
-            out.append(f"<p><b>Test</b>: null: {e(c.null or '–')}; alternative: "
-                       f"{e(c.alternative or '–')}; power {_power(c)}</p>")
+        if c.power or c.null:
+            out.append(f"<p><b>Power</b>: {e(c.power or '—')} (null: {e(c.null or '—')}; "
+                       f"alternative: {e(c.alternative or '—')})</p>")
         if c.resolve:
             out.append(f"<p><b>To resolve</b>: {e(c.resolve)}</p>")
         out.append(_img(folder, c.chart))

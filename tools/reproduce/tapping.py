@@ -173,7 +173,7 @@ def rot_crossover(st, budget):
                 chart, {"phi_low_f": y[0], "phi_high_f": y[-1]},
                 null="each level = the source's ± 0.0005",
                 alternative="a level 0.001 away (the neighbouring printed value)",
-                power=float(min(pws)), power_at=lambda k: min(f(k) for f in ats))
+                power=f"{min(pws):.2f}", power_at=lambda k: min(f(k) for f in ats))
     return [cross, lev]
 
 
@@ -235,7 +235,7 @@ def halves(st, budget):
                          _need(weakest[0], weakest[4], "taps per value"),
                          chart, {"worst": worst[2], "worst_err": worst[3]},
                          null=f"{unit} = 0 in every run", alternative=f"{unit} at the bound "
-                         f"{bound:g} (the source's)", power=float(weakest[0].power),
+                         f"{bound:g} (the source's)", power=f"{weakest[0].power:.2f}",
                          power_at=weakest[0].power_at))
     return out
 

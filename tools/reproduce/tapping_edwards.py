@@ -175,7 +175,7 @@ def reference_overlap(st, budget):
                  {"largest_separation": max((x[1] for x in rows), default=float("nan"))},
                  null="the two distributions coincide", alternative="the 5 %-of-maximum windows "
                  "just touch (the paper's overlap criterion)",
-                 power=min(x[2].power for x in rows) if rows else float("nan"),
+                 power=f"{min(x[2].power for x in rows):.2f}" if rows else "",
                  power_at=(lambda k: min(x[2].power_at(k) for x in rows)) if rows else None)
 
 
