@@ -156,7 +156,7 @@ def compare_value(measured, err, source, source_err=0.0, tolerance=0.0, alternat
     p = 2.0 * (1.0 - phi(excess / s)) if s > 0 else (1.0 if excess == 0 else 0.0)
     text = (f"measured {fmt.format(measured)} ± {fmt.format(err)}, source {fmt.format(source)}"
             + (f" ± {fmt.format(source_err)}" if source_err else "")
-            + (f" (± {fmt.format(tolerance)}: {precision})" if tolerance else
+            + (f" (± {fmt.format(tolerance)}: {precision})" if tolerance else "" if source_err else
                " (the source states no precision: the measurement's error alone)")
             + (f"; {excess / s:.1f}σ beyond it" if excess > 0 and s > 0 else ""))
     null = f"true value = {fmt.format(source)}" + (f" ± {fmt.format(tolerance)}" if tolerance else "")
