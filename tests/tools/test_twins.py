@@ -19,7 +19,8 @@ sys.path.insert(0, os.path.join(ROOT, "tools", "reproduce"))
 from verdicts import (AGREES, DISAGREES, below_bound, chi2_consistent,  # noqa: E402
                       compare_value, extremum, feature_test, chi2_sf, t_sf2)
 from tapping_data import quadron_phi  # noqa: E402
-from tapping_edwards import gauss_curvature, quadron_sigma  # noqa: E402
+from tapping_edwards import (conditional_err, gauss_curvature, gauss_dbeta,  # noqa: E402
+                             gauss_dlnz_excess, quadron_sigma)
 
 REPS = 200
 V_G, A = 0.1336, 556.51
@@ -105,6 +106,42 @@ class EdwardsClaims(Twin):
                 lambda r: chi2_consistent(alt + r.normal(0, e), e, alternative=alt)[0],
                 chi2_consistent(np.zeros(8), e, alternative=alt)[0],
                 chi2_consistent(alt, e, alternative=alt)[0])
+
+
+class GaussianPair(unittest.TestCase):
+    """App. A's formulas against the exact log-ratio of two Gaussian densities in V = V_g/φ"""
+
+    def test_curvature_slope_and_intercept(self):
+        (p1, s1), (p2, s2) = (0.8392, 0.00184), (0.8349, 0.00196)
+        v1, v2 = V_G / p1, V_G / p2
+        w1, w2 = V_G * s1 / p1 ** 2, V_G * s2 / p2 ** 2
+
+        def q(v):  # ln P₁/P₂ of the two Gaussians in V
+            return (-(v - v1) ** 2 / (2 * w1 ** 2) + (v - v2) ** 2 / (2 * w2 ** 2)
+                    + np.log(w2 / w1))
+        vm, h = 0.5 * (v1 + v2), 1e-5
+        slope = (q(vm + h) - q(vm - h)) / (2 * h)
+        curv = (q(vm + h) - 2 * q(vm) + q(vm - h)) / h ** 2 / 2
+        # Q = −Δβ V + Δ: Δβ = −slope (eq. 39); curvature per (1/φ)² = per V² · V_g²
+        self.assertAlmostEqual(gauss_dbeta(p1, s1, p2, s2, V_G) / -slope, 1.0, places=6)
+        self.assertAlmostEqual(gauss_curvature(p1, s1, p2, s2) / (curv * V_G ** 2), 1.0, places=4)
+        # the tangent's intercept departs from Edwards' −Δβ·(V₁ + V₂)/2 by the decoy's excess
+        # (A6): the tangent's intercept; Edwards' −ln Z₁/Z₂ ≈ Δβ·V̄ = −slope·V̄ at the midpoint
+        intercept = q(vm) - slope * vm
+        excess = intercept - (-slope * vm)
+        self.assertAlmostEqual(excess / gauss_dlnz_excess(p1, s1, p2, s2), 1.0, places=6)
+
+
+class Covariance(unittest.TestCase):
+    def test_conditional_error_of_a_correlated_pair(self):
+        # Δβ, Δln Z from one line fit: ρ ≈ −1; the residual about the prediction has a small error
+        rng = np.random.default_rng(5)
+        eb, el, rho, slope = 1383.0, 220.8, -0.99999, -0.1594
+        cov = rho * eb * el
+        xy = rng.multivariate_normal([0, 0], [[eb ** 2, cov], [cov, el ** 2]], 200000)
+        sd = np.std(xy[:, 1] - slope * xy[:, 0])
+        self.assertAlmostEqual(conditional_err(eb, el, cov, slope) / sd, 1.0, delta=0.01)
+        self.assertLess(conditional_err(eb, el, cov, slope), 0.05 * el)
 
 
 class FeatureClaims(Twin):

@@ -382,6 +382,15 @@ def _decoy_note(st, bh_of, v_g):
             "would fall on the same curve")
 
 
+def conditional_err(eb, el, cov, slope):
+    """the error of Δln Z − slope·Δβ when Δβ, Δln Z have errors eb, el and covariance cov:
+    el²(1 − ρ²) + eb²(slope − cov/eb²)², written so that ρ → ±1 does not cancel"""
+    if not eb > 0:
+        return el
+    vb = eb * eb
+    return math.sqrt(max(el * el - cov * cov / vb, 0.0) + vb * (slope - cov / vb) ** 2)
+
+
 def _lnz(st, budget):
     """Fig. 10: Δln Z against the fit's prediction, with the Δβ–Δln Z covariance"""
     ref = st.info.get("reference")
@@ -393,11 +402,9 @@ def _lnz(st, budget):
     for r in rows:
         # Δln Z and Δβ come from one line fit: the prediction moves with Δβ by
         # −V_g/φ̄_quadron, so the residual's error is the conditional one
-        s = -v_g / r["phi_quadron"]
-        vb, vl, cv = r["dbeta_err"] ** 2, r["dlnz_err"] ** 2, r.get("cov", 0.0)
-        var = max(vl - cv * cv / vb, 0.0) + vb * (s - cv / vb) ** 2 if vb > 0 else vl
         res.append(r["dlnz"] - r["dlnz_quadron"])
-        err.append(math.sqrt(var))
+        err.append(conditional_err(r["dbeta_err"], r["dlnz_err"], r.get("cov", 0.0),
+                                   -v_g / r["phi_quadron"]))
         alt.append(gauss_dlnz_excess(r["phi_mean"], r["sigma"], rr["phi_mean"], rr["sigma"])
                    if rr else float("nan"))
     v, _ = chi2_consistent(res, err, "runs", alternative=alt if rr else None,
