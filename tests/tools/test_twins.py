@@ -20,7 +20,7 @@ from verdicts import (AGREES, DISAGREES, below_bound, chi2_consistent,  # noqa: 
                       compare_value, extremum, feature_test, chi2_sf, t_sf2)
 from tapping_data import quadron_phi  # noqa: E402
 from tapping_edwards import (conditional_err, gauss_curvature, gauss_dbeta,  # noqa: E402
-                             gauss_dlnz_excess, quadron_sigma)
+                             gauss_dlnz_excess, one_curve_test, quadron_sigma)
 
 REPS = 200
 V_G, A = 0.1336, 556.51
@@ -106,6 +106,28 @@ class EdwardsClaims(Twin):
                 lambda r: chi2_consistent(alt + r.normal(0, e), e, alternative=alt)[0],
                 chi2_consistent(np.zeros(8), e, alternative=alt)[0],
                 chi2_consistent(alt, e, alternative=alt)[0])
+
+
+class OneCurve(Twin):
+    """one-curve: β̂ of three groups on the ideal quadron (true), or one group on a curve with
+    N z̄/V_g 2 % off (false), refitted about the shared fit"""
+
+    def test_at_every_length(self):
+        b0 = 1.9e4
+        bh = np.linspace(-6e3, 6e3, 12)
+        grp = ["left"] * 4 + ["right"] * 4 + ["rot"] * 4
+        phi = np.array([quadron_phi(b + b0, A) for b in bh])
+        jac = np.array([[(quadron_phi(b + b0, A * 1.001) - quadron_phi(b + b0, A * 0.999)) / (0.002 * A),
+                         (quadron_phi(b + b0 + 10, A) - quadron_phi(b + b0 - 10, A)) / 20] for b in bh])
+        off = np.array([quadron_phi(b + b0, A * 1.02) for b in bh]) - phi
+        alts = {g: np.where(np.array(grp) == g, off, 0.0) for g in ("left", "right", "rot")}
+        for n in (200, 1e4, 1e6, 1e8):
+            e = np.full(12, 0.003 / np.sqrt(n))
+            self.assert_rules(
+                lambda r: one_curve_test(grp, r.normal(0, e), e, jac, alts),
+                lambda r: one_curve_test(grp, alts["rot"] + r.normal(0, e), e, jac, alts),
+                one_curve_test(grp, np.zeros(12), e, jac, alts),
+                one_curve_test(grp, alts["rot"], e, jac, alts))
 
 
 class GaussianPair(unittest.TestCase):

@@ -11,7 +11,7 @@ from tapping_edwards import (quadron_claims, q_linear, reference_overlap, sigma_
                              two_references)
 from verdicts import (AGREES, DISAGREES, P_KEEP, P_REJECT, UNRESOLVED, Verdict, below_bound,
                       chi2_consistent, chi2_sf, compare_value, extremum, feature_test, mean_err,
-                      t_sf2, z_of)
+                      offset_test, t_sf2, z_of)
 
 # the paper's resolution of φ: "the typical magnitude of the observed static volume fraction
 # fluctuations" is 100 × 10⁻⁵ (section III); the smallest transient or feature its figures show
@@ -286,25 +286,19 @@ def _groups(st):
 
 
 def stress_offsets(x, groups, comps, offset):
-    """χ² of one smooth (quadratic) S(φ̄) for all runs, χ² with an offset per protocol or
-    branch, and the noncentrality that offsets of `offset` between the groups would give.
-    comps: {name: (y, err)}; returns (Δχ², dof, λ)"""
+    """Δχ² that an offset per protocol or branch gains over one smooth (quadratic) S(φ̄), its
+    degrees of freedom, and the noncentrality of offsets of `offset` between the groups, summed
+    over the components. comps: {name: (y, err)}; returns (Δχ², dof, λ)"""
     x = np.asarray(x, float)
-    names = sorted(set(groups))
-    g = np.array([[1.0 if gi == n else 0.0 for n in names[1:]] for gi in groups]).reshape(len(x), -1)
+    names = list(dict.fromkeys(groups))
     base = np.vstack([np.ones_like(x), x - x.mean(), (x - x.mean()) ** 2]).T
-    full = np.hstack([base, g])
-
-    def chi(design, y, e):
-        w = 1 / e
-        c, *_ = np.linalg.lstsq(design * w[:, None], y * w, rcond=None)
-        return float(np.sum(((y - design @ c) * w) ** 2))
-    d_chi, lam = 0.0, 0.0
-    alt = g @ (offset * np.arange(1, len(names)))  # each group a further `offset` away
+    alt = np.array([offset * names.index(g) for g in groups])  # each group a further offset away
+    d_chi = lam = 0.0
+    dof = 0
     for y, e in comps.values():
-        d_chi += chi(base, y, e) - chi(full, y, e)
-        lam += chi(base, alt, e) - chi(full, alt, e)
-    return d_chi, len(comps) * (len(names) - 1), lam
+        d, k, l_ = offset_test(base, groups, y, e, alt)
+        d_chi, lam, dof = d_chi + d, lam + l_, dof + k
+    return d_chi, dof, lam
 
 
 def stress(st, budget):

@@ -289,6 +289,8 @@ def ncx2_sf(x, dof, lam):
     over the Poisson weights within 12 standard deviations of their mode"""
     if lam <= 0:
         return chi2_sf(x, dof)
+    if x < dof + lam - 12.0 * math.sqrt(2.0 * (dof + 2.0 * lam)):
+        return 1.0  # x lies 12 standard deviations below the mean
     h = 0.5 * lam
     w = 12.0 * math.sqrt(h) + 12.0
     total = 0.0
@@ -331,6 +333,51 @@ def chi2_consistent(residuals, errors, label="residuals", alternative=None, alt_
         return chi2_power(lam * k, dof)
     return decide(p, at(1.0), null, alt_text + f" (noncentrality {lam:.3g})", text, float("nan"),
                   power_at=at), p
+
+
+def chi2_cov(residuals, cov, label="residuals", alternative=None, alt_text=""):
+    """chi2_consistent with a full covariance of the residuals: χ² = rᵀC⁻¹r and the
+    alternative's noncentrality aᵀC⁻¹a (the length scaling applies to the whole of C)"""
+    r = np.asarray(residuals, float)
+    c = np.asarray(cov, float)
+    if len(r) < 1 or not np.all(np.isfinite(c)) or not np.all(np.isfinite(r)):
+        return Verdict(UNRESOLVED, f"no {label} with errors", "", "", float("nan")), float("nan")
+    inv = np.linalg.inv(c)
+    chi2 = float(r @ inv @ r)
+    dof = len(r)
+    p = chi2_sf(chi2, dof)
+    text = f"χ² = {chi2:.3g} for {dof} {label} (with their covariance)"
+    null = f"every {label.rstrip('s')} is zero"
+    if alternative is None:
+        return decide(p, float("nan"), null, alt_text or "none named by the source", text,
+                      float("nan")), p
+    a = np.asarray(alternative, float)
+    lam = float(a @ inv @ a)
+
+    def at(k):
+        return chi2_power(lam * k, dof)
+    return decide(p, at(1.0), null, alt_text + f" (noncentrality {lam:.3g})", text, float("nan"),
+                  power_at=at), p
+
+
+def offset_test(base, groups, y, e, alt=None):
+    """Does a constant offset per group (all but the first) lower χ² beyond the nuisance terms
+    of `base` (an n × p design: a smooth curve, or a fit's linearized parameters)? Returns
+    (Δχ², dof, λ): Δχ² ~ χ²_dof when the groups share one curve; λ the noncentrality of the
+    noiseless `alt` (None: nan)."""
+    base = np.asarray(base, float).reshape(len(y), -1)
+    names = list(dict.fromkeys(groups))
+    g = np.array([[1.0 if gi == n else 0.0 for n in names[1:]] for gi in groups]).reshape(len(y), -1)
+    full = np.hstack([base, g])
+    w = 1.0 / np.asarray(e, float)
+
+    def chi(design, v):
+        c, *_ = np.linalg.lstsq(design * w[:, None], v * w, rcond=None)
+        return float(np.sum(((v - design @ c) * w) ** 2))
+    y = np.asarray(y, float)
+    d = chi(base, y) - chi(full, y)
+    lam = float("nan") if alt is None else chi(base, np.asarray(alt, float)) - chi(full, np.asarray(alt, float))
+    return d, len(names) - 1, lam
 
 
 def feature_test(p, lam, dof, null, alt_text, text):
