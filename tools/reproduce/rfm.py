@@ -11,7 +11,8 @@ matplotlib.use("Agg")
 import numpy as np  # noqa: E402
 
 from report import Claim, test_of  # noqa: E402
-from verdicts import UNRESOLVED, Verdict, chi2_consistent, compare_value, mean_err  # noqa: E402
+from verdicts import (POWER, UNRESOLVED, Verdict, chi2_consistent, compare_value,  # noqa: E402
+                      mean_err)
 
 from rfm_data import ORDER, Missing, _csv, _runs, _ci, _gate, _chart, _ax  # noqa: E402
 from rfm_ring import c_g1, c_xi2, c_xim  # noqa: E402
@@ -313,6 +314,11 @@ def claims(d, budget):
             out.append(Claim(cid, topic, source, where, "not measured", UNRESOLVED, msg, resolve))
             continue
         v = r["verdict"]
+        k = v.scale
+        if v.verdict == UNRESOLVED and math.isfinite(k) and k > 1:
+            resolve += f"; its test reaches 80 % power at {k:.3g} × these runs' length"
+        elif v.verdict == UNRESOLVED and v.power < POWER and not math.isfinite(k):
+            resolve += "; " + v.need(1.0)
         out.append(Claim(cid, topic, source, where, r["measured"], v.verdict, v.reason,
                          resolve if v.verdict == UNRESOLVED else "", r.get("chart", ""),
                          {k: x for k, x in r.get("values", {}).items() if x is not None},

@@ -58,6 +58,9 @@ class Verdict:
 
     def need(self, n, unit="taps"):
         """the length that would give the test 80 % power, in `unit`, from the present n"""
+        if math.isfinite(self.power) and not math.isfinite(self.scale) and self.power < POWER:
+            return ("no run length reaches 80 % power: the source's own uncertainty (or the "
+                    "alternative's size) limits the test")
         if not (math.isfinite(self.scale) and n and n > 0):
             return ""
         if self.scale <= 1.0:
