@@ -9,7 +9,7 @@ One rule for every claim:
 - a claim that a quantity equals the source's (or zero, or lies below a bound) *agrees* when
   the test keeps it at the 5 % level and would have rejected the source's alternative with at
   least 80 % power; it *disagrees* when the test rejects it at the 1 % level;
-- a claim that a feature exists (a minimum, a crossover, a rejected normality) *agrees* when
+- a claim that a feature exists (a minimum, offsets between protocols) *agrees* when
   the test finds it at the 5 % level with at least 80 % power against a feature of the
   source's size; it *disagrees* when the test misses it although it would have found a
   feature of the source's size with at least 99 % power;
