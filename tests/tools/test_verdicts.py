@@ -109,6 +109,9 @@ class Chi2(unittest.TestCase):
         self.assertEqual(v.verdict, AGREES, v.reason)
         v, p = chi2_consistent(rng.normal(0.05, 0.01, 8), e)
         self.assertEqual(v.verdict, DISAGREES, v.reason)
+        # no alternative from the source (segregation, T-start, the RFM transient): never agrees
+        v, p = chi2_consistent(np.zeros(8), e)
+        self.assertEqual(v.verdict, UNRESOLVED, v.reason)
 
 
 class Series(unittest.TestCase):
