@@ -24,6 +24,17 @@ class Claim:
     resolve: str = ""        # when not resolved: the budget that would resolve it
     chart: str = ""          # PNG path relative to the report folder
     values: dict = field(default_factory=dict)  # numbers for claims.csv
+    power: str = ""          # the test's power against the source's alternative at this length
+    null: str = ""           # the test's null hypothesis
+    alternative: str = ""    # the alternative the source names or shows, with its size
+    power_at: object = None  # k ↦ the power at k times the run's length (not written)
+
+
+def test_of(v):
+    """the null, alternative and power of a verdicts.Verdict, as Claim keywords"""
+    p = v.power
+    return dict(power=f"{p:.2f}" if p is not None and p == p else "", null=v.null,
+                alternative=v.alternative, power_at=v.power_at)
 
 
 BADGE = {AGREES: "#1a7f37", DISAGREES: "#c62828", UNRESOLVED: "#8a6d00"}
@@ -61,10 +72,11 @@ def write_csv(path, claims):
     keys = sorted({k for c in claims for k in c.values})
     with open(path, "w", newline="") as f:
         w = csv.writer(f)
-        w.writerow(["id", "topic", "where", "verdict", "measured", "reason"] + keys)
+        w.writerow(["id", "topic", "where", "verdict", "power", "measured", "reason", "null",
+                    "alternative"] + keys)
         for c in claims:
-            w.writerow([c.id, c.topic, c.where, c.verdict, c.measured, c.reason]
-                       + [c.values.get(k, "") for k in keys])
+            w.writerow([c.id, c.topic, c.where, c.verdict, c.power, c.measured, c.reason, c.null,
+                        c.alternative] + [c.values.get(k, "") for k in keys])
 
 
 def write_markdown(path, title, intro, meta, claims, notes):
@@ -73,13 +85,14 @@ def write_markdown(path, title, intro, meta, claims, notes):
     lines += [f"- **{k}**: {v}" for k, v in meta]
     lines += ["", f"**Verdicts**: {n[AGREES]} agree, {n[DISAGREES]} disagree, "
               f"{n[UNRESOLVED]} not resolved at this budget.", "",
-              "| claim | source says | program measured | verdict |", "|---|---|---|---|"]
+              "| claim | source says | program measured | verdict | power |",
+              "|---|---|---|---|---|"]
     def cell(t):
         return t.replace("|", "\\|").replace("\n", " ")
 
     for c in claims:
         lines.append(f"| [{c.id}](#{c.id}) | {cell(c.source)} ({cell(c.where)}) | "
-                     f"{cell(c.measured)} | **{c.verdict}** |")
+                     f"{cell(c.measured)} | **{c.verdict}** | {cell(c.power) or '—'} |")
     topic = None
     for c in claims:
         if c.topic != topic:
@@ -88,6 +101,9 @@ def write_markdown(path, title, intro, meta, claims, notes):
         lines += ["", f"### {c.id}", "", f"<a id=\"{c.id}\"></a>", "",
                   f"> {c.source}", ">", f"> — {c.where}", "",
                   f"**Measured**: {c.measured}", "", f"**Verdict: {c.verdict}** — {c.reason}"]
+        if c.power or c.null:
+            lines += ["", f"**Power**: {c.power or '—'} (null: {c.null or '—'}; alternative: "
+                      f"{c.alternative or '—'})"]
         if c.resolve:
             lines += ["", f"**To resolve**: {c.resolve}"]
         if c.chart:
@@ -128,7 +144,7 @@ def write_html(path, title, intro, meta, claims, notes):
     out += ["</ul>", f"<p><b>Verdicts</b>: {n[AGREES]} agree, {n[DISAGREES]} disagree, "
             f"{n[UNRESOLVED]} not resolved at this budget.</p>",
             "<table><tr><th>claim</th><th>source says</th><th>program measured</th>"
-            "<th>verdict</th></tr>"]
+            "<th>verdict</th><th>power</th></tr>"]
 
     def badge(v):
         return f'<span class="badge" style="background:{BADGE[v]}">{e(v)}</span>'
@@ -136,7 +152,7 @@ def write_html(path, title, intro, meta, claims, notes):
     for c in claims:
         out.append(f'<tr><td><a href="#{e(c.id)}">{e(c.id)}</a></td><td>{e(c.source)} '
                    f"<i>({e(c.where)})</i></td><td>{e(c.measured)}</td><td>{badge(c.verdict)}"
-                   "</td></tr>")
+                   f"</td><td>{e(c.power) or '—'}</td></tr>")
     out.append("</table>")
     topic = None
     for c in claims:
@@ -147,6 +163,9 @@ def write_html(path, title, intro, meta, claims, notes):
                 f"<blockquote>{e(c.source)}<br>— <i>{e(c.where)}</i></blockquote>",
                 f"<p><b>Measured</b>: {e(c.measured)}</p>",
                 f"<p><b>Verdict</b>: {e(c.reason)}</p>"]
+        if c.power or c.null:
+            out.append(f"<p><b>Power</b>: {e(c.power or '—')} (null: {e(c.null or '—')}; "
+                       f"alternative: {e(c.alternative or '—')})</p>")
         if c.resolve:
             out.append(f"<p><b>To resolve</b>: {e(c.resolve)}</p>")
         out.append(_img(folder, c.chart))
