@@ -8,6 +8,7 @@ from report import Claim
 from tapping_data import (NEG, NEXT, ROT, Study, _fig, _finish, _pm, _save, block_bootstrap,
                           column, sigma_err, steady_window, taps_needed)
 from tapping_edwards import quadron_claims, q_linear, reference_overlap, two_references
+from tapping_protocols import protocol_claims
 from verdicts import (AGREES, DISAGREES, UNRESOLVED, below_bound, chi2_sf,
                       compare_value, extremum, mean_err, step_change)
 
@@ -308,6 +309,7 @@ def claims(folder, budget):
     out += [normality(st, budget), reference_overlap(st, budget), q_linear(st, budget),
             two_references(st, budget)]
     out += quadron_claims(st, budget)
+    out += protocol_claims(st, budget)
     out += [stress(st, budget), segregation(st, budget)]
     runs = st.runs()
     taps = ", ".join(f"{r['label']} {r['n_used']:.0f}" for r in runs)

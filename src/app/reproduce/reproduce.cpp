@@ -218,12 +218,18 @@ int reproduce_command(const ReproduceOptions& opt) {
   if (begun.empty())
     throw InputError(out, "", "no sweep of the study has begun: nothing to report");
   if (plan.study == "tapping") {
-    AnalyzeOptions ao;
-    for (const auto& s : begun) ao.dirs.push_back((dir / "sweeps" / s.name).string());
+    // the protocols together; the time-step check's runs apart (their labels repeat the
+    // study's and they are no part of its fits)
+    AnalyzeOptions ao, check;
+    for (const auto& s : begun)
+      (s.name == "timestep" ? check : ao).dirs.push_back((dir / "sweeps" / s.name).string());
     ao.out = (dir / "analysis").string();
-    ao.quiet = opt.quiet;
-    ao.discard_auto = true;  // a weak pulse compacts the pile over far more than 10 taps
-    code = analyze_command(ao);
+    check.out = (dir / "analysis" / "timestep").string();
+    for (AnalyzeOptions* a : {&ao, &check}) {
+      a->quiet = opt.quiet;
+      a->discard_auto = true;  // a weak pulse compacts the pile over far more than 10 taps
+      if (!a->dirs.empty()) code = std::max(code, analyze_command(*a));
+    }
   } else {
     for (const auto& s : begun) {
       AnalyzeOptions ao;
