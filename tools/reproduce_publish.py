@@ -7,7 +7,9 @@ from them); no raw runs.
 usage: reproduce_publish.py RUN_DIR DOCS_DIR      (e.g. runs/reproduce-tapping-quick
                                                    docs/reproduction/tapping-quick)"""
 import glob
+import json
 import os
+import re
 import shutil
 import sys
 
@@ -34,6 +36,14 @@ def main():
     shutil.copytree(os.path.join(src, "series"), os.path.join(dst, "series"))
     for png in glob.glob(os.path.join(src, "charts", "*.png")):
         shutil.copy2(png, os.path.join(dst, "charts"))
+    # the plan's command as a reader types it: where this machine put the runs is not part of it
+    plan = os.path.join(dst, "plan.json")
+    if os.path.exists(plan):
+        with open(plan) as f:
+            p = json.load(f)
+        p["command"] = re.sub(r" --out \S+| --out '[^']*'", "", p.get("command", ""))
+        with open(plan, "w") as f:
+            f.write(json.dumps(p, indent=2, ensure_ascii=False) + "\n")
     # the analysis' summary tables, folder by folder (RFM: one per sweep)
     for path in glob.glob(os.path.join(src, "analysis", "**", "*"), recursive=True):
         if os.path.basename(path) in SUMMARIES:
