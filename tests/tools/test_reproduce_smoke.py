@@ -92,7 +92,8 @@ class ReproduceSmoke(unittest.TestCase):
         for d, _, files in os.walk(pub):
             for f in files:
                 path = os.path.join(d, f)
-                data = gzip.open(path).read() if f.endswith(".gz") else open(path, "rb").read()
+                with (gzip.open if f.endswith(".gz") else open)(path, "rb") as fh:
+                    data = fh.read()
                 self.assertNotIn(os.path.realpath(out).encode(), data, path)
         with open(os.path.join(pub, "report.json")) as f:
             inputs = json.load(f)["inputs"]
@@ -111,8 +112,8 @@ class ReproduceSmoke(unittest.TestCase):
         with gzip.open(os.path.join(pub, "series", summary + ".gz"), "wb") as f:
             f.write(b"".join(head) if summary.endswith(".csv") else b'{"runs": []}')
         p = subprocess.run(cmd, capture_output=True, text=True, timeout=600)
-        changed = p.returncode != 0 or open(os.path.join(pub, "claims.csv"), "rb").read() != \
-            shipped["claims.csv"]
+        with open(os.path.join(pub, "claims.csv"), "rb") as fh:
+            changed = p.returncode != 0 or fh.read() != shipped["claims.csv"]
         self.assertTrue(changed, "claims.csv did not change with its series emptied")
         # not a report folder: a clear refusal
         p = subprocess.run([BINARY, "reproduce", study, "--budget", "smoke", "--out",
