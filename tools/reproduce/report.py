@@ -9,6 +9,7 @@ import os
 import platform
 import subprocess
 
+import departures
 from verdicts import AGREES, DISAGREES, UNRESOLVED
 
 
@@ -79,16 +80,33 @@ def write_csv(path, claims):
                         c.alternative] + [c.values.get(k, "") for k in keys])
 
 
-def write_markdown(path, title, intro, meta, claims, notes):
+def _cell(t):
+    return t.replace("|", "\\|").replace("\n", " ")
+
+
+def departures_markdown(study):
+    """the departures table of a report's header, in Markdown"""
+    lines = ["## Departures from the source", "", departures.head(study), "",
+             "| departure | source printed | program runs | why | effect measured |",
+             "|---|---|---|---|---|"]
+    for what, printed, runs, why, (text, link), effect in departures.rows(study):
+        lines.append(f"| {_cell(what)} | {_cell(printed)} | {_cell(runs)} | {_cell(why)} "
+                     f"([{text}]({link})) | {_cell(effect)} |")
+    return lines
+
+
+def write_markdown(path, title, intro, meta, claims, notes, study=""):
     n = _counts(claims)
     lines = [f"# {title}", "", intro, ""]
     lines += [f"- **{k}**: {v}" for k, v in meta]
-    lines += ["", f"**Verdicts**: {n[AGREES]} agree, {n[DISAGREES]} disagree, "
+    if study:
+        lines += [""] + departures_markdown(study)
+    lines += ["", "## Verdicts", "",
+              f"**Verdicts**: {n[AGREES]} agree, {n[DISAGREES]} disagree, "
               f"{n[UNRESOLVED]} not resolved at this budget.", "",
               "| claim | source says | program measured | verdict | power |",
               "|---|---|---|---|---|"]
-    def cell(t):
-        return t.replace("|", "\\|").replace("\n", " ")
+    cell = _cell
 
     for c in claims:
         lines.append(f"| [{c.id}](#{c.id}) | {cell(c.source)} ({cell(c.where)}) | "
@@ -123,7 +141,19 @@ def _img(folder, rel):
     return f'<img alt="{html.escape(rel)}" src="data:image/png;base64,{data}">'
 
 
-def write_html(path, title, intro, meta, claims, notes):
+def departures_html(study):
+    """the departures table of a report's header, in HTML"""
+    e = html.escape
+    out = ["<h2>Departures from the source</h2>", f"<p>{e(departures.head(study))}</p>",
+           "<table><tr><th>departure</th><th>source printed</th><th>program runs</th>"
+           "<th>why</th><th>effect measured</th></tr>"]
+    for what, printed, runs, why, (text, link), effect in departures.rows(study):
+        out.append(f"<tr><td>{e(what)}</td><td>{e(printed)}</td><td>{e(runs)}</td>"
+                   f'<td>{e(why)} (<a href="{e(link)}">{e(text)}</a>)</td><td>{e(effect)}</td></tr>')
+    return out + ["</table>"]
+
+
+def write_html(path, title, intro, meta, claims, notes, study=""):
     folder = os.path.dirname(os.path.abspath(path))
     e = html.escape
     n = _counts(claims)
@@ -141,8 +171,11 @@ def write_html(path, title, intro, meta, claims, notes):
            ".claim{border-top:1px solid #ddd;margin-top:1.5em;padding-top:0.5em}",
            "</style></head><body>", f"<h1>{e(title)}</h1>", f"<p>{e(intro)}</p>", "<ul>"]
     out += [f"<li><b>{e(k)}</b>: {e(str(v))}</li>" for k, v in meta]
-    out += ["</ul>", f"<p><b>Verdicts</b>: {n[AGREES]} agree, {n[DISAGREES]} disagree, "
-            f"{n[UNRESOLVED]} not resolved at this budget.</p>",
+    out.append("</ul>")
+    if study:
+        out += departures_html(study)
+    out += ["<h2>Verdicts</h2>", f"<p><b>Verdicts</b>: {n[AGREES]} agree, {n[DISAGREES]} "
+            f"disagree, {n[UNRESOLVED]} not resolved at this budget.</p>",
             "<table><tr><th>claim</th><th>source says</th><th>program measured</th>"
             "<th>verdict</th><th>power</th></tr>"]
 
@@ -177,13 +210,16 @@ def write_html(path, title, intro, meta, claims, notes):
         f.write("\n".join(out) + "\n")
 
 
-def write_report(folder, title, intro, meta, claims, notes=()):
+def write_report(folder, title, intro, meta, claims, notes=(), study=""):
+    """study ("tapping", "rfm") puts its departures table in the header"""
     ids = [c.id for c in claims]
     if len(ids) != len(set(ids)):
         raise ValueError("claim ids repeat: " + ", ".join(ids))
     for c in claims:
         if c.verdict not in BADGE:
             raise ValueError(f"claim {c.id}: verdict {c.verdict!r}")
-    write_markdown(os.path.join(folder, "report.md"), title, intro, meta, claims, list(notes))
-    write_html(os.path.join(folder, "report.html"), title, intro, meta, claims, list(notes))
+    write_markdown(os.path.join(folder, "report.md"), title, intro, meta, claims, list(notes),
+                   study)
+    write_html(os.path.join(folder, "report.html"), title, intro, meta, claims, list(notes),
+               study)
     write_csv(os.path.join(folder, "claims.csv"), claims)

@@ -7,6 +7,7 @@ import numpy as np
 from report import Claim, test_of
 from tapping_data import (NEG, ROT, Study, _fig, _finish, _pm, _save, block_bootstrap, column,
                           sigma_err, steady_window)
+from tapping_protocols import protocol_claims
 from tapping_edwards import (quadron_claims, q_linear, reference_overlap, sigma_peak_effect,
                              two_references)
 from verdicts import (AGREES, DISAGREES, P_KEEP, P_REJECT, UNRESOLVED, Verdict, below_bound,
@@ -390,6 +391,7 @@ def claims(folder, budget):
     out += [normality(st, budget), reference_overlap(st, budget), q_linear(st, budget),
             two_references(st, budget)]
     out += quadron_claims(st, budget)
+    out += protocol_claims(st, budget)
     out += [stress(st, budget), segregation(st, budget)]
     runs = st.runs()
     taps = ", ".join(f"{r['label']} {r['n_used']:.0f}" for r in runs)
