@@ -27,3 +27,16 @@ def test_stubs_match_the_module(gransim):
               and callable(getattr(gransim._gransim, n))}
     assert public <= named, public - named
     assert os.path.exists(os.path.join(os.path.dirname(stub), "py.typed"))
+
+
+def test_api_reference_names_everything(gransim):
+    # docs/python-api.md (tools/python_api_doc.py) has a heading for every export of the
+    # package and every public member of its classes
+    with open(os.path.join(conftest.SOURCE_DIR, "docs", "python-api.md"), encoding="utf-8") as f:
+        headings = {line.split("`")[1].split("(")[0] for line in f if line.startswith("#")
+                    and "`" in line}
+    missing = {n for n in gransim.__all__ if n not in headings}
+    for cls in (gransim.Simulation, gransim.Scene, gransim.Renderer, gransim.TrajectoryWriter):
+        missing |= {f"{cls.__name__}.{n}" for n in dir(cls) if not n.startswith("_")
+                    and f"{cls.__name__}.{n}" not in headings}
+    assert not missing, f"not in docs/python-api.md (run tools/python_api_doc.py): {missing}"
