@@ -53,7 +53,8 @@ from .run_dir import read_csv, read_run  # noqa: F401
 __version__ = _gransim.__version__
 
 __all__ = [
-    "HealthError", "InputError", "OutputError", "RenderError", "Renderer", "Scene", "Simulation",
+    "HealthError", "InputError", "OutputError", "PathNotFoundError", "RenderError", "Renderer",
+    "Scene", "Simulation",
     "autocorr_time", "beta_from_phi", "beta_from_volume", "fit_quadron", "have_movie",
     "have_osmesa", "load_scene", "mser_truncation", "normality_chi2", "quadron_gas_phi", "quadron_lnz",
     "quadron_phi", "read_csv", "read_png", "read_run", "rfm", "scene_toml", "tap_analysis",
@@ -61,11 +62,18 @@ __all__ = [
 ]
 
 
+class PathNotFoundError(FileNotFoundError, InputError):
+    """a path given to gransim does not exist: a FileNotFoundError, and an InputError (a
+    ValueError) as every other bad input, with .where (the path) and .key (what it was for)"""
+
+
 def _existing(path, what):
-    """path as a str, or FileNotFoundError naming it"""
+    """path as a str, or PathNotFoundError naming it"""
     path = os.fspath(path)
     if not os.path.exists(path):
-        raise FileNotFoundError(errno.ENOENT, f"{what} not found", path)
+        e = PathNotFoundError(errno.ENOENT, f"{what} not found", path)
+        e.where, e.key = path, what
+        raise e
     return path
 
 
