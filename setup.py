@@ -53,7 +53,8 @@ class CMakeBuild(build_ext):
         ]
         try:
             import pybind11
-            args.append(f"-Dpybind11_DIR={pybind11.get_cmake_dir()}")
+            # searched after the system's config (CMakeLists.txt), so that both builds agree
+            args.append(f"-DGS_PYBIND11_HINT={pybind11.get_cmake_dir()}")
         except ImportError:
             pass  # CMake looks for pybind11's config in its usual places
         if shutil.which("ccache") and "CMAKE_CXX_COMPILER_LAUNCHER" not in os.environ:
