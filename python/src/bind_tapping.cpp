@@ -3,6 +3,8 @@
 // synthetic ideal quadron gas with known answers
 #include <pybind11/stl.h>
 
+#include <cmath>
+#include <optional>
 #include <string>
 
 #include "analysis/tap_analysis.hpp"
@@ -125,18 +127,18 @@ Series optional_series(const py::dict& run, const char* key) {
 void bind_tapping(py::module_& m) {
   m.def(
       "tap_analysis",
-      [](const py::list& runs, int discard, double level, double alpha, double test_area,
-         const std::string& reference, const std::string& reference2, const std::string& method,
-         int bins, double phi_rlp, double phi_rcp, int bootstrap, const std::string& out_dir,
-         bool discard_auto) {
+      [](const py::list& runs, int discard, double level, double alpha,
+         std::optional<double> test_area, const std::string& reference,
+         const std::string& reference2, const std::string& method, int bins, double phi_rlp,
+         double phi_rcp, int bootstrap, const std::string& out_dir, bool discard_auto) {
         std::vector<TapRunInput> in;
         for (const auto& item : runs) {
           const auto run = item.cast<py::dict>();
           TapRunInput r;
           r.label = run.contains("label") ? run["label"].cast<std::string>() : "";
-          r.protocol =
-              run.contains("protocol") ? run["protocol"].cast<std::string>() : "negative_g";
-          r.control = run.contains("control") ? run["control"].cast<double>() : 0.0;
+          // a series without protocol or control is of unknown origin, not a negative-g run
+          r.protocol = run.contains("protocol") ? run["protocol"].cast<std::string>() : "";
+          r.control = run.contains("control") ? run["control"].cast<double>() : std::nan("");
           r.series.source = r.label.empty() ? "run " + std::to_string(in.size()) : r.label;
           r.series.phi = run["phi"].cast<Series>();
           r.series.phi_left = optional_series(run, "phi_left");
@@ -152,7 +154,11 @@ void bind_tapping(py::module_& m) {
         o.discard_auto = discard_auto;
         o.level = level;
         o.alpha = alpha;
-        o.test_area = test_area;
+        // no test area: the φ statistics only (no β̂, no quadron fit), as `gransim analyze`
+        if (test_area && !(*test_area > 0.0))
+          throw InputError("tap_analysis", "test_area",
+                           "must be > 0 (m²), or None for the φ statistics only");
+        o.test_area = test_area.value_or(0.0);
         o.reference = reference;
         o.reference2 = reference2;
         o.overlap = overlap_options(method, bins, o.overlap.min_fraction);
@@ -189,7 +195,7 @@ void bind_tapping(py::module_& m) {
         d["runs"] = summaries;
         d["ref"] = r.ref;
         d["ref2"] = r.ref2;
-        d["v_g"] = r.v_g;
+        d["v_g"] = r.beta.empty() ? py::object(py::none()) : py::object(py::float_(r.v_g));
         d["beta"] = beta;
         d["beta2"] = beta2;
         d["kde"] = kde;
@@ -199,12 +205,14 @@ void bind_tapping(py::module_& m) {
         return d;
       },
       py::arg("runs"), py::arg("discard") = 10, py::arg("level") = 0.95, py::arg("alpha") = 0.05,
-      py::arg("test_area") = 0.16, py::arg("reference") = "", py::arg("reference2") = "",
+      py::arg("test_area") = py::none(), py::arg("reference") = "", py::arg("reference2") = "",
       py::arg("method") = "histogram", py::arg("bins") = 0, py::arg("phi_rlp") = 0.81,
       py::arg("phi_rcp") = 0.855, py::arg("bootstrap") = 100, py::arg("out_dir") = "",
       py::arg("discard_auto") = false,
       "the tapping analysis (as `gransim analyze`) of runs given as dicts with 'phi' (per tap) "
-      "and optionally 'label', 'protocol', 'control', 'tap', 'phi_left', 'phi_right'");
+      "and optionally 'label', 'protocol', 'control', 'tap', 'phi_left', 'phi_right'. "
+      "test_area is the test region's area in m² (V_g = test_area·φ̄_ref); None: the φ "
+      "statistics only, with a note in 'notes' (β̂ and the quadron fit need it)");
 
   m.def(
       "beta_from_phi",

@@ -48,8 +48,12 @@ Simulation::Simulation(World w, const SimSettings& settings, BroadPhaseKind bp)
   exec_->run(parts(), broad_->update(w_, team_), {}, w_.s.step, false, nullptr);
   auto ch = channels();
   integ_->init(ch, dt_);
-  // the energy yardstick of the blow-up check: 5% of the start's kinetic + elastic energy, or
-  // of lifting every grain by one radius, whichever is larger
+  take_energy_yardstick();
+}
+
+// the energy yardstick of the blow-up check: 5% of the start's kinetic + elastic energy, or of
+// lifting every grain by one radius, whichever is larger
+void Simulation::take_energy_yardstick() {
   energy_ref_ = mechanical_energy();
   double lift = 0.0;
   for (std::size_t i = 0; i < w_.size(); ++i) lift += w_.mass[i] * norm(gravity_) * w_.radius[i];
