@@ -1,9 +1,9 @@
 // the OpenMP team of a run, as run.json reports it: with thread binding asked for
-// (OMP_PROC_BIND, as tools/slurm_sweep.sh sets it) gransim still restarts itself with a longer
-// spin count (src/main.cpp), and the restarted process must keep every CPU it was given, not
-// only the one the runtime had bound its first thread to: each thread on a CPU of its own
+// (OMP_PROC_BIND, as tools/slurm_sweep.sh sets it) each thread runs on a CPU of its own; and the
+// wait policy gransim chooses (src/main.cpp) reaches the runtime in the one process it starts
 #include <gtest/gtest.h>
 #include <sched.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -66,18 +66,44 @@ TEST_F(Threads, RunJsonReportsTheTeam) {
 }
 
 // two threads with binding on: two CPUs (the failure guarded against: both threads bound to the
-// first one, after the restart inherited the first thread's one-CPU mask, which leaves a
-// 2-thread run slower than one thread)
-TEST_F(Threads, BoundThreadsKeepTheirOwnCpusAfterTheRestart) {
+// first one, which leaves a 2-thread run slower than one thread)
+TEST_F(Threads, BoundThreadsKeepTheirOwnCpus) {
   if (allowed_cpus() < 2) GTEST_SKIP() << "this machine gives the test one CPU";
   for (const char* bind : {"OMP_PROC_BIND=true", "OMP_PROC_BIND=close"}) {
-    // no spin count or wait policy: gransim restarts itself (src/main.cpp)
+    // no spin count or wait policy: gransim chooses the spin count (src/main.cpp)
     const fs::path js = run({"OMP_NUM_THREADS=2", bind, "GOMP_SPINCOUNT=", "OMP_WAIT_POLICY="});
     EXPECT_EQ(json_int(js, "omp_threads"), 2) << bind;
     EXPECT_EQ(json_int(js, "omp_cpus"), 2) << bind;
   }
   const fs::path js = run({"OMP_NUM_THREADS=2", "OMP_PROC_BIND=false"});
   EXPECT_EQ(json_int(js, "omp_cpus"), 2);
+}
+
+// what the runtime itself says it uses (OMP_DISPLAY_ENV prints it once per process start): the
+// long spin unless the user chose one or runs one thread, and one start only (no restart)
+TEST_F(Threads, WaitPolicyReachesTheRuntimeWithoutARestart) {
+  auto display = [&](const std::vector<std::string>& env) {
+    testing::Launch how;
+    how.env = env;
+    how.env.push_back("OMP_DISPLAY_ENV=true");
+    const testing::Outcome o = testing::run_binary({"--version"}, dir_ / "display.txt", how);
+    EXPECT_TRUE(o.exited && o.code == 0) << o.output;
+    return o.output;
+  };
+  auto count = [](const std::string& text, const std::string& what) {
+    std::size_t n = 0;
+    for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1))
+      ++n;
+    return n;
+  };
+  const std::string chosen = display({"OMP_NUM_THREADS=2", "GOMP_SPINCOUNT=", "OMP_WAIT_POLICY="});
+  EXPECT_EQ(count(chosen, "OPENMP DISPLAY ENVIRONMENT BEGIN"), 1u) << chosen;
+  if (sysconf(_SC_NPROCESSORS_ONLN) >= 2)
+    EXPECT_NE(chosen.find("GOMP_SPINCOUNT = '10000000'"), std::string::npos) << chosen;
+  const std::string user = display({"OMP_NUM_THREADS=2", "GOMP_SPINCOUNT=4321"});
+  EXPECT_NE(user.find("GOMP_SPINCOUNT = '4321'"), std::string::npos) << user;
+  const std::string one = display({"OMP_NUM_THREADS=1", "GOMP_SPINCOUNT=", "OMP_WAIT_POLICY="});
+  EXPECT_EQ(one.find("GOMP_SPINCOUNT = '10000000'"), std::string::npos) << one;
 }
 
 }  // namespace

@@ -41,7 +41,7 @@ std::string default_out(const std::string& name) {
 }
 
 void print_banner(const SceneSpec& scene, const Simulation& sim, const ProtocolClock& clock) {
-  const double dt = scene.integrator.dt;
+  const double dt = sim.dt();  // the step the simulation takes, whatever the scene asked
   const auto nsteps = static_cast<long long>(std::llround(clock.nominal_duration() / dt));
   const std::string sorted =
       sim.sort_every() > 0 ? ", sorted every " + std::to_string(sim.sort_every()) + " steps" : "";
