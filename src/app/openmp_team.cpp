@@ -2,6 +2,9 @@
 
 #include <sched.h>
 
+#include <cstdlib>
+#include <initializer_list>
+
 #ifdef _OPENMP
 #include <omp.h>
 #endif
@@ -29,6 +32,15 @@ OpenMpTeam openmp_team() {
 #endif
   t.cpus = CPU_COUNT(&all) > 0 ? CPU_COUNT(&all) : 1;
   return t;
+}
+
+bool wait_policy_chosen() {
+  // libgomp ignores an empty value as it ignores a missing one
+  for (const char* name : {"OMP_WAIT_POLICY", "GOMP_SPINCOUNT"}) {
+    const char* v = std::getenv(name);
+    if (v != nullptr && *v != '\0') return true;
+  }
+  return false;
 }
 
 }  // namespace gs
