@@ -13,6 +13,7 @@
 #include <thread>
 
 #include "app/locations.hpp"
+#include "app/openmp_team.hpp"
 #include "app/progress.hpp"
 #include "app/run/run.hpp"
 #include "app/run/run_info.hpp"
@@ -73,6 +74,9 @@ std::vector<std::string> child_environment(int threads) {
     env.push_back(std::move(v));
   }
   if (!has_omp) env.push_back("OMP_NUM_THREADS=" + std::to_string(std::max(1, threads)));
+  // a child of several threads waits with a long spin unless the user chose a policy: its
+  // runtime reads the choice as it starts, so the parent makes it (docs/threads.md)
+  if (threads > 1 && !wait_policy_chosen()) env.push_back(kSpinCount);
   return env;
 }
 
