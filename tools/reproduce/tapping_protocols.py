@@ -262,6 +262,19 @@ def references_verdict(rows, alts):
                         "histograms of one tap a bin; errors with τ_int)")
 
 
+def _references_chart(st, refs, betas, rows):
+    fig, ax = _fig()
+    phi = {r["label"]: r["phi_mean"] for r in st.runs()}
+    for ref, mk in zip(refs, "sDo"):
+        shift = next((c for o, c, _, _, _ in rows if o == ref), 0.0)
+        pts = sorted((phi[x], b + shift, e) for x, (b, e) in betas.get(ref, {}).items())
+        if pts:
+            ax.errorbar([p[0] for p in pts], [p[1] for p in pts],
+                        yerr=[1.96 * p[2] for p in pts], fmt=mk, capsize=2,
+                        label=f"reference {ref}" + (" (+ offset)" if shift else ""))
+    return _finish(st, fig, ax, "φ̄", "β̂ − β_ref (1/m²)", "cross_references", 7)
+
+
 def cross_references(st, budget):
     """Fig. 8c: β̂ with references of either protocol differ by a constant"""
     refs = _references(st)
@@ -284,25 +297,19 @@ def cross_references(st, budget):
                            row[r]["sigma"], v_g)
     alts = {o: {x: gauss(x, refs[0]) - gauss(x, o) for x, _, _ in d} for o, _, _, _, d in rows}
     v = references_verdict(rows, alts)
+    taps = any(len(u) for u in used.values())
     if dof < 2:
         v.reason += (" (references " + (", ".join(refs) or "none") + "; "
-                     + ("no per-tap series in this folder" if not any(len(u) for u in used.values())
-                        else "their taps do not overlap enough") + ")")
-    fig, ax = _fig()
-    phi = {r["label"]: r["phi_mean"] for r in st.runs()}
-    for ref, mk in zip(refs, "sDo"):
-        shift = next((c for o, c, _, _, _ in rows if o == ref), 0.0)
-        pts = sorted((phi[x], b + shift, e) for x, (b, e) in betas.get(ref, {}).items())
-        if pts:
-            ax.errorbar([p[0] for p in pts], [p[1] for p in pts],
-                        yerr=[1.96 * p[2] for p in pts], fmt=mk, capsize=2,
-                        label=f"reference {ref}" + (" (+ offset)" if shift else ""))
-    chart = _finish(st, fig, ax, "φ̄", "β̂ − β_ref (1/m²)", "cross_references", 7)
+                     + ("their taps do not overlap enough" if taps else
+                        "no per-tap series in this folder") + ")")
+    chart = _references_chart(st, refs, betas, rows) if any(len(b) > 1 for b in betas.values()) \
+        else ""  # no β̂ to draw without the runs' taps
     meas = "; ".join(f"{refs[0]} − {o}: offset {c:.4g} ± {1.96 * e:.2g} 1/m² over {n} runs"
                      for o, c, e, n, _ in rows) or f"references {', '.join(refs) or 'none'}"
     resolve = ""
     if v.verdict == UNRESOLVED:
         resolve = (_need(v, _n_med(st)) if math.isfinite(v.power) else
+                   f"the {NEXT[budget]} budget" if taps else
                    "the per-tap series of the runs (shipped series/ or the run folders)")
     return Claim("cross-references", "Across the protocols", "It even applies if we use "
                  "samples from the “negative g” protocol as reference distribution, in "
