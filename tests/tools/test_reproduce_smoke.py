@@ -28,7 +28,7 @@ CLAIMS = {
                 "halves-mean", "halves-sigma", "normality", "reference-overlap", "q-linear",
                 "two-references",
                 "one-curve", "quadron-a", "protocol-fits", "lnz", "sigma-phi", "rot-sigma",
-                "sigma-protocols", "cross-references", "timestep", "stress", "segregation"],
+                "cross-references", "timestep", "stress", "segregation"],
     "rfm": ["T-start", "T-mean-field", "transient", "Df-Sk", "Df-freepath", "alpha-reference",
             "alpha-structure", "xi2", "xi-m", "G1-bisection"],
 }

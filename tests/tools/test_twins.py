@@ -130,6 +130,70 @@ class OneCurve(Twin):
                 one_curve_test(grp, alts["rot"], e, jac, alts))
 
 
+class ProtocolClaims(Twin):
+    """sigma-phi and rot-sigma (σ_φ of runs on (17) against one group on the curve of N z̄/V_g
+    2 % off, the fit's a drawn with its error), cross-references (β̂ of the ideal quadron are
+    additive; Gaussian decoys' are not, App. A, A4) and timestep (no alternative sized: never
+    agrees)"""
+
+    def test_sigma_curve(self):
+        from tapping_protocols import sigma_of_phi, sigma_verdict
+        phi, _ = quadron_runs(np.linspace(1.2e4, 3.5e4, 12))
+        grp = ["left"] * 4 + ["right"] * 4 + ["rot"] * 4
+        sig = np.array([sigma_of_phi(p, A, V_G) for p in phi])
+        off = np.array([sigma_of_phi(p, A * 1.02, V_G) for p in phi])
+        bad = np.where(np.array(grp) == "rot", off, sig)
+        for sel in (slice(None), slice(8, 12)):  # every run (sigma-phi); rotating g (rot-sigma)
+            for n in (200, 3000, 1e4, 1e5):
+                e = 0.3 * sig[sel] / np.sqrt(n / 2)  # σ of σ_φ from n/2 independent taps
+                a_err = 16.0 * np.sqrt(215 / n)
+
+                def claim(y, r=None):
+                    a = A + (r.normal(0, a_err) if r is not None else 0.0)
+                    return sigma_verdict(phi[sel], y, e, grp[sel], a, a_err, V_G)[0]
+                self.assert_rules(lambda r: claim(sig[sel] + r.normal(0, e), r),
+                                  lambda r: claim(bad[sel] + r.normal(0, e), r),
+                                  claim(sig[sel]), claim(bad[sel]))
+
+    def test_cross_references(self):
+        from tapping_protocols import offsets_test, references_verdict
+        betas_true = np.linspace(1.2e4, 3.5e4, 10)
+        phi, sig = quadron_runs(betas_true)
+        runs = [f"x{i}" for i in range(10)]
+        refs = {"neg": 3, "rot": 6}  # the references are runs of the study
+        gauss = {(i, j): gauss_dbeta(phi[i], sig[i], phi[j], sig[j], V_G)
+                 for i in range(10) for j in refs.values()}
+        alts = {"rot": {runs[i]: gauss[i, 3] - gauss[i, 6] for i in range(10)}}
+
+        def claim(kind, e, r=None):
+            betas = {}
+            for ref, j in refs.items():
+                betas[ref] = {}
+                for i in range(10):
+                    d = betas_true[i] - betas_true[j] if kind == "edwards" else gauss[i, j]
+                    if i == j:
+                        betas[ref][runs[i]] = (0.0, 0.0)
+                    else:
+                        betas[ref][runs[i]] = (d + (r.normal(0, e) if r is not None else 0.0), e)
+            return references_verdict(offsets_test(betas, "neg", ["rot"])[2], alts)
+        for n in (200, 2000, 1e4, 1e6):
+            e = 1400.0 * np.sqrt(215 / n)  # β̂'s error of the standard run, scaled
+            self.assert_rules(lambda r: claim("edwards", e, r), lambda r: claim("gauss", e, r),
+                              claim("edwards", e), claim("gauss", e))
+
+    def test_timestep(self):
+        from tapping_timestep import compare, timestep_verdict
+        for n in (50, 500, 2500):
+            def claim(r, width):
+                x = r.normal(0.82, 0.003, n)
+                return timestep_verdict([compare(x, r.normal(0.82, 0.003 * width, n))])
+            self.assert_rules(lambda r: claim(r, 1.0), lambda r: claim(r, 1.1))
+            x = np.random.default_rng(0).normal(0.82, 0.003, n)
+            self.assertNotEqual(timestep_verdict([compare(x, x)]).verdict, DISAGREES)
+            wide = timestep_verdict([compare(x, 0.82 + 1.1 * (x - 0.82))])
+            self.assertNotEqual(wide.verdict, AGREES, wide.reason)
+
+
 class GaussianPair(unittest.TestCase):
     """App. A's formulas against the exact log-ratio of two Gaussian densities in V = V_g/φ"""
 

@@ -6,8 +6,8 @@ import numpy as np
 
 from report import Claim, test_of
 from tapping_data import NEG, NEXT, ROT, _fig, _finish, column, quadron_phi, sigma_err
-from verdicts import (AGREES, DISAGREES, UNRESOLVED, Verdict, below_bound, chi2_consistent, chi2_cov,
-                      chi2_power, chi2_sf, compare_value, decide, offset_test, scale_for)
+from verdicts import (AGREES, DISAGREES, UNRESOLVED, Verdict, below_bound, chi2_consistent,
+                      chi2_power, chi2_sf, compare_value, decide, offset_test)
 
 # "The relative deviation of the obtained fitting parameters is smaller than 2%" (section V):
 # the precision the paper gives its fit, and so the smallest protocol dependence it would see
@@ -353,7 +353,7 @@ def quadron_claims(st, budget):
                          "each protocol needs ≥ 3 runs with β̂ for its own fit", nxt))
 
     out.append(_lnz(st, budget))
-    out.append(_sigma_phi(st, a, lim, grp, fit.get("a_err", 0.0)))
+    out.append(_sigma_phi(st, budget))
     return out
 
 
@@ -444,47 +444,7 @@ def _lnz(st, budget):
                  _need(v, _n_med(st)), ch, **test_of(v))
 
 
-def _sigma_phi(st, a, lim, grp, a_err=0.0):
-    """Fig. 11: σ_φ(φ̄) of every run, both protocols, against eq. (17) on the fit"""
-    v_g = st.quadron.get("v_g", st.info.get("v_g"))
-    rows, res, err, pred, alts = [], [], [], [], {}
-    for r in st.runs():
-        q = quadron_sigma(r["phi_mean"], a, v_g, lim) if v_g else float("nan")
-        if not math.isfinite(q):
-            continue
-        rows.append(r)
-        pred.append(q)
-        res.append(r["sigma"] - q)
-        err.append(sigma_err(r))
-        alts.setdefault(grp[r["label"]], []).append(
-            (len(rows) - 1, quadron_sigma(r["phi_mean"], a * (1 + A_PREC), v_g, lim) - q))
-    # alternative: the group the test sees worst on a curve with N z̄/V_g 2 % off
-    best = None
-    for g, idx in alts.items():
-        lam = sum((d / err[i]) ** 2 for i, d in idx)
-        if best is None or lam < best[0]:
-            best = (lam, g, idx)
-    alt = [0.0] * len(rows)
-    for i, d in (best[2] if best else []):
-        alt[i] = d
-    # the fit's N z̄/V_g error moves every prediction together: its covariance
-    a_err = a_err if a_err and math.isfinite(a_err) else 0.0
-    jac = np.array([(quadron_sigma(r["phi_mean"], a + 1e-3 * a, v_g, lim)
-                     - quadron_sigma(r["phi_mean"], a - 1e-3 * a, v_g, lim)) / (2e-3 * a)
-                    for r in rows])
-    cov = np.diag(np.array(err) ** 2) + np.outer(jac, jac) * a_err ** 2
-    v, _ = chi2_cov(res, cov, "runs", alternative=alt if len(alts) >= 2 else None,
-                    alt_text=f"one group ({best[1] if best else '–'}) on eq. (17) with "
-                    f"N z̄/V_g {100 * A_PREC:.0f} % off (the paper's precision of its fit)")
-    fig, ax = _fig()
-    ax.errorbar(column(rows, "phi_mean"), column(rows, "sigma"), yerr=1.96 * np.array(err),
-                fmt="o", capsize=2, label="gransim")
-    ax.plot(column(rows, "phi_mean"), pred, "kx", label="eq. (17) on the ideal quadron fit")
-    ch = _finish(st, fig, ax, "φ̄", "σ_φ", "sigma-phi", 8)
-    prot = sorted({r["protocol"] for r in rows})
-    return Claim("sigma-phi", "Edwards statistics", "The data is in good agreement with the ideal "
-                 "quadron fit", "Fig. 11, eqs. (17), (26)",
-                 f"{len(rows)} runs ({', '.join(prot)}) against eq. (17) on the fit", v.verdict,
-                 v.reason + ". Gaussian pairs satisfy eq. (17) by construction (App. A, A5): only "
-                 "a protocol or branch dependence can fail it", _need(v, _n_med(st)), ch,
-                 **test_of(v))
+def _sigma_phi(st, budget):
+    """Fig. 11: σ_φ(φ̄) of every run, both protocols and branches, against eq. (17) on the fit"""
+    from tapping_protocols import sigma_phi  # the σ_φ claims share their test there
+    return sigma_phi(st, budget)

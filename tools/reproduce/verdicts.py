@@ -392,6 +392,24 @@ def feature_test(p, lam, dof, null, alt_text, text):
                   power_at=at if lam is not None else None)
 
 
+def focused_test(full, full_dof, part, part_dof, lam, null, alt_text, text):
+    """a χ² of every residual (any departure: `full` for full_dof) beside its part along the
+    source's alternative (`part` for part_dof, the most powerful against it; λ that
+    alternative's noncentrality), Bonferroni over the two: agrees when both keep the null at
+    2.5 % and the part had ≥ 80 % power at 2.5 %; disagrees when either rejects at 0.5 %.
+    The part carries few degrees of freedom, so data lying exactly on the alternative give a
+    part of λ and never agree; a full χ² of many runs alone would let them."""
+    p = min(1.0, 2.0 * min(chi2_sf(full, full_dof), chi2_sf(part, part_dof)))
+
+    def at(k):
+        return chi2_power(lam * k, part_dof, P_KEEP / 2) if lam is not None else float("nan")
+    text = (f"{text}; χ² = {full:.3g} for {full_dof} (every residual) and {part:.3g} for "
+            f"{part_dof} (along the alternative), Bonferroni over the two")
+    return decide(p, at(1.0), null, alt_text + (f" (noncentrality {lam:.3g})" if lam is not None
+                                                else ""), text, float("nan"),
+                  power_at=at if lam is not None else None)
+
+
 def chi2_sf(chi2, dof):
     """P(χ²_dof > chi2): the regularized upper incomplete gamma function Q(dof/2, chi2/2)."""
     a, x = 0.5 * dof, 0.5 * chi2
