@@ -36,18 +36,20 @@ struct TaggedRing : detail::Ring<kRingCap> {
   }
 };
 
-// clip the ring (x, y, flags f; kFresh: a's own vertices, every edge on a's boundary, f unused)
-// to the inside of b's edge from o along e (left of the edge, line included), into `out`.
-// A new vertex on an edge of a's boundary is a crossing; the edge that follows an exit runs
-// along b's edge line and so is not on a's boundary. Returns false, leaving `out` untouched,
+// clip the ring (x, y, flags f; kFresh: a's own vertices less (ox, oy), every edge on a's
+// boundary, f unused) to the inside of b's edge from o along e (left of the edge, line included),
+// into `out`. A new vertex on an edge of a's boundary is a crossing; the edge that follows an exit
+// runs along b's edge line and so is not on a's boundary. Returns false, leaving `out` untouched,
 // when the line cuts nothing off (the common case once a has been cut down to a small cap).
 // a's vertices are read in place, with no copy into a ring.
 template <bool kFresh>
 bool clip_tagged(int n, const double* x, const double* y, const std::uint8_t* f, TaggedRing& out,
-                 Vec2 o, Vec2 e) {
+                 Vec2 o, Vec2 e, double ox = 0.0, double oy = 0.0) {
   if (n == 0) return false;
+  auto vx = [&](int i) { return kFresh ? x[i] - ox : x[i]; };
+  auto vy = [&](int i) { return kFresh ? y[i] - oy : y[i]; };
   // side of vertex i (> 0 outside; NaN counts as neither inside nor outside)
-  auto side = [&](int i) { return (x[i] - o.x) * e.y - (y[i] - o.y) * e.x; };
+  auto side = [&](int i) { return (vx(i) - o.x) * e.y - (vy(i) - o.y) * e.x; };
   auto flags = [&](int i) -> unsigned { return kFresh ? kEdgeA : f[i]; };
   int m = 0;  // vertices written
   // append, merging an exact repeat of the previous vertex: crossing marks add up and the
@@ -71,11 +73,11 @@ bool clip_tagged(int n, const double* x, const double* y, const std::uint8_t* f,
   }
   if (!cut) return false;
   // Sutherland–Hodgman pass over the edges p → q
-  double px = x[n - 1], py = y[n - 1];
+  double px = vx(n - 1), py = vy(n - 1);
   double sp = s[n - 1];
   unsigned fp = flags(n - 1);
   for (int i = 0; i < n; ++i) {
-    const double qx = x[i], qy = y[i];
+    const double qx = vx(i), qy = vy(i);
     const double sq = s[i];
     const unsigned fq = flags(i);
     const unsigned on_a = fp & kEdgeA;
@@ -234,22 +236,10 @@ int facing_edge(const PolyRef& b, Vec2 d) {
   return k0;
 }
 
-// how many vertices of a lie inside b's edge line k (side ≤ 0): the vertices of the cap that
-// clipping a by that line leaves, less its two crossings
-int inside_count(const PolyRef& a, const PolyRef& b, int k) {
-  const double ox = b.x[k], oy = b.y[k], ex = b.ex(k), ey = b.ey(k);
-  int in = 0;
-  for (int i = 0; i < a.n; ++i) in += (a.x[i] - ox) * ey - (a.y[i] - oy) * ex <= 0.0;
-  return in;
-}
-
 }  // namespace
 
-// Clipping as clip_all (facing edge first, then the other edge lines in order), with three
-// differences that change the rounding, not the result:
-//  - the clipped polygon is the one whose cap inside the other's facing edge line has fewer
-//    vertices (a vertex of b pressed into a: b is clipped by a's lines, and its cap is already
-//    the final triangle);
+// The clips of clip_all (facing edge first, then the other edge lines in order), with two
+// differences:
 //  - every coordinate is taken relative to the clipping polygon's facing-edge vertex O, so the
 //    crossings are rounded at the pair's scale, not at the world's (a pile 0.5 m from the
 //    origin against overlaps of microns: the world frame loses five digits of the area);
@@ -261,33 +251,29 @@ int inside_count(const PolyRef& a, const PolyRef& b, int k) {
 //    shrinks the ring (its new vertices lie on old edges), so the box stays a bound for the rest
 //    of the loop.
 // Bounding circles reject separated pairs first (every clip sequence then ends empty).
-Overlap overlap(const PolyRef& pa, const PolyRef& pb, bool want_centroid) {
-  if (pa.n < 3 || pb.n < 3) return {};
-  const Vec2 dc = pb.mean - pa.mean;
-  const double rr = pa.radius + pb.radius;
+Overlap overlap(const PolyRef& a, const PolyRef& b, bool want_centroid) {
+  if (a.n < 3 || b.n < 3) return {};
+  const Vec2 dc = b.mean - a.mean;
+  const double rr = a.radius + b.radius;
   if (norm2(dc) > rr * rr) return {};
-  // the facing edges of b towards a and of a towards b; clip the polygon with the smaller cap
-  const int kb = facing_edge(pb, pa.mean - pb.mean);
-  const int ka = facing_edge(pa, pb.mean - pa.mean);
-  const bool swap = inside_count(pb, pa, ka) < inside_count(pa, pb, kb);
-  const PolyRef& a = swap ? pb : pa;
-  const PolyRef& b = swap ? pa : pb;
-  const int k0 = swap ? ka : kb;
+  const int k0 = facing_edge(b, a.mean - b.mean);
   // the local frame: origin O at b's vertex k0
   const double ox = b.x[k0], oy = b.y[k0];
-  TaggedRing r1, r2;
-  TaggedRing* cur = &r1;
-  TaggedRing* nxt = &r2;
-  r1.n = a.n;
-  for (int i = 0; i < a.n; ++i) {
-    r1.x[i] = a.x[i] - ox;
-    r1.y[i] = a.y[i] - oy;
-    r1.f[i] = kEdgeA;
-  }
   // b's vertex k in the local frame
   auto bx = [&](int k) { return b.x[k] - ox; };
   auto by = [&](int k) { return b.y[k] - oy; };
-  if (clip_tagged(*cur, *nxt, {0.0, 0.0}, {b.ex(k0), b.ey(k0)})) std::swap(cur, nxt);
+  // the first clip reads a in place; only when it cuts nothing off does a become the ring
+  TaggedRing r1, r2;
+  TaggedRing* cur = &r1;
+  TaggedRing* nxt = &r2;
+  if (!clip_tagged<true>(a.n, a.x, a.y, nullptr, r1, {0.0, 0.0}, {b.ex(k0), b.ey(k0)}, ox, oy)) {
+    r1.n = a.n;
+    for (int i = 0; i < a.n; ++i) {
+      r1.x[i] = a.x[i] - ox;
+      r1.y[i] = a.y[i] - oy;
+      r1.f[i] = kEdgeA;
+    }
+  }
   if (cur->n == 0) return {};
   // a box around the cap: centre (cx, cy), half-widths hx, hy (no division or square root on
   // the way from the first clip to the next, which wait for this)

@@ -85,12 +85,11 @@ class PolyStore {
 };
 
 /// exact overlap of prepared convex polygons a and b: the same intersection as
-/// overlap(Poly, Poly) (area, crossings c1 and c2 in either order, centroid), computed in a frame
+/// overlap(Poly, Poly) (area, crossings c1 and c2, centroid), computed in a frame
 /// local to the pair and so rounded at the pair's scale rather than the world's; `centroid` is
 /// only computed when asked for or when a caller needs it (fewer than two distinct crossings,
 /// or c1 == c2) and is left zero otherwise. Faster: bounding circles reject separated pairs,
-/// the polygon with the smaller cap is the one clipped, and edge lines that provably cut
-/// nothing of the cap are skipped.
+/// and edge lines that provably cut nothing of the cap are skipped.
 Overlap overlap(const PolyRef& a, const PolyRef& b, bool want_centroid = false);
 
 }  // namespace gs
