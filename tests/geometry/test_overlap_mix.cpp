@@ -104,7 +104,8 @@ TEST(PreparedOverlapMix, WithinTheWorldFrameBoundOfTheReference) {
   st.resize(2, kMaxPolyVerts - 1);
   long resting = 0, lines = 0;
   // the largest errors over the pairs with a contact line, per routine (0: world frame,
-  // 1: prepared), as multiples of ε·X·D (area), ε·D² (area), ε·X (point), ε·X/ℓ (normal)
+  // 1: prepared), as multiples of ε·X·D (area), ε·D² (area), ε·L (point), ε·L/ℓ (normal),
+  // L = X + D
   double worst[2][4] = {};
   // resting pairs (kinds 0–2): the largest relative area error in ε, per routine
   double rel[2] = {};
@@ -124,8 +125,8 @@ TEST(PreparedOverlapMix, WithinTheWorldFrameBoundOfTheReference) {
       for (int r = 0; r < 2; ++r) {
         worst[r][0] = std::max(worst[r][0], e[r]->area / (s.X * s.D));
         worst[r][1] = std::max(worst[r][1], e[r]->area / (s.D * s.D));
-        worst[r][2] = std::max(worst[r][2], e[r]->point / s.X);
-        worst[r][3] = std::max(worst[r][3], e[r]->normal * s.l / s.X);
+        worst[r][2] = std::max(worst[r][2], e[r]->point / (s.X + s.D));
+        worst[r][3] = std::max(worst[r][3], e[r]->normal * s.l / (s.X + s.D));
         if (kind < 3) rel[r] = std::max(rel[r], e[r]->area / s.A);
       }
       ++lines;
@@ -136,14 +137,18 @@ TEST(PreparedOverlapMix, WithinTheWorldFrameBoundOfTheReference) {
     const std::string who = r == 0 ? "world_" : "prepared_";
     RecordProperty(who + "area_per_XD", std::to_string(worst[r][0]));
     RecordProperty(who + "area_per_D2", std::to_string(worst[r][1]));
-    RecordProperty(who + "point_per_X", std::to_string(worst[r][2]));
-    RecordProperty(who + "normal_per_X_over_l", std::to_string(worst[r][3]));
+    RecordProperty(who + "point_per_L", std::to_string(worst[r][2]));
+    RecordProperty(who + "normal_per_L_over_l", std::to_string(worst[r][3]));
     RecordProperty(who + "resting_rel_area_per_eps", std::to_string(rel[r]));
   }
   // the local frame's gain: at the pile's scale (X ≈ 1.5 m, D ≈ 30 mm) the prepared routine's
   // area error in units of ε·D² is an order of magnitude below the world frame's
   EXPECT_LT(worst[1][1], 0.1 * worst[0][1]);
   EXPECT_LT(rel[1], 0.01 * rel[0]);
+  // the contact line: the worst cases (ill-conditioned crossings) no more than twice the world
+  // frame's
+  EXPECT_LE(worst[1][2], 2.0 * worst[0][2]);
+  EXPECT_LE(worst[1][3], 2.0 * worst[0][3]);
   // the mix reaches what it means to: resting contacts (every one of kinds 0–2 has a contact
   // line) and the other kinds
   EXPECT_EQ(resting, 2 * ((count + 7) / 8 + (count + 6) / 8 + (count + 5) / 8));
