@@ -5,8 +5,10 @@ cd "$(dirname "$0")/.."
 tools/setup.sh
 # what the tests alone need: clang-format (the sources are checked against .clang-format), a
 # browser (the reproduction report is opened in headless Chromium), the readers the snapshot
-# files are checked with (ASE, VTK, pandas) and pytest (the Python module's tests, tests/python/)
-test_packages=(clang-format chromium python3-ase python3-vtk9 python3-pandas python3-pytest)
+# files are checked with (ASE, VTK, pandas), pytest (the Python module's tests, tests/python/) and
+# Hypothesis (random arguments thrown at every function of the module, tests/python/test_fuzz.py)
+test_packages=(clang-format chromium python3-ase python3-vtk9 python3-pandas python3-pytest
+               python3-hypothesis)
 missing=()
 for p in "${test_packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
