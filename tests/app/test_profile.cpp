@@ -39,14 +39,12 @@ TEST(RunProfile, TableAtTheEndAndEveryStageInRunJson) {
   }
   const double loop = j["step_loop_s"].get<double>();
   EXPECT_GT(loop, 0.0);
-  // the laps are read on the loop's own monotonic clock inside its span: their sum never
-  // exceeds it, however busy the machine (how closely they add up is tested on an injected
-  // clock, tests/sim/test_step_profile.cpp)
+  // how the stages add up to the steps' time is tested on an injected clock
+  // (tests/sim/test_step_profile.cpp): wall times themselves depend on the machine's load
   const auto timed = j["profile_timed_steps"].get<std::int64_t>();
   EXPECT_GT(timed, 0);
   EXPECT_LE(timed, j["steps"].get<std::int64_t>());
   EXPECT_GT(sum, 0.0);
-  if (timed == j["steps"].get<std::int64_t>()) EXPECT_LE(sum, loop * (1.0 + 1e-9));
   fs::remove_all(dir);
 }
 
