@@ -4,6 +4,7 @@
 #include <pybind11/stl.h>
 
 #include <limits>
+#include <stdexcept>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -320,29 +321,52 @@ void bind_tapping(py::module_& m) {
       py::arg("beta_hat"), py::arg("phi"), py::arg("phi_err") = Series{},
       py::arg("beta_err") = Series{}, py::arg("phi_rlp") = 0.81, py::arg("phi_rcp") = 0.855,
       "fit a = N z̄/V_g and β₀ of the ideal quadron solution to (β̂, φ̄)");
-  m.def("quadron_phi", py::vectorize([](double beta, double a, double phi_rlp, double phi_rcp) {
-          const Args args("quadron_phi");
-          args.finite("beta", beta).positive("a", a);
-          check_quadron_params(args, phi_rlp, phi_rcp);
-          QuadronParams p;
-          p.phi_rlp = phi_rlp;
-          p.phi_rcp = phi_rcp;
-          return quadron_phi(beta, a, p);
-        }),
-        py::arg("beta"), py::arg("a"), py::arg("phi_rlp") = 0.81, py::arg("phi_rcp") = 0.855,
-        "φ̄ of the ideal quadron solution at inverse compactivity β (1/m²)");
-  m.def("quadron_lnz",
-        py::vectorize([](double beta, double a, double v_g, double phi_rlp, double phi_rcp) {
-          const Args args("quadron_lnz");
-          args.finite("beta", beta).positive("a", a).positive("v_g", v_g);
-          check_quadron_params(args, phi_rlp, phi_rcp);
-          QuadronParams p;
-          p.phi_rlp = phi_rlp;
-          p.phi_rcp = phi_rcp;
-          return quadron_lnz(beta, a, v_g, p);
-        }),
-        py::arg("beta"), py::arg("a"), py::arg("v_g"), py::arg("phi_rlp") = 0.81,
-        py::arg("phi_rcp") = 0.855, "ln Z of the ideal quadron gas");
+  // (the vectorised forms broadcast their arguments; shapes that do not broadcast are an
+  // argument error, not pybind's RuntimeError)
+  using Arr = py::array_t<double, py::array::forcecast>;
+  auto broadcast = [](const char* fn, auto&& call) -> py::object {
+    try {
+      return call();
+    } catch (const InputError&) {
+      throw;
+    } catch (const std::runtime_error& e) {
+      throw ArgumentError(fn, "beta",
+                          std::string("the arguments' shapes do not broadcast (") + e.what() + ")");
+    }
+  };
+  auto phi_v = py::vectorize([](double beta, double a, double phi_rlp, double phi_rcp) {
+    const Args args("quadron_phi");
+    args.finite("beta", beta).positive("a", a);
+    check_quadron_params(args, phi_rlp, phi_rcp);
+    QuadronParams p;
+    p.phi_rlp = phi_rlp;
+    p.phi_rcp = phi_rcp;
+    return quadron_phi(beta, a, p);
+  });
+  m.def(
+      "quadron_phi",
+      [phi_v, broadcast](const Arr& beta, const Arr& a, const Arr& rlp, const Arr& rcp) mutable {
+        return broadcast("quadron_phi", [&] { return phi_v(beta, a, rlp, rcp); });
+      },
+      py::arg("beta"), py::arg("a"), py::arg("phi_rlp") = 0.81, py::arg("phi_rcp") = 0.855,
+      "φ̄ of the ideal quadron solution at inverse compactivity β (1/m²)");
+  auto lnz_v = py::vectorize([](double beta, double a, double v_g, double phi_rlp, double phi_rcp) {
+    const Args args("quadron_lnz");
+    args.finite("beta", beta).positive("a", a).positive("v_g", v_g);
+    check_quadron_params(args, phi_rlp, phi_rcp);
+    QuadronParams p;
+    p.phi_rlp = phi_rlp;
+    p.phi_rcp = phi_rcp;
+    return quadron_lnz(beta, a, v_g, p);
+  });
+  m.def(
+      "quadron_lnz",
+      [lnz_v, broadcast](const Arr& beta, const Arr& a, const Arr& v_g, const Arr& rlp,
+                         const Arr& rcp) mutable {
+        return broadcast("quadron_lnz", [&] { return lnz_v(beta, a, v_g, rlp, rcp); });
+      },
+      py::arg("beta"), py::arg("a"), py::arg("v_g"), py::arg("phi_rlp") = 0.81,
+      py::arg("phi_rcp") = 0.855, "ln Z of the ideal quadron gas");
   m.def(
       "quadron_gas_phi",
       [](double beta, int taps, double a, double v_g, double refresh, std::uint64_t seed,

@@ -252,6 +252,7 @@ def test_simulation_methods(gransim, sim, n, t, k, rect, channels, options):
         getattr(sim, name)
 
 
+@pytest.mark.filterwarnings("ignore::RuntimeWarning")  # NumPy's cast of NaN to uint8
 @fuzz
 @given(image=arg(arrays), channels=arg(st.integers(2, 5)), name=arg(texts),
        size=arg(st.integers(-2, 40)), fps=arg(st.integers(-1, 60)), crf=arg(st.integers(-1, 60)),
