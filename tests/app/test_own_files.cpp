@@ -112,7 +112,7 @@ TEST(OwnFiles, AResumeRemovesOnlyTheSnapshotsItWrote) {
   const fs::path snaps = dir / "snapshots";
   const char* foreign[] = {
       "snap_000999.txt", "snap_999.vtp",        "snap_99999999999999999999999.vtp",
-      "snap_000999.xyz", "contacts_000999.csv", "snap_000999.vtp.bak"};
+      "snap_000999.xyz", "contacts_000999.txt", "snap_000999.vtp.bak"};
   for (const char* f : foreign) std::ofstream(snaps / f) << "mine\n";
   fs::create_directories(snaps / "snap_000998.vtp");
   std::ofstream(snaps / "snap_000998.vtp" / "inside.txt") << "mine\n";
