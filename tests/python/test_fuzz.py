@@ -5,10 +5,15 @@
 # per function, derandomised, so that the test is repeatable and takes tens of seconds.
 import math
 import os
+import tempfile
 
 import numpy as np
 import pytest
 
+# Hypothesis keeps a cache (its Unicode tables) in ./.hypothesis unless told otherwise: the
+# temporary directory, not the source tree
+os.environ.setdefault("HYPOTHESIS_STORAGE_DIRECTORY",
+                      os.path.join(tempfile.gettempdir(), "gransim-hypothesis"))
 hypothesis = pytest.importorskip("hypothesis")
 from hypothesis import HealthCheck, given, settings, strategies as st  # noqa: E402
 
