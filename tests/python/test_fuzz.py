@@ -19,7 +19,7 @@ from hypothesis import HealthCheck, given, settings, strategies as st  # noqa: E
 
 import conftest  # noqa: E402
 
-EXAMPLES = int(os.environ.get("GS_FUZZ_EXAMPLES", "60"))
+EXAMPLES = int(os.environ.get("GS_FUZZ_EXAMPLES", "40"))
 fuzz = settings(max_examples=EXAMPLES, deadline=None, derandomize=True, database=None,
                 suppress_health_check=list(HealthCheck))
 
