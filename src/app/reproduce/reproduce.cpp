@@ -214,7 +214,9 @@ int reproduce_command(const ReproduceOptions& opt) {
     if (has_data(dir / "sweeps" / s.name))
       begun.push_back(s);
     else
-      std::fprintf(stderr, "reproduce: sweep %s has no run with %s yet; the report leaves it out\n",
+      std::fprintf(stderr,
+                   "reproduce: sweep %s has not begun (no run with %s yet); the report leaves it "
+                   "out\n",
                    s.name.c_str(), data);
   }
   if (begun.empty())
