@@ -22,7 +22,7 @@ quick=${QUICK:-0}
 bin=$GS_BUILD_DIR/gransim_bench
 t_start=$(date +%s)
 
-[ "${GS_SKIP_BUILD:-0}" = 1 ] || GS_CMAKE_ARGS="-DGS_BUILD_BENCH=ON" tools/setup.sh >/dev/null
+[ "${GS_SKIP_BUILD:-0}" = 1 ] || GS_CMAKE_ARGS="-DGS_BUILD_BENCH=ON" tools/setup.sh all >/dev/null
 if [ -n "${GS_BENCH_OUT:-}" ]; then out=$GS_BENCH_OUT; mkdir -p "$out"; rm -f "$out"/gb_*.json "$out/results.txt"
 else out=$(mktemp -d); trap 'rm -rf "$out"' EXIT; fi
 export GS_BENCH_RESULTS=$out/results.txt

@@ -38,10 +38,11 @@ def log(msg):
 
 # ---- reading -------------------------------------------------------------------------------
 
-def read_csv(path):
+def read_csv(path, quiet=False):
     """rows of a CSV file as dicts of strings; None when the file is missing"""
     if not os.path.exists(path):
-        log("missing %s" % path)
+        if not quiet:
+            log("missing %s" % path)
         return None
     with open(path, newline="") as f:
         return list(csv.DictReader(f))
@@ -54,16 +55,17 @@ def num(s):
         return math.nan
 
 
-def read_json(path):
+def read_json(path, quiet=False):
     if not os.path.exists(path):
-        log("missing %s" % path)
+        if not quiet:
+            log("missing %s" % path)
         return None
     with open(path) as f:
         return json.load(f)
 
 
 def protocol_name(p):
-    return PROTOCOLS.get(p, (p, "control parameter"))[0]
+    return PROTOCOLS.get(p, (p or "series", "control parameter"))[0]
 
 
 def control_label(p):
@@ -97,6 +99,8 @@ def control_value(p, c):
         return "$g_p$ = %s" % c
     if p == "rotating_g":
         return "$f$ = %s Hz" % c
+    if not math.isfinite(num(c)):
+        return "%s" % p if p else "series"
     return "control = %s" % c
 
 
@@ -107,11 +111,15 @@ SHARED = set()
 
 def run_value(r):
     """the run's control value for a legend, with the run's label where others share it"""
+    if not math.isfinite(num(r["control"])):
+        return r["label"]  # a series of unknown control is known by its label
     text = control_value(r["protocol"], r["control"])
     return "%s (%s)" % (text, r["label"]) if (r["protocol"], r["control"]) in SHARED else text
 
 
 def label_of(r):
+    if not r["protocol"]:
+        return r["label"]
     return "%s, %s" % (protocol_name(r["protocol"]), run_value(r))
 
 
@@ -153,9 +161,13 @@ def chart_series(d, out, max_series):
 def chart_mean_sigma(summary, out, p):
     rows = by_protocol(summary, p)
     if not rows:
-        log("skip φ̄/σ chart for %s: no runs" % p)
+        log("skip φ̄/σ chart for %s: no runs" % protocol_name(p))
         return
     c = np.array([num(r["control"]) for r in rows])
+    # series of unknown control: one point per series, named by its label
+    by_label = not np.all(np.isfinite(c))
+    if by_label:
+        c = np.arange(len(rows), dtype=float)
     m = np.array([num(r["phi_mean"]) for r in rows])
     mlo = np.array([num(r["phi_mean_lo_tau"]) for r in rows])
     mhi = np.array([num(r["phi_mean_hi_tau"]) for r in rows])
@@ -171,10 +183,14 @@ def chart_mean_sigma(summary, out, p):
     b.set_xlabel(control_label(p))
     b.set_ylabel(r"standard deviation $\sigma_\phi$")
     b.set_title(r"(b) $\sigma_\phi$, 95 % $\chi^2$ CI ($\tau_{int}$-corrected)")
-    fig.suptitle("%s protocol" % protocol_name(p))
+    if by_label:
+        for ax in (a, b):
+            ax.set_xticks(c, [r["label"] for r in rows], rotation=30, ha="right")
+            ax.set_xlabel("series")
+    fig.suptitle("%s protocol" % protocol_name(p) if p else r"$\bar\phi$ and $\sigma_\phi$ per series")
     fig.tight_layout()
-    save(fig, out, "fig%s_mean_sigma_%s.png" % (FIGNUM.get(p, ("5", "7"))[0], p),
-         "phi mean and sigma vs control, %s" % p)
+    save(fig, out, "fig%s_mean_sigma_%s.png" % (FIGNUM.get(p, ("5", "7"))[0], p or "series"),
+         "phi mean and sigma vs control, %s" % protocol_name(p))
 
 
 # ---- Figs 7-8: KDEs, Q lines, β for two references ------------------------------------------
@@ -182,7 +198,7 @@ def chart_mean_sigma(summary, out, p):
 def chart_kde(kde, summary, out, p):
     rows = by_protocol(summary, p)
     if not rows:
-        log("skip KDE chart for %s: no runs" % p)
+        log("skip KDE chart for %s: no runs" % protocol_name(p))
         return
     fig, ax = plt.subplots(figsize=(7, 4))
     for r in rows:
@@ -193,13 +209,14 @@ def chart_kde(kde, summary, out, p):
     ax.set_ylabel(r"probability density $P(\phi)$")
     ax.set_title("%s: kernel density estimates (normal kernel, Silverman h)" % protocol_name(p))
     ax.legend(fontsize=7)
-    save(fig, out, "fig%sa_kde_%s.png" % (FIGNUM.get(p, ("5", "7"))[1], p), "KDEs, %s" % p)
+    save(fig, out, "fig%sa_kde_%s.png" % (FIGNUM.get(p, ("5", "7"))[1], p or "series"),
+         "KDEs, %s" % protocol_name(p))
 
 
 def chart_q(q, summary, ref, out, p):
     rows = [r for r in by_protocol(summary, p) if r["label"] != ref]
     if not rows:
-        log("skip Q chart for %s: no runs besides the reference" % p)
+        log("skip Q chart for %s: no runs besides the reference" % protocol_name(p))
         return
     fig, ax = plt.subplots(figsize=(7, 4.5))
     drawn = 0
@@ -217,7 +234,8 @@ def chart_q(q, summary, ref, out, p):
             ax.plot(x, fit, "-", color=h[0].get_color(), lw=1)
     if not drawn:
         plt.close(fig)
-        log("skip Q chart for %s: no run overlaps the reference %s enough" % (p, ref))
+        log("skip Q chart for %s: no run overlaps the reference %s enough"
+            % (protocol_name(p), ref))
         return
     ax.set_xlabel(r"inverse volume fraction $1/\phi$")
     ax.set_ylabel(r"$Q = \ln(P_1/P_0)$")
@@ -230,17 +248,18 @@ def chart_q(q, summary, ref, out, p):
 def chart_two_refs(beta, summary, analysis, out, p):
     ref, ref2 = analysis.get("reference"), analysis.get("reference2")
     if not ref2:
-        log("skip two-reference chart for %s: no second reference" % p)
+        log("skip two-reference chart for %s: no second reference" % protocol_name(p))
         return
     rows = by_protocol(summary, p)
     if not rows:
-        log("skip two-reference chart for %s: no runs" % p)
+        log("skip two-reference chart for %s: no runs" % protocol_name(p))
         return
     # only worth drawing when some run besides the references themselves has a β
     others = [b for b in beta if b["reference"] in (ref, ref2) and b["protocol"] == p
               and b["valid"] == "1" and b["label"] != b["reference"]]
     if not others:
-        log("skip two-reference chart for %s: no run overlaps either reference enough" % p)
+        log("skip two-reference chart for %s: no run overlaps either reference enough"
+            % protocol_name(p))
         return
     fig, ax = plt.subplots(figsize=(7, 4))
     off = num(analysis.get("reference_offset", {}).get("dbeta"))
@@ -334,16 +353,18 @@ def chart_sigma_phi(summary, quad, out):
                     xerr=[num(r["phi_err"]) for r in rows], fmt="sdo^v"[k % 5], capsize=3,
                     label=protocol_name(p))
     allfit = ((quad or {}).get("fits") or {}).get("all")
-    if allfit and allfit.get("converged") and allfit.get("curve"):
+    curve = bool(allfit and allfit.get("converged") and allfit.get("curve"))
+    if curve:
         ax.plot(allfit["curve"]["phi"], allfit["curve"]["sigma_phi"], "k-",
                 label="ideal quadron, (P.17) with (P.26)")
-    else:
+    elif quad is not None:
         log("fig11: no quadron curve (fit missing or not converged)")
     ax.set_xlabel(r"mean volume fraction $\bar\phi$")
     ax.set_ylabel(r"standard deviation $\sigma_\phi$")
     ax.set_title(r"fluctuations against the mean (95 % CIs)")
     ax.legend(fontsize=7)
-    save(fig, out, "fig11_sigma_phi.png", "sigma vs phi with the quadron prediction")
+    save(fig, out, "fig11_sigma_phi.png",
+         "sigma vs phi" + (" with the quadron prediction" if curve else ""))
 
 
 def chart_kernels(kde, analysis, out):
@@ -379,27 +400,29 @@ def main():
         log("no summary.csv in %s: nothing to chart" % d)
         return 1
     analysis = read_json(os.path.join(d, "analysis.json")) or {}
-    quad = read_json(os.path.join(d, "quadron.json"))
+    # without a test area the analysis has no β̂: the charts of β and the quadron fit are left out
+    has_beta = "beta.csv" in analysis.get("files", ["beta.csv"])
+    if not has_beta:
+        log("no test area: charts of the phi statistics only (no beta, no quadron fit)")
+    quad = read_json(os.path.join(d, "quadron.json"), quiet=not has_beta)
     kde = read_csv(os.path.join(d, "kde.csv")) or []
-    q = read_csv(os.path.join(d, "q_lines.csv")) or []
-    beta = read_csv(os.path.join(d, "beta.csv")) or []
+    q = read_csv(os.path.join(d, "q_lines.csv"), quiet=not has_beta) or []
+    beta = read_csv(os.path.join(d, "beta.csv"), quiet=not has_beta) or []
     ref = analysis.get("reference", "")
     keys = [(r["protocol"], r["control"]) for r in summary]
     SHARED.update(k for k in keys if keys.count(k) > 1)
 
     chart_series(d, out, a.max_series)
-    present = protocols_in(summary)
-    for p in list(PROTOCOLS) + [p for p in present if p not in PROTOCOLS]:
-        if p not in present:
-            log("protocol %s has no runs: its charts (Figs %s, %sa-c) are skipped"
-                % (p, *FIGNUM.get(p, ("?", "?"))))
-            continue
+    # the protocols the data have, and nothing about the others
+    for p in protocols_in(summary):
         chart_mean_sigma(summary, out, p)
         chart_kde(kde, summary, out, p)
-        chart_q(q, summary, ref, out, p)
-        chart_two_refs(beta, summary, analysis, out, p)
-    chart_beta_phi(beta, quad, analysis, out)
-    chart_lnz(beta, quad, analysis, out)
+        if has_beta:
+            chart_q(q, summary, ref, out, p)
+            chart_two_refs(beta, summary, analysis, out, p)
+    if has_beta:
+        chart_beta_phi(beta, quad, analysis, out)
+        chart_lnz(beta, quad, analysis, out)
     chart_sigma_phi(summary, quad, out)
     chart_kernels(kde, analysis, out)
     return 0

@@ -37,24 +37,56 @@ def log(msg):
     print("charts_taprun: " + msg)
 
 
+def split_line(line, sep):
+    return line.split() if sep is None else [c.strip().strip('"') for c in line.split(sep)]
+
+
+def number(cell, sep):
+    # with ';' or tab separators a decimal comma is a point (as the C++ reader takes it)
+    if sep not in (",", None) and "," in cell and "." not in cell:
+        cell = cell.replace(",", ".")
+    return float(cell)
+
+
 def read_columns(path):
-    """a CSV file as {column: numpy array}; None when missing or empty"""
+    """a CSV file as {column: numpy array}, separated as gransim analyze reads
+    it (',' else ';' or tab else blanks; a single column of numbers is phi); None when missing,
+    empty or not numbers"""
     if not os.path.exists(path):
         log("missing %s" % path)
         return None
-    with open(path, newline="") as f:
-        rows = list(csv.reader(f))
-    if len(rows) < 2:
+    with open(path, newline="", encoding="utf-8-sig") as f:
+        lines = [s.rstrip("\r\n") for s in f if s.strip() and not s.lstrip().startswith("#")]
+    if not lines:
         log("no rows in %s" % path)
         return None
-    head = rows[0]
-    if head and head[0].startswith("\ufeff"):
-        head[0] = head[0][1:]
-    data = np.array([[float(x) for x in r] for r in rows[1:] if len(r) == len(head)])
-    return {h: data[:, k] for k, h in enumerate(head)}
+    sep = next((c for c in (",", ";", "\t") if c in lines[0]), None if " " in lines[0].strip() else ",")
+    head = split_line(lines[0], sep)
+    try:
+        if len(head) == 1 and math.isfinite(number(head[0], sep)):
+            head, lines = ["phi"], ["phi"] + lines
+    except ValueError:
+        pass
+    try:
+        rows = [[number(x, sep) for x in split_line(r, sep)] for r in lines[1:]]
+    except ValueError as e:
+        log("%s: not numbers (%s)" % (path, e))
+        return None
+    data = np.array([r for r in rows if len(r) == len(head)])
+    if data.size == 0:
+        log("no rows in %s" % path)
+        return None
+    cols = {h: data[:, k] for k, h in enumerate(head)}
+    # names in any case (Phi), and taps counted from 1 when the file has no tap column
+    for h in head:
+        cols.setdefault(h.lower(), cols[h])
+    cols.setdefault("tap", np.arange(1.0, len(data) + 1.0))
+    return cols
 
 
 def run_name(r):
+    if not r["protocol"] or not math.isfinite(float(r["control"])):
+        return r["label"]  # a series of unknown protocol or control
     proto, fmt = NAMES.get(r["protocol"], (r["protocol"], "control = %g"))
     return "%s, %s" % (proto, fmt % float(r["control"]))
 
@@ -218,6 +250,12 @@ def main():
             log("%s: %d of %d runs lack %s" % (chart, len(rs) - len(ok), len(rs), ", ".join(cols)))
         return ok
 
+    # plain series (an experiment's) have none of a run's own columns: only their halves, if any
+    if all(r.get("status") == "plain" for r in runs):
+        halves = [r for r in few if all(c in taps[r["label"]] for c in ("phi_left", "phi_right"))]
+        if halves:
+            chart_halves(halves, taps, out)
+        return 0
     rest = having(runs, ("tap", "kinetic_energy", "max_speed", "early", "relax_end"), "taprun_rest.png")
     if rest:
         chart_rest(rest, taps, out)

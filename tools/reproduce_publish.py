@@ -1,11 +1,15 @@
 #!/usr/bin/env python3
 """Copy a reproduction's report into the repository's docs: report.md, report.html, claims.csv,
-plan.json, progress.json, the claim charts and the analysis' summary tables (no raw runs).
+plan.json, progress.json, the claim charts, the analysis' summary tables and the series the
+verdicts read (series/, report.json: `gransim reproduce … --from-series` writes the report again
+from them); no raw runs.
 
 usage: reproduce_publish.py RUN_DIR DOCS_DIR      (e.g. runs/reproduce-tapping-quick
                                                    docs/reproduction/tapping-quick)"""
 import glob
+import json
 import os
+import re
 import shutil
 import sys
 
@@ -22,11 +26,24 @@ def main():
     if os.path.isdir(dst):
         shutil.rmtree(dst)
     os.makedirs(os.path.join(dst, "charts"))
-    for f in ("report.md", "report.html", "claims.csv", "plan.json", "progress.json"):
+    if not os.path.exists(os.path.join(src, "report.json")):
+        sys.exit(f"reproduce_publish: {src} has no report.json and series/ (written by gransim "
+                 "reproduce: make the report again with --report-only)")
+    for f in ("report.md", "report.html", "claims.csv", "plan.json", "progress.json",
+              "report.json"):
         if os.path.exists(os.path.join(src, f)):
             shutil.copy2(os.path.join(src, f), dst)
+    shutil.copytree(os.path.join(src, "series"), os.path.join(dst, "series"))
     for png in glob.glob(os.path.join(src, "charts", "*.png")):
         shutil.copy2(png, os.path.join(dst, "charts"))
+    # the plan's command as a reader types it: where this machine put the runs is not part of it
+    plan = os.path.join(dst, "plan.json")
+    if os.path.exists(plan):
+        with open(plan) as f:
+            p = json.load(f)
+        p["command"] = re.sub(r" --out \S+| --out '[^']*'", "", p.get("command", ""))
+        with open(plan, "w") as f:
+            f.write(json.dumps(p, indent=2, ensure_ascii=False) + "\n")
     # the analysis' summary tables, folder by folder (RFM: one per sweep)
     for path in glob.glob(os.path.join(src, "analysis", "**", "*"), recursive=True):
         if os.path.basename(path) in SUMMARIES:
@@ -41,7 +58,11 @@ def main():
                 text = f.read()
             with open(path, "w") as f:
                 f.write(text.replace(os.path.abspath(src) + "/", ""))
-    print(f"reproduce_publish: {src} → {dst}")
+    size = sum(os.path.getsize(os.path.join(d, f)) for d, _, fs in os.walk(dst) for f in fs)
+    ser = sum(os.path.getsize(os.path.join(d, f))
+              for d, _, fs in os.walk(os.path.join(dst, "series")) for f in fs)
+    print(f"reproduce_publish: {src} → {dst} ({size / 1024:.0f} kB, of which series/ "
+          f"{ser / 1024:.0f} kB)")
 
 
 if __name__ == "__main__":

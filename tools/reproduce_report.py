@@ -1,9 +1,11 @@
 #!/usr/bin/env python3
 """Write the report of `gransim reproduce`: DIR/report.md, DIR/report.html, DIR/claims.csv and
-the claim charts in DIR/charts/, from the analysis in DIR/analysis and the runs in DIR/sweeps.
+the claim charts in DIR/charts/, from the analysis in DIR/analysis and the runs in DIR/sweeps;
+DIR/series/ and DIR/report.json keep every file the verdicts read. With --from-series, the
+report is written again from DIR/series and DIR/report.json alone (a published report).
 
 usage: reproduce_report.py --study tapping|rfm --budget B [--wall S] [--cores N]
-                           [--command TEXT] DIR
+                           [--command TEXT] [--from-series] DIR
 """
 import argparse
 import csv
@@ -12,7 +14,9 @@ import glob
 import json
 import math
 import os
+import shutil
 import sys
+import tempfile
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "reproduce"))
 
@@ -21,6 +25,7 @@ import matplotlib  # noqa: E402
 matplotlib.use("Agg")
 
 import report  # noqa: E402
+import series  # noqa: E402
 
 
 def planned_runs(folder):
@@ -39,6 +44,40 @@ def planned_runs(folder):
     return total
 
 
+def study_module(name):
+    if name == "tapping":
+        import tapping as study
+    else:
+        import rfm as study
+    return study
+
+
+def from_series(a):
+    """the report again from DIR/series and DIR/report.json, in a scratch folder whose relative
+    run paths the shipped tables name; report.md, report.html, claims.csv and charts back in DIR"""
+    info = series.load(a.dir, a.study, a.budget)
+    tmp = tempfile.mkdtemp(prefix="gs-report-")
+    here = os.getcwd()
+    try:
+        series.unpack(a.dir, info, tmp)
+        os.makedirs(os.path.join(tmp, "charts"))
+        os.chdir(tmp)
+        title, intro, claims, notes = study_module(a.study).claims(tmp, a.budget)
+        report.write_report(tmp, title, intro, [tuple(m) for m in info["meta"]], claims, notes,
+                            a.study)
+        os.chdir(here)
+        os.makedirs(os.path.join(a.dir, "charts"), exist_ok=True)
+        for f in ("report.md", "report.html", "claims.csv"):
+            shutil.copy2(os.path.join(tmp, f), os.path.join(a.dir, f))
+        for png in glob.glob(os.path.join(tmp, "charts", "*.png")):
+            shutil.copy2(png, os.path.join(a.dir, "charts"))
+    finally:
+        os.chdir(here)
+        shutil.rmtree(tmp, ignore_errors=True)
+    print(f"reproduce_report: {len(claims)} claims from {a.dir}/series → {a.dir}/report.md, "
+          "report.html, claims.csv")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("dir")
@@ -47,15 +86,17 @@ def main():
     ap.add_argument("--wall", type=float, default=float("nan"), help="wall seconds in all")
     ap.add_argument("--cores", type=int, default=os.cpu_count())
     ap.add_argument("--command", default="")
+    ap.add_argument("--from-series", action="store_true",
+                    help="write the report again from DIR/series and DIR/report.json")
     a = ap.parse_args()
+    if a.from_series:
+        return from_series(a)
     if not os.path.isdir(os.path.join(a.dir, "analysis")):
         sys.exit(f"reproduce_report: {a.dir}/analysis: no analysis here (run gransim reproduce)")
     os.makedirs(os.path.join(a.dir, "charts"), exist_ok=True)
-    if a.study == "tapping":
-        import tapping as study
-    else:
-        import rfm as study
-    title, intro, claims, notes = study.claims(a.dir, a.budget)
+    reads = series.record_reads(a.dir)
+    title, intro, claims, notes = study_module(a.study).claims(a.dir, a.budget)
+    inputs = set(reads)  # what the verdicts read; the header's bookkeeping below is not shipped
     hours = a.wall / 3600.0
     # the runs' own wall times (one thread each): the cost whatever the sittings were
     core_s, runs, unfinished = 0.0, 0, []
@@ -80,8 +121,15 @@ def main():
             pass
     # sittings of `reproduce` that cannot have run half of the runs' cost did not make them
     tallied = not math.isfinite(a.wall) or a.wall * a.cores >= 0.5 * core_s
+    command = a.command or f"gransim reproduce {a.study} --budget {a.budget}"
     meta = [("study", a.study), ("budget", a.budget),
-            ("command", a.command or f"gransim reproduce {a.study} --budget {a.budget}"),
+            ("command", f"`{command}` (runs, analysis and report in "
+                        f"runs/reproduce-{a.study}-{a.budget} unless --out DIR is given)"),
+            ("series", "series/ holds every file the verdicts read (the analysis tables and "
+                       "each run's per-tap or per-sample series, gzipped); "
+                       f"`gransim reproduce {a.study} --budget {a.budget} --out DIR "
+                       "--from-series` writes this report and claims.csv again from them alone, "
+                       "DIR being this report's folder"),
             ("machine", report.machine()),
             ("wall time", f"{a.wall:.0f} s ({hours:.2f} h) of `gransim reproduce` on {a.cores} "
                           "cores, all sittings" if tallied else
@@ -96,7 +144,8 @@ def main():
         meta.append(("in progress", f"{runs - len(unfinished)} of {planned or '?'} planned runs "
                      "complete; this report covers the taps there are so far"
                      + (": " + "; ".join(unfinished) if unfinished else "")))
-    report.write_report(a.dir, title, intro, meta, claims, notes)
+    report.write_report(a.dir, title, intro, meta, claims, notes, a.study)
+    series.write(a.dir, a.study, a.budget, meta, inputs)
     print(f"reproduce_report: {len(claims)} claims → {a.dir}/report.md, report.html, claims.csv")
 
 

@@ -1,12 +1,15 @@
 #!/usr/bin/env bash
 # Fresh-machine setup: install exactly the Debian packages the build needs, then configure and
-# build gransim (Release) into build/. Safe to run again: installed packages are skipped.
+# build (Release) into build/. Safe to run again: installed packages are skipped.
+# usage: tools/setup.sh [TARGET...]   (default: gransim, the program alone, so that the demo runs
+# soon; tools/test.sh builds `all`: the tests, the Python module, the benchmarks)
 # Environment: CI=true turns warnings into errors; GS_BUILD_DIR (default build); GS_JOBS.
+# Compiles go through ccache, so a second build tree (the pip install's) reuses the objects.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 packages=(
-  build-essential cmake pkg-config git
+  build-essential cmake pkg-config git ccache
   libeigen3-dev libbox2d-dev libtomlplusplus-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libpng-dev libfftw3-dev libfreetype-dev fonts-dejavu-core
@@ -33,6 +36,8 @@ fi
 build=${GS_BUILD_DIR:-build}
 werror=OFF
 [ "${CI:-}" = "true" ] && werror=ON
-cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DGS_WERROR=$werror ${GS_CMAKE_ARGS:-} >/dev/null
-cmake --build "$build" -j "${GS_JOBS:-$(nproc)}"
-echo "setup: built $build/gransim"
+cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DGS_WERROR=$werror \
+  -DCMAKE_CXX_COMPILER_LAUNCHER=ccache ${GS_CMAKE_ARGS:-} >/dev/null
+targets=("${@:-gransim}")
+cmake --build "$build" -j "${GS_JOBS:-$(nproc)}" --target "${targets[@]}"
+echo "setup: built ${targets[*]} in $build"

@@ -1,16 +1,26 @@
 """gransim: 2D granular dynamics from Python (docs/python-module.md).
 
-    import gransim
-    sim = gransim.Simulation("scenes/tap_small_negative_g.toml", set={"drive.g_p": 8})
-    sim.run(0.5)                      # simulated seconds
-    x, y = sim.x, sim.y               # views onto the simulation's own arrays
-    img = sim.render(width=640, height=360)
+>>> import gransim
+>>> sim = gransim.Simulation("scenes/tap_small_negative_g.toml", set={"drive.g_p": 8})
+>>> sim.run(0.05)                           # simulated seconds
+>>> sim.step_count, len(sim)                # time steps (Δt = 5e-5 s) and grains
+(1000, 250)
+>>> sim.x.shape, sim.positions.shape        # a view onto the simulation's own array, a copy; m
+((250,), (250, 2))
+>>> sim.set_state(velocities=0 * sim.velocities, omega=0 * sim.omega)   # checked, then set
+>>> sim.kinetic_energy                      # J
+0.0
+>>> sim.render(size=[160, 90]).shape        # H×W×3 uint8
+(90, 160, 3)
+>>> gransim.load_scene("scenes/demo.toml").to_dict()["integrator.dt"]   # typed scene values, s
+5e-05
 
 Scenes come from a file or a dict (written as TOML and parsed by the same parser, so errors
 read the same as the command line's); errors in input raise gransim.InputError (a ValueError)
 whose message names the file, line and key.
 """
 
+import errno
 import os
 
 from . import _gransim
@@ -21,6 +31,7 @@ from ._gransim import (  # noqa: F401  (re-exported)
     Renderer,
     RenderError,
     Scene,
+    TrajectoryWriter,
     autocorr_time,
     beta_from_phi,
     beta_from_volume,
@@ -32,23 +43,52 @@ from ._gransim import (  # noqa: F401  (re-exported)
     quadron_gas_phi,
     quadron_lnz,
     quadron_phi,
-    read_png,
     rfm,
     tap_analysis,
     write_png,
 )
-from ._toml import dumps as scene_toml, value_text as _value_text
+from ._toml import dumps as scene_toml, loads_value as _loads_value, value_text as _value_text
 from .run_dir import read_csv, read_run  # noqa: F401
 
 __version__ = _gransim.__version__
 
 __all__ = [
-    "HealthError", "InputError", "OutputError", "RenderError", "Renderer", "Scene", "Simulation",
+    "HealthError", "InputError", "OutputError", "PathNotFoundError", "RenderError", "Renderer",
+    "Scene", "Simulation",
     "autocorr_time", "beta_from_phi", "beta_from_volume", "fit_quadron", "have_movie",
     "have_osmesa", "load_scene", "mser_truncation", "normality_chi2", "quadron_gas_phi", "quadron_lnz",
     "quadron_phi", "read_csv", "read_png", "read_run", "rfm", "scene_toml", "tap_analysis",
-    "write_movie", "write_png",
+    "TrajectoryWriter", "write_movie", "write_png",
 ]
+
+
+class PathNotFoundError(FileNotFoundError, InputError):
+    """a path given to gransim does not exist: a FileNotFoundError, and an InputError (a
+    ValueError) as every other bad input, with .where (the path) and .key (what it was for)"""
+
+
+def _existing(path, what):
+    """path as a str, or PathNotFoundError naming it"""
+    path = os.fspath(path)
+    if not os.path.exists(path):
+        e = PathNotFoundError(errno.ENOENT, f"{what} not found", path)
+        e.where, e.key = path, what
+        raise e
+    return path
+
+
+def _scene_to_dict(self):
+    """every key of the resolved scene (defaults included) with a typed value, as run.json's
+    "scene" holds it: {"drive.g_p": 8.0, "scene.name": "demo", "box.lid": False, …}"""
+    return {k: _loads_value(v) for k, v in self.resolved.items()}
+
+
+Scene.to_dict = _scene_to_dict
+
+
+def read_png(path, channels=4):
+    """a PNG file as an H×W×channels uint8 array (channels 3 or 4)"""
+    return _gransim.read_png(_existing(path, "PNG file"), channels)
 
 
 def _overrides(set):
@@ -76,7 +116,7 @@ def load_scene(source, set=None, name="<dict>"):
         return _gransim.parse_scene_string(scene_toml(source), name, overrides)
     if isinstance(source, str) and "\n" in source:
         return _gransim.parse_scene_string(source, name, overrides)
-    return _gransim.parse_scene_file(os.fspath(source), overrides)
+    return _gransim.parse_scene_file(_existing(source, "scene file"), overrides)
 
 
 class Simulation(_gransim.Simulation):
@@ -92,10 +132,65 @@ class Simulation(_gransim.Simulation):
     def __init__(self, scene, set=None):
         super().__init__(load_scene(scene, set))
 
+    @classmethod
+    def from_checkpoint(cls, path):
+        """the simulation a checkpoint holds (Simulation.save, or a run's checkpoint-*.gsck):
+        state, integrator history, contact springs and protocol clock, so that stepping on
+        gives the same numbers as the run that saved it"""
+        sim = cls.__new__(cls)
+        _gransim.Simulation.__init__(sim, _gransim.read_checkpoint(_existing(path, "checkpoint")))
+        return sim
+
+    def trajectory(self, path, append=False):
+        """an extended-XYZ trajectory file (ASE, OVITO) to write frames of this simulation to:
+        `with sim.trajectory("t.xyz") as tr: … tr.write(sim)`"""
+        return TrajectoryWriter(os.fspath(path), append)
+
+    def write_snapshot(self, path):
+        """write the configuration now: .vtp (VTK PolyData with the grains' outlines,
+        ParaView), .xyz (one extended-XYZ frame: ASE, OVITO) or .csv (one row per contact)"""
+        return super().write_snapshot(os.fspath(path))
+
+    def save(self, path):
+        """write a checkpoint (complete state, integrator history, contact springs, protocol
+        clock); Simulation.from_checkpoint(path) continues bitwise"""
+        return super().save(os.fspath(path))
+
+    # the state, with units; positions, velocities, theta and omega can be set (set_state)
+    positions = property(_gransim.Simulation.positions.fget,
+                         lambda self, v: self.set_state(positions=v),
+                         doc="N×2 positions (x, y), m: a copy; assigning sets them (set_state)")
+    velocities = property(_gransim.Simulation.velocities.fget,
+                          lambda self, v: self.set_state(velocities=v),
+                          doc="N×2 velocities (vx, vy), m/s: a copy; assigning sets them")
+    theta = property(_gransim.Simulation.theta.fget, lambda self, v: self.set_state(theta=v),
+                     doc="orientations θ, rad (view, read-only); assigning sets them")
+    omega = property(_gransim.Simulation.omega.fget, lambda self, v: self.set_state(omega=v),
+                     doc="angular velocities ω, rad/s (view, read-only); assigning sets them")
+    x = property(_gransim.Simulation.x.fget, doc="x positions, m (view, read-only)")
+    y = property(_gransim.Simulation.y.fget, doc="y positions, m (view, read-only)")
+    vx = property(_gransim.Simulation.vx.fget, doc="x velocities, m/s (view, read-only)")
+    vy = property(_gransim.Simulation.vy.fget, doc="y velocities, m/s (view, read-only)")
+    species = property(_gransim.Simulation.species.fget,
+                       doc="species index of each particle (view; names: species_names)")
+    radius = property(_gransim.Simulation.radius.fget, doc="circumradius, m (view)")
+    mass = property(_gransim.Simulation.mass.fget, doc="mass, kg (view)")
+    ids = property(_gransim.Simulation.ids.fget,
+                   doc="each slot's particle label, its placement index (view)")
+    t = property(_gransim.Simulation.t.fget, doc="simulated time, s")
+    dt = property(_gransim.Simulation.dt.fget, doc="time step Δt, s")
+    step_count = property(_gransim.Simulation.step_count.fget, doc="time steps taken")
+    box = property(_gransim.Simulation.box.fget,
+                   doc="(width, height) of the box (periodic: the period), m")
+    gravity = property(_gransim.Simulation.gravity.fget,
+                       doc="(gx, gy) applied during the last step, m/s²")
+    kinetic_energy = property(_gransim.Simulation.kinetic_energy.fget,
+                              doc="translational + rotational kinetic energy, J")
+
     def render(self, channels=3, **options):
         """the current frame as an H×W×3 (or ×4) uint8 array. Keyword options are keys of
-        the scene's [render] section (width=640, color_by="species", renderer="software", …)
-        and are checked by the scene parser."""
+        the scene's [render] section (size=[640, 360], color_by="species",
+        renderer="software", …) and are checked by the scene parser."""
         return Renderer(self, [f"render.{k}={_value_text(v)}" for k, v in options.items()]
                         ).render(self, channels)
 

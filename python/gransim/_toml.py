@@ -1,4 +1,5 @@
-"""Python values → TOML text, for scenes given as dicts and for --set style overrides.
+"""Python values → TOML text, for scenes given as dicts and for --set style overrides, and
+back (one value's TOML text → a Python value, for Scene.to_dict).
 
 The text goes through the same scene parser as a file, so every error carries the parser's
 message (key, what is wrong, what is accepted)."""
@@ -6,7 +7,12 @@ message (key, what is wrong, what is accepted)."""
 import math
 import numbers
 
-__all__ = ["dumps", "value_text"]
+try:
+    import tomllib as _tomllib  # Python 3.11
+except ImportError:  # pragma: no cover - older interpreters read values themselves
+    _tomllib = None
+
+__all__ = ["dumps", "loads_value", "value_text"]
 
 
 def _key(k):
@@ -82,3 +88,63 @@ def dumps(doc):
     lines = []
     _emit(doc, "", lines)
     return "\n".join(lines).lstrip("\n") + "\n"
+
+
+def loads_value(text):
+    """one TOML value (as Scene.resolved holds it: '8.0', '"name"', '[0.1, 0.2]') as a Python
+    value: int, float, bool, str, list or dict; text that is not a TOML value is returned as is"""
+    if _tomllib is not None:
+        try:
+            return _tomllib.loads("v = " + text)["v"]
+        except _tomllib.TOMLDecodeError:
+            return text
+    try:
+        value, rest = _value(text.strip())
+    except (ValueError, IndexError):
+        return text
+    return value if not rest.strip() else text
+
+
+def _value(t):
+    """(value, rest of the text) for the TOML subset a scene's values use"""
+    import json
+
+    t = t.lstrip()
+    if t.startswith("["):
+        out, t = [], t[1:].lstrip()
+        while not t.startswith("]"):
+            v, t = _value(t)
+            out.append(v)
+            t = t.lstrip()
+            t = t[1:].lstrip() if t.startswith(",") else t
+        return out, t[1:]
+    if t.startswith("{"):
+        out, t = {}, t[1:].lstrip()
+        while not t.startswith("}"):
+            k, t = t.split("=", 1)
+            v, t = _value(t)
+            out[k.strip().strip('"')] = v
+            t = t.lstrip()
+            t = t[1:].lstrip() if t.startswith(",") else t
+        return out, t[1:]
+    if t.startswith('"'):
+        end = 1
+        while t[end] != '"':
+            end += 2 if t[end] == "\\" else 1
+        return json.loads(t[: end + 1]), t[end + 1:]
+    if t.startswith("'"):
+        end = t.index("'", 1)
+        return t[1:end], t[end + 1:]
+    n = 0
+    while n < len(t) and t[n] not in ",]}":
+        n += 1
+    word, rest = t[:n].strip(), t[n:]
+    if word in ("true", "false"):
+        return word == "true", rest
+    if word.lstrip("+-") in ("inf", "nan"):
+        return float(word), rest
+    word = word.replace("_", "")
+    try:
+        return int(word, 0) if word.lstrip("+-")[:2] in ("0x", "0o", "0b") else int(word), rest
+    except ValueError:
+        return float(word), rest

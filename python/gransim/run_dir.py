@@ -1,10 +1,12 @@
 """Reading a gransim run directory (or an analysis or sweep folder) into pandas DataFrames."""
 
+import errno
 import io
 import json
 import os
+from collections.abc import Mapping
 
-__all__ = ["read_csv", "read_run"]
+__all__ = ["RunFiles", "read_csv", "read_run"]
 
 
 def read_csv(path):
@@ -34,25 +36,60 @@ def read_csv(path):
     return df
 
 
+class RunFiles(Mapping):
+    """a run directory's files by name, each read when it is first looked up and kept: a
+    snapshot folder of many contact files costs nothing until one of them is used"""
+
+    def __init__(self, path, files):
+        self.path = path
+        self._files = files  # key → full path, in walk order
+        self._loaded = {}
+
+    def __getitem__(self, key):
+        if key not in self._loaded:
+            full = self._files[key]  # KeyError for a name the run does not have
+            if full.endswith(".csv"):
+                self._loaded[key] = read_csv(full)
+            else:
+                with open(full, encoding="utf-8") as f:
+                    self._loaded[key] = json.load(f)
+        return self._loaded[key]
+
+    def __contains__(self, key):
+        return key in self._files  # without reading the file
+
+    def __iter__(self):
+        return iter(self._files)
+
+    def __len__(self):
+        return len(self._files)
+
+    def loaded(self):
+        """the names read so far"""
+        return list(self._loaded)
+
+    def __repr__(self):
+        return f"<gransim run {self.path}: {len(self)} files, {len(self._loaded)} read>"
+
+
 def read_run(path):
     """every CSV file of a run directory as a DataFrame keyed by its name without '.csv'
     ("taps", "series", …; files in sub-folders as "folder/name"), and run.json (or any other
-    .json file) parsed, keyed by its file name ("run.json")."""
+    .json file) parsed, keyed by its file name ("run.json"). A mapping that reads each file
+    when it is first looked up (dict(run) reads them all)."""
     path = os.fspath(path)
     if not os.path.isdir(path):
-        raise FileNotFoundError(f"{path}: not a run directory")
-    out = {}
-    for root, dirs, files in os.walk(path):
+        raise FileNotFoundError(errno.ENOENT, "not a run directory", path)
+    files = {}
+    for root, dirs, names in os.walk(path):
         dirs.sort()
         # frames/ holds only pictures; skip it quickly
         dirs[:] = [d for d in dirs if d != "frames"]
         rel = os.path.relpath(root, path)
-        for name in sorted(files):
-            full = os.path.join(root, name)
+        for name in sorted(names):
             key = name if rel == "." else f"{rel}/{name}"
             if name.endswith(".csv"):
-                out[key[: -len(".csv")]] = read_csv(full)
+                files[key[: -len(".csv")]] = os.path.join(root, name)
             elif name.endswith(".json"):
-                with open(full, encoding="utf-8") as f:
-                    out[key] = json.load(f)
-    return out
+                files[key] = os.path.join(root, name)
+    return RunFiles(path, files)

@@ -3,7 +3,9 @@
 // synthetic ideal quadron gas with known answers
 #include <pybind11/stl.h>
 
+#include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -166,16 +168,17 @@ void check_quadron_params(const Args& args, double phi_rlp, double phi_rcp) {
 void bind_tapping(py::module_& m) {
   m.def(
       "tap_analysis",
-      [](const py::list& runs, int discard, double level, double alpha, double test_area,
-         const std::string& reference, const std::string& reference2, const std::string& method,
-         int bins, double phi_rlp, double phi_rcp, int bootstrap, const std::string& out_dir,
-         bool discard_auto) {
+      [](const py::list& runs, int discard, double level, double alpha,
+         std::optional<double> test_area, const std::string& reference,
+         const std::string& reference2, const std::string& method, int bins, double phi_rlp,
+         double phi_rcp, int bootstrap, const std::string& out_dir, bool discard_auto) {
         const Args args("tap_analysis");
         args.count("discard", discard, 0, std::numeric_limits<int>::max())
             .open("level", level, 0.0, 1.0)
             .open("alpha", alpha, 0.0, 1.0)
-            .positive("test_area", test_area)
             .count("bootstrap", bootstrap, 0, 100000);
+        // no test area: the φ statistics only (no β̂, no quadron fit), as `gransim analyze`
+        if (test_area) args.positive("test_area", *test_area);
         check_quadron_params(args, phi_rlp, phi_rcp);
         std::vector<TapRunInput> in;
         for (const auto& item : runs) {
@@ -188,9 +191,10 @@ void bind_tapping(py::module_& m) {
           if (!run.contains("phi")) args.fail("runs", "run " + std::to_string(k) + " has no 'phi'");
           TapRunInput r;
           r.label = run_value<std::string>(args, run, k, "label", "");
-          r.protocol = run_value<std::string>(args, run, k, "protocol", "negative_g");
-          r.control = run_value<double>(args, run, k, "control", 0.0);
-          args.finite("runs", r.control);
+          // a series without protocol or control is of unknown origin, not a negative-g run
+          r.protocol = run_value<std::string>(args, run, k, "protocol", "");
+          r.control = run_value<double>(args, run, k, "control", std::nan(""));
+          if (run.contains("control")) args.finite("runs", r.control);
           r.series.source = r.label.empty() ? "run " + std::to_string(k) : r.label;
           r.series.phi = run_value<Series>(args, run, k, "phi", {});
           r.series.phi_left = run_value<Series>(args, run, k, "phi_left", {});
@@ -217,7 +221,11 @@ void bind_tapping(py::module_& m) {
         o.discard_auto = discard_auto;
         o.level = level;
         o.alpha = alpha;
-        o.test_area = test_area;
+        // no test area: the φ statistics only (no β̂, no quadron fit), as `gransim analyze`
+        if (test_area && !(*test_area > 0.0))
+          throw InputError("tap_analysis", "test_area",
+                           "must be > 0 (m²), or None for the φ statistics only");
+        o.test_area = test_area.value_or(0.0);
         o.reference = reference;
         o.reference2 = reference2;
         o.overlap = overlap_options(args, method, bins, o.overlap.min_fraction);
@@ -254,7 +262,7 @@ void bind_tapping(py::module_& m) {
         d["runs"] = summaries;
         d["ref"] = r.ref;
         d["ref2"] = r.ref2;
-        d["v_g"] = r.v_g;
+        d["v_g"] = r.beta.empty() ? py::object(py::none()) : py::object(py::float_(r.v_g));
         d["beta"] = beta;
         d["beta2"] = beta2;
         d["kde"] = kde;
@@ -264,12 +272,14 @@ void bind_tapping(py::module_& m) {
         return d;
       },
       py::arg("runs"), py::arg("discard") = 10, py::arg("level") = 0.95, py::arg("alpha") = 0.05,
-      py::arg("test_area") = 0.16, py::arg("reference") = "", py::arg("reference2") = "",
+      py::arg("test_area") = py::none(), py::arg("reference") = "", py::arg("reference2") = "",
       py::arg("method") = "histogram", py::arg("bins") = 0, py::arg("phi_rlp") = 0.81,
       py::arg("phi_rcp") = 0.855, py::arg("bootstrap") = 100, py::arg("out_dir") = "",
       py::arg("discard_auto") = false,
       "the tapping analysis (as `gransim analyze`) of runs given as dicts with 'phi' (per tap) "
-      "and optionally 'label', 'protocol', 'control', 'tap', 'phi_left', 'phi_right'");
+      "and optionally 'label', 'protocol', 'control', 'tap', 'phi_left', 'phi_right'. "
+      "test_area is the test region's area in m² (V_g = test_area·φ̄_ref); None: the φ "
+      "statistics only, with a note in 'notes' (β̂ and the quadron fit need it)");
 
   m.def(
       "beta_from_phi",

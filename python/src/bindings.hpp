@@ -10,6 +10,7 @@
 #include "core/image.hpp"
 #include "core/vec.hpp"
 #include "drive/protocol.hpp"
+#include "sim/checkpoint.hpp"
 #include "sim/simulation.hpp"
 
 namespace gs::py_bind {
@@ -23,6 +24,8 @@ struct PySim {
   std::unique_ptr<Simulation> sim;
   std::unique_ptr<ProtocolClock> clock;
   explicit PySim(const SceneSpec& scene);
+  /// the simulation a checkpoint holds, continuing bitwise (bind_state.cpp)
+  explicit PySim(const Checkpoint& checkpoint);
   /// n steps, the protocol clock after each where it watches them (early rest, quench)
   void advance(std::int64_t n);
 };
@@ -39,5 +42,7 @@ void bind_scene_sim(py::module_& m);
 void bind_render(py::module_& m);
 void bind_tapping(py::module_& m);
 void bind_rfm(py::module_& m);
+/// state setters, snapshots, checkpoints and files on the Simulation (after bind_scene_sim)
+void bind_state(py::module_& m);
 
 }  // namespace gs::py_bind

@@ -31,6 +31,7 @@ PYBIND11_MODULE(_gransim, m) {
     }
   });
   gs::py_bind::bind_scene_sim(m);
+  gs::py_bind::bind_state(m);
   gs::py_bind::bind_render(m);
   gs::py_bind::bind_tapping(m);
   gs::py_bind::bind_rfm(m);

@@ -153,8 +153,10 @@ TapAnalysisResult run_tap_analysis(const std::vector<TapRunInput>& runs,
   for (std::size_t i = 0; i < runs.size(); ++i)
     for (std::size_t j = i + 1; j < runs.size(); ++j) {
       const TapRunSummary &a = r.runs[i], &b = r.runs[j];
+      // series of unknown origin (no protocol) are compared with each other, whatever the control
+      const bool unknown = a.protocol.empty() && b.protocol.empty();
       if (a.protocol != b.protocol ||
-          std::abs(a.control - b.control) > 1e-9 * (1 + std::abs(a.control)))
+          (!unknown && !(std::abs(a.control - b.control) <= 1e-9 * (1 + std::abs(a.control)))))
         continue;
       r.pairs.push_back({static_cast<int>(i), static_cast<int>(j),
                          two_sample_test(phis[i], a.tau.tau_int, phis[j], b.tau.tau_int)});
@@ -193,10 +195,19 @@ TapAnalysisResult run_tap_analysis(const std::vector<TapRunInput>& runs,
       if (runs[i].protocol == runs[r.ref].protocol) r.ref2 = i;
     }
   }
+
+  // β̂ needs V_g = V_T φ̄_ref, so without the test area the φ statistics are the analysis
+  if (!std::isfinite(opts.test_area))
+    throw InputError("", "test_area", "not a finite area (m²); 0 leaves β̂ out");
+  if (!(opts.test_area > 0.0)) {
+    r.notes.push_back(
+        "no test area: φ statistics only; β̂ (overlapping histograms) and the quadron fit "
+        "need the area of the test region, m²");
+    return r;
+  }
   if (r.ref2 < 0) r.notes.push_back("no second reference run: beta against two references skipped");
 
   // overlapping histograms (P.39) with V_g = V_T φ̄_ref held constant
-  if (!(opts.test_area > 0.0)) throw InputError("", "test_area", "must be > 0 (m²)");
   r.v_g = opts.test_area * r.runs[r.ref].phi_mean;
   r.beta = betas_from_phi(phis[r.ref], phis, r.v_g, opts.overlap);
   // consecutive taps are correlated: the counts' variance grows by ≈ τ_ref + τ_run

@@ -27,10 +27,13 @@ struct TapSeries {
   std::vector<double> phi_right;  ///< φ of its right half (empty when absent)
 };
 
-/// parse taps.csv text: a header row naming the columns, then one row per tap. Required
-/// column: phi; optional: tap (else the rows are taps 1, 2, …; given, it must increase), t,
-/// phi_left, phi_right; other columns are ignored. Lines that
-/// are blank or start with '#' are skipped. Throws InputError naming source:line and column.
+/// parse taps.csv text: a header row naming the columns (in any case), then one row per tap.
+/// Required column: phi; optional: tap (else the rows are taps 1, 2, …; given, it must
+/// increase), t, phi_left, phi_right; other columns are ignored. Cells are separated by commas,
+/// else by the header's ';' or tab (a decimal comma is then read as a point), else by blanks;
+/// a single column of numbers without a header is φ. Lines that are blank or start with '#' are
+/// skipped. Throws InputError naming source:line and column; a missing column's message shows
+/// the header found.
 TapSeries parse_taps_csv(std::istream& in, const std::string& source);
 /// read taps.csv from a file; throws InputError when the file cannot be read
 TapSeries read_taps_csv(const std::string& path);
@@ -38,8 +41,9 @@ TapSeries read_taps_csv(const std::string& path);
 /// one run of the study: a protocol at one value of its control parameter
 struct TapRunInput {
   std::string label;     ///< unique name; empty: "<protocol>_<control>"
-  std::string protocol;  ///< "negative_g", "rotating_g", …
-  double control = 0.0;  ///< g_p (in units of g) for negative_g, f (Hz) for rotating_g
+  std::string protocol;  ///< "negative_g", "rotating_g", …; "" for a series of unknown origin
+  double control = 0.0;  ///< g_p (in units of g) for negative_g, f (Hz) for rotating_g; NaN
+                         ///< when unknown
   TapSeries series;      ///< the measurements
 };
 
@@ -54,7 +58,8 @@ struct TapAnalysisOptions {
                               ///< (mser_truncation): a slow transient is left out whole
   double level = 0.95;        ///< confidence level of the intervals
   double alpha = 0.05;        ///< significance of the normality test
-  double test_area = 0.16;    ///< area V_T of the test rectangle, m² (V_g = V_T φ̄_ref)
+  double test_area = 0.0;     ///< area V_T of the test rectangle, m² (V_g = V_T φ̄_ref);
+                              ///< 0: not known, φ statistics only (no β̂, no quadron fit)
   std::string reference;      ///< label of the reference run; empty: the paper's choice, the
                               ///< negative_g run with g_p nearest 6, else the first run
   std::string reference2;     ///< second reference; empty: the next run of the reference's
@@ -118,11 +123,14 @@ struct TapAnalysisResult {
   std::map<std::string, QuadronFit> quadron;  ///< "all" and each protocol (direct β̂), and
                                               ///< "joint" (every run, β̂ of the joint fit)
   std::vector<TapPairTest> pairs;             ///< every pair at the same protocol and control
+                                              ///< (series without a protocol: every pair)
   std::vector<std::string> notes;             ///< what was skipped and why
 };
 
-/// compute the analysis (no files). Throws InputError for unusable input (no runs, too few
-/// taps after the transient, an unknown reference label).
+/// compute the analysis (no files). Without a test area (opts.test_area ≤ 0) only the φ
+/// statistics, KDEs and pair tests are computed and a note says why β̂ and the quadron fit are
+/// absent. Throws InputError for unusable input (no runs, too few taps after the transient, an
+/// unknown reference label, a non-finite test area).
 TapAnalysisResult run_tap_analysis(const std::vector<TapRunInput>& runs,
                                    const TapAnalysisOptions& opts);
 /// write summary.csv, series.csv, kde.csv, q_lines.csv, beta.csv, quadron.json and

@@ -1,4 +1,5 @@
 // the tapping analysis' files: reading taps.csv, writing the CSV and JSON results
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -21,13 +22,45 @@ std::string trim(const std::string& s) {
   return s.substr(b, e - b + 1);
 }
 
-std::vector<std::string> split(const std::string& line) {
+// cells of a line; sep ' ' splits at runs of blanks (numpy.savetxt's default)
+std::vector<std::string> split(const std::string& line, char sep = ',') {
   std::vector<std::string> out;
   std::stringstream ss(line);
   std::string cell;
-  while (std::getline(ss, cell, ',')) out.push_back(trim(cell));
-  if (!line.empty() && line.back() == ',') out.emplace_back();
+  if (sep == ' ') {
+    while (ss >> cell) out.push_back(trim(cell));
+    return out;
+  }
+  while (std::getline(ss, cell, sep)) out.push_back(trim(cell));
+  if (!line.empty() && line.back() == sep) out.emplace_back();
   return out;
+}
+
+// the header's separator: a comma, else a semicolon or a tab (spreadsheets in locales whose
+// decimal mark is a comma), else blanks
+char detect_separator(const std::string& header) {
+  for (char c : {',', ';', '\t'})
+    if (header.find(c) != std::string::npos) return c;
+  return trim(header).find(' ') != std::string::npos ? ' ' : ',';
+}
+
+std::string separator_name(char sep) {
+  return sep == ',' ? "','" : sep == ';' ? "';'" : sep == '\t' ? "a tab" : "blanks";
+}
+
+std::string lower(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+// a cell as a number; with ';' or tab separators a decimal comma is read as a point
+bool parse_number(std::string cell, char sep, double& v) {
+  if (sep != ',' && cell.find(',') != std::string::npos && cell.find('.') == std::string::npos)
+    for (char& c : cell)
+      if (c == ',') c = '.';
+  char* end = nullptr;
+  v = std::strtod(cell.c_str(), &end);
+  return !cell.empty() && end == cell.c_str() + cell.size();
 }
 
 // a number for CSV: shortest round-trip form; NaN and infinities as text
@@ -122,22 +155,40 @@ TapSeries parse_taps_csv(std::istream& in, const std::string& source) {
   std::string line;
   int lineno = 0;
   std::vector<std::string> header;
+  char sep = ',';
+  bool headerless = false;  // a single column of numbers: φ, one row per tap
   // the header: the first line that is neither blank nor a comment
   while (std::getline(in, line)) {
     ++lineno;
     // a UTF-8 byte-order mark (spreadsheets write one) is not part of the first column's name
     if (lineno == 1 && line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3);
     if (trim(line).empty() || trim(line)[0] == '#') continue;
-    header = split(line);
+    sep = detect_separator(line);
+    header = split(line, sep);
     break;
   }
   if (header.empty()) throw InputError(source, "", "no header row (is the file empty?)");
+  const int header_line = lineno;
+  {
+    double v = 0.0;
+    if (header.size() == 1 && parse_number(header[0], sep, v)) {
+      headerless = true;
+      header = {"phi"};
+    }
+  }
+  // columns by name, in any case ("Phi", "TAP")
   auto column = [&](const std::string& name, bool required) {
     for (std::size_t i = 0; i < header.size(); ++i)
-      if (header[i] == name) return static_cast<int>(i);
-    if (required)
-      throw InputError(source + ":" + std::to_string(lineno), name,
-                       "missing column '" + name + "' in the header");
+      if (lower(header[i]) == name) return static_cast<int>(i);
+    if (required) {
+      std::string found;
+      for (const auto& h : header) found += (found.empty() ? "'" : ", '") + h + "'";
+      throw InputError(source + ":" + std::to_string(header_line), name,
+                       "missing column '" + name + "' (any case); the header has " +
+                           std::to_string(header.size()) + " column" +
+                           (header.size() == 1 ? "" : "s") + " separated by " +
+                           separator_name(sep) + ": " + found);
+    }
     return -1;
   };
   const int c_tap = column("tap", false);  // absent: the rows are taps 1, 2, …
@@ -147,19 +198,18 @@ TapSeries parse_taps_csv(std::istream& in, const std::string& source) {
   const int c_right = column("phi_right", false);
 
   // one row per tap; every used column must hold a number
-  while (std::getline(in, line)) {
-    ++lineno;
-    if (trim(line).empty() || trim(line)[0] == '#') continue;
-    const auto cells = split(line);
+  auto row = [&](const std::vector<std::string>& cells) {
     auto value = [&](int c) {
       const std::string where = source + ":" + std::to_string(lineno);
       if (c >= static_cast<int>(cells.size()))
-        throw InputError(where, header[c], "row has no value for column '" + header[c] + "'");
+        throw InputError(where, header[c],
+                         "row has no value for column '" + header[c] + "' (" +
+                             std::to_string(cells.size()) + " cells separated by " +
+                             separator_name(sep) + ")");
       const std::string& cell = cells[c];
-      char* end = nullptr;
-      const double v = std::strtod(cell.c_str(), &end);
+      double v = 0.0;
       const std::string col = "column " + std::to_string(c + 1) + " ('" + header[c] + "')";
-      if (cell.empty() || end != cell.c_str() + cell.size())
+      if (!parse_number(cell, sep, v))
         throw InputError(where, header[c], col + ": not a number: '" + cell + "'");
       // NaN or inf would reach the statistics (a KDE of NaN) and fail far from the file
       if (!std::isfinite(v))
@@ -183,6 +233,12 @@ TapSeries parse_taps_csv(std::istream& in, const std::string& source) {
     if (c_t >= 0) s.t.push_back(value(c_t));
     if (c_left >= 0) s.phi_left.push_back(value(c_left));
     if (c_right >= 0) s.phi_right.push_back(value(c_right));
+  };
+  if (headerless) row(split(line, sep));
+  while (std::getline(in, line)) {
+    ++lineno;
+    if (trim(line).empty() || trim(line)[0] == '#') continue;
+    row(split(line, sep));
   }
   return s;
 }
@@ -285,10 +341,11 @@ void write_tap_analysis(const TapAnalysisResult& r, const std::vector<TapRunInpu
     f.close();
   }
 
-  // q_lines.csv and beta.csv, for each reference (Figs 7b–c, 8b–c, 9, 10)
+  // q_lines.csv and beta.csv, for each reference (Figs 7b–c, 8b–c, 9, 10); none without β̂
+  const bool has_beta = r.beta.size() == r.runs.size();
   auto* all = r.quadron.count("all") ? &r.quadron.at("all") : nullptr;
   const bool fit_ok = all && all->converged;
-  {
+  if (has_beta) {
     OutFile fq(dir / "q_lines.csv");
     OutFile fb(dir / "beta.csv");
     fq << "reference,label,protocol,control,inv_phi,q,q_err,q_line\n";
@@ -353,7 +410,7 @@ void write_tap_analysis(const TapAnalysisResult& r, const std::vector<TapRunInpu
   }
 
   // quadron.json: the fits with their curves
-  {
+  if (has_beta) {
     OutFile f(dir / "quadron.json");
     f << "{\n  \"phi_rlp\": " << jnum(opts.quadron.phi_rlp)
       << ",\n  \"phi_rcp\": " << jnum(opts.quadron.phi_rcp) << ",\n  \"v_g\": " << jnum(r.v_g)
@@ -373,8 +430,8 @@ void write_tap_analysis(const TapAnalysisResult& r, const std::vector<TapRunInpu
     f << "{\n  \"discard\": " << opts.discard
       << ",\n  \"discard_auto\": " << (opts.discard_auto ? "true" : "false")
       << ",\n  \"level\": " << jnum(opts.level) << ",\n  \"alpha\": " << jnum(opts.alpha)
-      << ",\n  \"test_area\": " << jnum(opts.test_area) << ",\n  \"v_g\": " << jnum(r.v_g)
-      << ",\n  \"density_method\": "
+      << ",\n  \"test_area\": " << jnum(has_beta ? opts.test_area : std::nan(""))
+      << ",\n  \"v_g\": " << jnum(has_beta ? r.v_g : std::nan("")) << ",\n  \"density_method\": "
       << jstr(opts.overlap.method == DensityMethod::Histogram ? "histogram" : "kde")
       << ",\n  \"kernel\": " << jstr(kernel_name(opts.overlap.kernel))
       << ",\n  \"min_fraction\": " << jnum(opts.overlap.min_fraction)
@@ -394,11 +451,14 @@ void write_tap_analysis(const TapAnalysisResult& r, const std::vector<TapRunInpu
         << ", \"normal\": " << (s.normality.normal ? "true" : "false")
         << ", \"chi2_p\": " << jnum(s.normality.p_value) << ", \"sigma_ratio_halves\": "
         << jnum(s.has_halves ? 0.5 * (s.sigma_left + s.sigma_right) / s.sigma : std::nan(""))
-        << ", \"dbeta\": " << jnum(r.beta[i].valid ? r.beta[i].dbeta : std::nan(""))
-        << ", \"dbeta_err\": " << jnum(r.beta[i].valid ? r.beta[i].dbeta_err : std::nan("")) << "}";
+        << ", \"dbeta\": " << jnum(has_beta && r.beta[i].valid ? r.beta[i].dbeta : std::nan(""))
+        << ", \"dbeta_err\": "
+        << jnum(has_beta && r.beta[i].valid ? r.beta[i].dbeta_err : std::nan("")) << "}";
     }
-    f << "\n  ],\n  \"files\": [\"summary.csv\", \"series.csv\", \"kde.csv\", \"q_lines.csv\", "
-         "\"beta.csv\", \"quadron.json\"],\n  \"notes\": [";
+    f << "\n  ],\n  \"files\": [\"summary.csv\", \"series.csv\", \"kde.csv\""
+      << (r.pairs.empty() ? "" : ", \"pairs.csv\"")
+      << (has_beta ? ", \"q_lines.csv\", \"beta.csv\", \"quadron.json\"" : "")
+      << (r.multi.chain.empty() ? "" : ", \"beta_multi.csv\"") << "],\n  \"notes\": [";
     for (std::size_t i = 0; i < r.notes.size(); ++i) f << (i ? ", " : "") << jstr(r.notes[i]);
     f << "]\n}\n";
     f.close();

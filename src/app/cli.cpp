@@ -95,7 +95,9 @@ int run_cli(int argc, char** argv) {
   AnalyzeOptions ao;
   auto* analyze = app.add_subcommand(
       "analyze", "statistics and charts of runs and sweeps (tapping study or Random Force Model)");
-  analyze->add_option("dirs", ao.dirs, "run or sweep directories");
+  analyze->add_option("dirs", ao.dirs,
+                      "run or sweep directories, or plain φ series FILE[:label] (a CSV with a "
+                      "phi column, any case; ',' ';' tab or blank separated)");
   analyze->add_option("--series", ao.series,
                       "a plain φ series PROTOCOL:CONTROL:FILE (a CSV with a phi column; "
                       "repeatable), e.g. negative_g:6:g6.csv");
@@ -103,10 +105,13 @@ int run_cli(int argc, char** argv) {
                       "a CSV listing plain series: file,protocol,control[,label][,test_area]");
   analyze
       ->add_option("--test-area", ao.test_area,
-                   "area of the test region of plain series, m² (V_g = area·φ̄_ref)")
+                   "area of the test region of plain series, m² (V_g = area·φ̄_ref); "
+                   "without it, φ statistics only (no β̂, no quadron fit)")
       ->check(cli_check::positive);
-  analyze->add_option("-o,--out", ao.out,
-                      "analysis folder (default DIR/analysis; needed for several DIRs)");
+  analyze->add_option(
+      "-o,--out", ao.out,
+      "analysis folder (default DIR/analysis, FILE's folder/<stem>_analysis; needed "
+      "for several DIRs or series)");
   analyze
       ->add_option("--discard", ao.discard, "transient taps to drop (default: output.discard_taps)")
       ->check(cli_check::non_negative);

@@ -2,7 +2,8 @@
 
 #include <sched.h>
 
-#include <vector>
+#include <cstdlib>
+#include <initializer_list>
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -33,23 +34,13 @@ OpenMpTeam openmp_team() {
   return t;
 }
 
-bool widen_to_places() {
-#ifdef _OPENMP
-  const int places = omp_get_num_places();
-  if (places <= 0) return false;
-  cpu_set_t set;
-  CPU_ZERO(&set);
-  for (int p = 0; p < places; ++p) {
-    std::vector<int> ids(static_cast<std::size_t>(omp_get_place_num_procs(p)));
-    if (ids.empty()) continue;
-    omp_get_place_proc_ids(p, ids.data());
-    for (int id : ids)
-      if (id >= 0 && id < CPU_SETSIZE) CPU_SET(id, &set);
+bool wait_policy_chosen() {
+  // libgomp ignores an empty value as it ignores a missing one
+  for (const char* name : {"OMP_WAIT_POLICY", "GOMP_SPINCOUNT"}) {
+    const char* v = std::getenv(name);
+    if (v != nullptr && *v != '\0') return true;
   }
-  return CPU_COUNT(&set) > 0 && sched_setaffinity(0, sizeof(set), &set) == 0;
-#else
   return false;
-#endif
 }
 
 }  // namespace gs

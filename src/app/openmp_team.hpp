@@ -1,5 +1,5 @@
 // the OpenMP team a run gets: its thread count and the CPUs its threads may run on (run.json
-// reports both), and the CPU mask to restart the process with (src/main.cpp)
+// reports both)
 #pragma once
 
 namespace gs {
@@ -11,11 +11,13 @@ struct OpenMpTeam {
 };
 OpenMpTeam openmp_team();
 
-/// Widen the calling thread's CPU mask to every CPU of the runtime's places. With
-/// OMP_PROC_BIND the runtime binds the first thread to one CPU as it loads; a process that
-/// then restarts itself (execv keeps the mask) would start with that one CPU only, and the
-/// runtime would bind every thread of the new process to it. No places (no binding asked
-/// for): nothing to do. Returns whether the mask was changed.
-bool widen_to_places();
+/// the spin count gransim gives the runs it starts with several threads each (docs/threads.md):
+/// the runtime's default lets a waiting thread sleep after ~300 000 rounds, and on virtual
+/// machines the wake-up costs so much that two threads can run slower than one
+inline constexpr const char* kSpinCount = "GOMP_SPINCOUNT=10000000";
+
+/// has the user chosen the OpenMP runtime's wait policy (OMP_WAIT_POLICY or GOMP_SPINCOUNT set
+/// and not empty)? The runtime reads it once, as it loads: only a new process can change it
+bool wait_policy_chosen();
 
 }  // namespace gs

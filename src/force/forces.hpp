@@ -56,6 +56,9 @@ class ContactModel {
   }
   /// the stiffest binary contact time of the scene (for Δt advice), s
   double min_contact_time() const { return min_contact_time_; }
+  /// the normal stiffness the disk law gives species a against b (b = the species count: a
+  /// wall), N/m: the one source of a pair's spring for whoever needs its energy
+  double disk_stiffness(std::size_t a, std::size_t b) const { return disks_.params(a, b).ks; }
 
  private:
   PolygonPairEvaluator polygons_;  ///< Model P

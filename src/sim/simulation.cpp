@@ -48,8 +48,12 @@ Simulation::Simulation(World w, const SimSettings& settings, BroadPhaseKind bp)
   exec_->run(parts(), broad_->update(w_, team_), {}, w_.s.step, false, nullptr);
   auto ch = channels();
   integ_->init(ch, dt_);
-  // the energy yardstick of the blow-up check: 5% of the start's kinetic + elastic energy, or
-  // of lifting every grain by one radius, whichever is larger
+  take_energy_yardstick();
+}
+
+// the energy yardstick of the blow-up check: 5% of the start's kinetic + elastic energy, or of
+// lifting every grain by one radius, whichever is larger
+void Simulation::take_energy_yardstick() {
   energy_ref_ = mechanical_energy();
   double lift = 0.0;
   for (std::size_t i = 0; i < w_.size(); ++i) lift += w_.mass[i] * norm(gravity_) * w_.radius[i];
@@ -66,9 +70,12 @@ double Simulation::mechanical_energy() const {
   // form (A(δ) depends on the path), so polygons count it as 0 — a lower bound, which keeps the
   // check one-sided: kinetic + gravitational energy can never exceed the start's total
   if (!w_.polygons()) {
+    const std::size_t n = w_.size(), walls = w_.species.size();
     for (const ContactRecord& c : contacts_.records) {
-      const MaterialSpec& m = w_.materials[w_.species[w_.sp[key_i(c.key)]].material];
-      e += 0.5 * m.ks * c.overlap * c.overlap;
+      const std::uint32_t i = key_i(c.key), j = key_j(c.key);
+      // the pair's spring as the law has it (a wall's index is the species count)
+      const double ks = model_.disk_stiffness(w_.sp[i], j >= n ? walls : w_.sp[j]);
+      e += 0.5 * ks * c.overlap * c.overlap;
     }
   }
   for (std::size_t i = 0; i < w_.size(); ++i)

@@ -64,6 +64,11 @@ class Simulation {
   void zero_velocities();
   /// checkpoint restore (sim/simulation_restore.cpp): replace the persistent contact set
   void restore_contacts(ContactSet c);
+  /// after the caller set positions, orientations or velocities between steps: start again
+  /// from this state as a new Simulation would (contacts and their springs afresh, forces
+  /// evaluated here, the integrator's history restarted, the energy yardstick taken anew);
+  /// the World's arrays stay where they are
+  void restart_from_state();
   /// the spatial sort's interval in steps (integrator.sort_every resolved; 0 = never)
   std::int64_t sort_every() const { return sort_every_; }
   /// move the particles between slots in cell order (rows of cells about one diameter
@@ -131,6 +136,8 @@ class Simulation {
   /// kinetic + contact elastic + gravitational energy (J); elastic ½k_sδ² (Model S), not
   /// counted for Model P (a lower bound)
   double mechanical_energy() const;
+  /// the blow-up check's yardstick from the state now (the constructor, restart_from_state)
+  void take_energy_yardstick();
   std::vector<Channel> channels();
 
   SimSettings settings_;

@@ -1,5 +1,5 @@
-// checkpoint restore hook: the persistent contact set is the only step-to-step history the
-// Simulation keeps apart from the World and the integrator
+// checkpoint restore hook (the persistent contact set is the only step-to-step history the
+// Simulation keeps apart from the World and the integrator) and the restart after an edit
 #include "sim/simulation.hpp"
 
 namespace gs {
@@ -13,6 +13,17 @@ void Simulation::restore_contacts(ContactSet c) {
       c.records.clear();
   }
   contacts_ = std::move(c);
+}
+
+void Simulation::restart_from_state() {
+  // as the constructor does, on the World as it now is
+  contacts_ = ContactSet{};
+  ahead_ = false;
+  drive();
+  exec_->run(parts(), broad_->update(w_, team_), {}, w_.s.step, false, nullptr);
+  auto ch = channels();
+  integ_->init(ch, dt_);
+  take_energy_yardstick();
 }
 
 }  // namespace gs

@@ -1,7 +1,6 @@
 // the OpenMP team of a run, as run.json reports it: with thread binding asked for
-// (OMP_PROC_BIND, as tools/slurm_sweep.sh sets it) gransim still restarts itself with a longer
-// spin count (src/main.cpp), and the restarted process must keep every CPU it was given, not
-// only the one the runtime had bound its first thread to: each thread on a CPU of its own
+// (OMP_PROC_BIND, as tools/slurm_sweep.sh sets it) each thread runs on a CPU of its own; and the
+// runtime starts once, with the wait policy its environment gives
 #include <gtest/gtest.h>
 #include <sched.h>
 
@@ -66,18 +65,49 @@ TEST_F(Threads, RunJsonReportsTheTeam) {
 }
 
 // two threads with binding on: two CPUs (the failure guarded against: both threads bound to the
-// first one, after the restart inherited the first thread's one-CPU mask, which leaves a
-// 2-thread run slower than one thread)
-TEST_F(Threads, BoundThreadsKeepTheirOwnCpusAfterTheRestart) {
+// first one, which leaves a 2-thread run slower than one thread)
+TEST_F(Threads, BoundThreadsKeepTheirOwnCpus) {
   if (allowed_cpus() < 2) GTEST_SKIP() << "this machine gives the test one CPU";
   for (const char* bind : {"OMP_PROC_BIND=true", "OMP_PROC_BIND=close"}) {
-    // no spin count or wait policy: gransim restarts itself (src/main.cpp)
     const fs::path js = run({"OMP_NUM_THREADS=2", bind, "GOMP_SPINCOUNT=", "OMP_WAIT_POLICY="});
     EXPECT_EQ(json_int(js, "omp_threads"), 2) << bind;
     EXPECT_EQ(json_int(js, "omp_cpus"), 2) << bind;
   }
   const fs::path js = run({"OMP_NUM_THREADS=2", "OMP_PROC_BIND=false"});
   EXPECT_EQ(json_int(js, "omp_cpus"), 2);
+}
+
+// the runtime starts once (OMP_DISPLAY_ENV prints its settings at each start of a process):
+// gransim never re-executes itself to change its wait policy; a run of several threads without
+// a chosen policy says how to choose one, and a chosen one is what the runtime uses
+TEST_F(Threads, OneStartAndTheWaitPolicyAsTheUserChoseIt) {
+  auto run_with = [&](const std::vector<std::string>& env) {
+    testing::Launch how;
+    how.env = env;
+    how.env.push_back("OMP_DISPLAY_ENV=verbose");
+    how.alarm_s = 120;
+    const testing::Outcome o = testing::run_binary(
+        {"run", std::string(GS_SOURCE_DIR) + "/scenes/demo.toml", "--out", (dir_ / "w").string(),
+         "--force", "--quiet", "--set", "preparation.settle_time=0.02"},
+        dir_ / "display.txt", how);
+    EXPECT_TRUE(o.exited && o.code == 0) << o.output;
+    return o.output;
+  };
+  auto count = [](const std::string& text, const std::string& what) {
+    std::size_t n = 0;
+    for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1))
+      ++n;
+    return n;
+  };
+  const std::string plain = run_with({"OMP_NUM_THREADS=2", "GOMP_SPINCOUNT=", "OMP_WAIT_POLICY="});
+  EXPECT_EQ(count(plain, "OPENMP DISPLAY ENVIRONMENT BEGIN"), 1u) << plain;
+  EXPECT_NE(plain.find("start gransim with GOMP_SPINCOUNT=10000000"), std::string::npos) << plain;
+  const std::string chosen = run_with({"OMP_NUM_THREADS=2", "GOMP_SPINCOUNT=4321"});
+  EXPECT_EQ(count(chosen, "OPENMP DISPLAY ENVIRONMENT BEGIN"), 1u) << chosen;
+  EXPECT_NE(chosen.find("GOMP_SPINCOUNT = '4321'"), std::string::npos) << chosen;
+  EXPECT_EQ(chosen.find("start gransim with"), std::string::npos) << chosen;
+  const std::string one = run_with({"OMP_NUM_THREADS=1", "GOMP_SPINCOUNT=", "OMP_WAIT_POLICY="});
+  EXPECT_EQ(one.find("start gransim with"), std::string::npos) << one;
 }
 
 }  // namespace

@@ -135,3 +135,21 @@ def test_bad_method_is_input_error(gransim):
     with pytest.raises(gransim.InputError) as err:
         gransim.beta_from_phi([0.8] * 10, [0.81] * 10, 0.1, method="spline")
     assert err.value.key == "method"
+
+
+def test_tap_analysis_without_test_area_is_phi_statistics(gransim):
+    # the rule of `gransim analyze`: no test area, no β̂ and no quadron fit, and a note; series
+    # without protocol and control are of unknown origin and compared with each other
+    rng = np.random.default_rng(8)
+    runs = [{"label": "dry", "phi": 0.83 + 0.002 * rng.normal(size=300)},
+            {"label": "wet", "phi": 0.82 + 0.002 * rng.normal(size=300)}]
+    r = gransim.tap_analysis(runs, bootstrap=0)
+    assert [s["label"] for s in r["runs"]] == ["dry", "wet"]
+    assert r["beta"] == [] and r["quadron"] == {} and r["v_g"] is None
+    assert any("no test area" in n for n in r["notes"])
+    assert len(r["pairs"]) == 1 and r["pairs"][0]["p_mean"] < 1e-6  # 0.01 apart, σ 0.002
+    assert r["runs"][0]["phi_mean"] == pytest.approx(0.83, abs=0.001)
+    r = gransim.tap_analysis(runs, bootstrap=0, test_area=0.16)
+    assert len(r["beta"]) == 2 and r["v_g"] == pytest.approx(0.16 * r["runs"][r["ref"]]["phi_mean"])
+    with pytest.raises(gransim.InputError, match="test_area"):
+        gransim.tap_analysis(runs, test_area=-1.0)

@@ -43,3 +43,25 @@ def test_read_csv_both_forms(gransim, tmp_path):
 def test_read_run_missing(gransim, tmp_path):
     with pytest.raises(FileNotFoundError):
         gransim.read_run(tmp_path / "nope")
+
+
+def test_read_run_reads_a_file_when_it_is_used(gransim, tmp_path):
+    # a snapshot folder of many contact files: nothing is read until asked for, so a broken
+    # file among them does not stop the others
+    (tmp_path / "taps.csv").write_text("tap,phi\n1,0.8\n")
+    snaps = tmp_path / "snapshots"
+    snaps.mkdir()
+    for k in range(50):
+        (snaps / f"contacts_{k:06d}.csv").write_text("i,j,fn\n0,1,0.5\n")
+    (snaps / "broken.json").write_text("{not json")
+    run = gransim.read_run(tmp_path)
+    assert len(run) == 52 and "snapshots/contacts_000049" in run
+    assert run.loaded() == []
+    assert list(run["taps"]["phi"]) == [0.8]
+    assert run["snapshots/contacts_000007"]["fn"].iloc[0] == 0.5
+    assert sorted(run.loaded()) == ["snapshots/contacts_000007", "taps"]
+    assert run["taps"] is run["taps"]  # read once, kept
+    with pytest.raises(ValueError):
+        run["snapshots/broken.json"]
+    with pytest.raises(KeyError):
+        run["nope"]

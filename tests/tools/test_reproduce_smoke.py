@@ -1,10 +1,13 @@
 """`gransim reproduce STUDY --budget smoke` end to end: the command runs, the report has a row for
-every claim with a verdict, and report.html opens in headless Chromium without errors and shows
-a page that is not blank. Needs GS_BINARY (the gransim executable); GS_STUDY picks one study.
+every claim with a verdict, report.html opens in headless Chromium without errors and shows
+a page that is not blank, and the published folder (tools/reproduce_publish.py) writes the same
+report.md and claims.csv again from its shipped series alone (--from-series). Needs GS_BINARY
+(the gransim executable); GS_STUDY picks one study.
 Run: GS_BINARY=build/gransim python3 -m unittest tests/tools/test_reproduce_smoke.py"""
 import csv
 import fcntl
 import glob
+import gzip
 import json
 import os
 import shutil
@@ -18,12 +21,14 @@ matplotlib.use("Agg")
 import matplotlib.image as mpimg  # noqa: E402
 
 BINARY = os.environ.get("GS_BINARY", "build/gransim")
+PYTHON = os.environ.get("GS_PYTHON", "/usr/bin/python3" if os.path.exists("/usr/bin/python3")
+                        else "python3")
 CLAIMS = {
     "tapping": ["steady-state", "neg-minimum", "neg-sigma-maximum", "rot-crossover", "rot-levels",
                 "halves-mean", "halves-sigma", "normality", "reference-overlap", "q-linear",
                 "two-references",
-                "one-curve", "quadron-a", "protocol-fits", "lnz", "sigma-phi", "stress",
-                "segregation"],
+                "one-curve", "quadron-a", "protocol-fits", "lnz", "sigma-phi", "rot-sigma",
+                "cross-references", "timestep", "stress", "segregation"],
     "rfm": ["T-start", "T-mean-field", "transient", "Df-Sk", "Df-freepath", "alpha-reference",
             "alpha-structure", "xi2", "xi-m", "G1-bisection"],
 }
@@ -62,12 +67,60 @@ class ReproduceSmoke(unittest.TestCase):
         for i in ids:
             self.assertIn(f"[{i}](#{i})", md)
         self.check_html(os.path.join(out, "report.html"), ids)
+        self.check_from_series(study, out)
         # a second call continues the same directory: nothing to run, the report again
         p = subprocess.run([BINARY, "reproduce", study, "--budget", "smoke", "--out", out, "-q"],
                            capture_output=True, text=True, timeout=600)
         self.assertEqual(p.returncode, 0, p.stderr[-3000:])
         self.check_locks(study, out)
         self.check_partial(study, out)
+
+    def check_from_series(self, study, out):
+        """the published folder holds no run, names no path of this machine, and its series
+        alone give report.md and claims.csv again, byte for byte; a changed series changes them"""
+        pub = tempfile.mkdtemp(prefix=f"gs-reproduce-{study}-pub-")
+        self.addCleanup(shutil.rmtree, pub, ignore_errors=True)
+        tools = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools")
+        p = subprocess.run([PYTHON, os.path.join(tools, "reproduce_publish.py"), out, pub],
+                           capture_output=True, text=True, timeout=300)
+        self.assertEqual(p.returncode, 0, p.stderr[-3000:])
+        self.assertFalse(os.path.exists(os.path.join(pub, "sweeps")))
+        shipped = {}
+        for f in ("report.md", "claims.csv"):
+            with open(os.path.join(pub, f), "rb") as fh:
+                shipped[f] = fh.read()
+        for d, _, files in os.walk(pub):
+            for f in files:
+                path = os.path.join(d, f)
+                with (gzip.open if f.endswith(".gz") else open)(path, "rb") as fh:
+                    data = fh.read()
+                self.assertNotIn(os.path.realpath(out).encode(), data, path)
+        with open(os.path.join(pub, "report.json")) as f:
+            inputs = json.load(f)["inputs"]
+        self.assertTrue(any(i.startswith("sweeps/") for i in inputs), inputs)  # the runs' series
+        os.remove(os.path.join(pub, "report.md"))
+        cmd = [BINARY, "reproduce", study, "--budget", "smoke", "--out", pub, "--from-series"]
+        p = subprocess.run(cmd, capture_output=True, text=True, timeout=600)
+        self.assertEqual(p.returncode, 0, p.stderr[-3000:])
+        for f, want in shipped.items():
+            with open(os.path.join(pub, f), "rb") as fh:
+                self.assertEqual(fh.read(), want, f"{f} written again from series/ differs")
+        # the verdicts read the shipped series, not a copy elsewhere: emptied, the report changes
+        summary = [i for i in inputs if i.endswith(("summary.csv", "rfm_summary.json"))][0]
+        with gzip.open(os.path.join(pub, "series", summary + ".gz"), "rb") as f:
+            head = f.read().splitlines(keepends=True)[:1]
+        with gzip.open(os.path.join(pub, "series", summary + ".gz"), "wb") as f:
+            f.write(b"".join(head) if summary.endswith(".csv") else b'{"runs": []}')
+        p = subprocess.run(cmd, capture_output=True, text=True, timeout=600)
+        with open(os.path.join(pub, "claims.csv"), "rb") as fh:
+            changed = p.returncode != 0 or fh.read() != shipped["claims.csv"]
+        self.assertTrue(changed, "claims.csv did not change with its series emptied")
+        # not a report folder: a clear refusal
+        p = subprocess.run([BINARY, "reproduce", study, "--budget", "smoke", "--out",
+                            os.path.join(pub, "charts"), "--from-series"],
+                           capture_output=True, text=True, timeout=60)
+        self.assertEqual(p.returncode, 2, p.stderr[-3000:])
+        self.assertIn("report.json", p.stderr)
 
     def check_partial(self, study, out):
         """a report of a study whose last sweep has not begun: every claim is still listed and

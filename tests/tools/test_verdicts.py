@@ -1,6 +1,5 @@
 """The verdict logic of `gransim reproduce` on synthetic series with known answers: a curve with
-a minimum and one without, a crossover and a flat curve, a flat σ against a claimed peak,
-values and bounds, χ² consistency. Run: python3 -m unittest tests/tools/test_verdicts.py"""
+a minimum and one without, values and bounds, χ² consistency, and the powers they rest on. Run: python3 -m unittest tests/tools/test_verdicts.py"""
 import math
 import os
 import sys
@@ -11,7 +10,8 @@ import numpy as np
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "..", "tools", "reproduce"))
 
 from verdicts import (AGREES, DISAGREES, UNRESOLVED, below_bound, chi2_consistent,  # noqa: E402
-                      chi2_sf, compare_value, extremum, mean_err, step_change, tau_int)
+                      chi2_power, chi2_sf, compare_value, extremum, mean_err,
+                      power_two_sided, t_sf2, tau_int)
 
 G = np.array([2, 6, 10, 15, 20, 25, 30], float)
 
@@ -22,83 +22,76 @@ def vshape(x, at=20.0, depth=0.006, width=18.0):
 
 class Extremum(unittest.TestCase):
     def test_curve_with_a_minimum_where_the_source_says(self):
-        v, at = extremum(G, vshape(G), np.full(len(G), 0.0004), "min", expect_at=20)
+        v, at = extremum(G, vshape(G), np.full(len(G), 0.0004), "min", expect_at=20, effect=0.006)
         self.assertEqual(v.verdict, AGREES, v.reason)
         self.assertEqual(at, 20)
+        self.assertGreater(v.power, 0.8)
+
+    def test_a_minimum_without_power_against_the_sources_size_is_not_resolved(self):
+        v, _ = extremum(G, vshape(G), np.full(len(G), 0.0004), "min", expect_at=20, effect=0.0005)
+        self.assertEqual(v.verdict, UNRESOLVED, v.reason)
+        self.assertGreater(v.scale, 1.0)
 
     def test_minimum_elsewhere_disagrees(self):
         v, at = extremum(G, vshape(G, at=6, width=10), np.full(len(G), 0.0002), "min",
-                         expect_at=20)
+                         expect_at=20, effect=0.002)
         self.assertEqual(v.verdict, DISAGREES, v.reason)
         self.assertEqual(at, 6)
 
     def test_monotonic_curve_precisely_measured_disagrees(self):
         y = 0.84 - 0.0004 * G
-        v, at = extremum(G, y, np.full(len(G), 0.0003), "min", expect_at=20, min_effect=0.002)
+        v, at = extremum(G, y, np.full(len(G), 0.0003), "min", expect_at=20, effect=0.003)
         self.assertEqual(v.verdict, DISAGREES, v.reason)
         self.assertIsNone(at)
 
     def test_minimum_hidden_in_noise_is_not_resolved(self):
         rng = np.random.default_rng(3)
-        err = np.full(len(G), 0.005)
         y = vshape(G) + rng.normal(0, 0.001, len(G))
-        v, _ = extremum(G, y, err, "min", expect_at=20, min_effect=0.002)
+        v, _ = extremum(G, y, np.full(len(G), 0.005), "min", expect_at=20, effect=0.002)
         self.assertEqual(v.verdict, UNRESOLVED, v.reason)
 
-    def test_flat_sigma_against_a_claimed_peak(self):
-        sig = np.full(len(G), 0.0022)
-        # precise: the 15 % peak the claim needs is excluded
-        v, _ = extremum(G, sig, np.full(len(G), 0.00005), "max", expect_at=20, min_effect=0.00033)
-        self.assertEqual(v.verdict, DISAGREES, v.reason)
-        # imprecise (a few dozen taps per value): nothing can be said
-        v, _ = extremum(G, sig, np.full(len(G), 0.0004), "max", expect_at=20, min_effect=0.00033)
+    def test_no_size_from_the_source_never_decides_a_missing_feature(self):
+        v, _ = extremum(G, np.full(len(G), 0.0022), np.full(len(G), 1e-6), "max", expect_at=20)
         self.assertEqual(v.verdict, UNRESOLVED, v.reason)
-
-    def test_peak_of_sigma(self):
-        sig = 0.002 + 0.0008 * np.exp(-((G - 20) / 5) ** 2)
-        v, at = extremum(G, sig, np.full(len(G), 0.00005), "max", expect_at=20)
-        self.assertEqual(v.verdict, AGREES, v.reason)
 
     def test_too_few_points(self):
         v, _ = extremum([1, 2], [0.8, 0.81], [0.001, 0.001])
         self.assertEqual(v.verdict, UNRESOLVED)
 
 
-class Crossover(unittest.TestCase):
-    F = np.array([0.25, 0.5, 0.75, 1.25, 2.0])
-
-    def test_crossover_agrees(self):
-        y = 0.814 + 0.007 / (1 + np.exp(-(self.F - 1.0) / 0.15))
-        v = step_change(self.F, y, np.full(5, 0.0005), 0.007)
-        self.assertEqual(v.verdict, AGREES, v.reason)
-
-    def test_flat_curve_disagrees(self):
-        v = step_change(self.F, np.full(5, 0.83), np.full(5, 0.0005), 0.007)
-        self.assertEqual(v.verdict, DISAGREES, v.reason)
-
-    def test_opposite_direction_disagrees(self):
-        y = 0.821 - 0.007 * (self.F > 1)
-        v = step_change(self.F, y, np.full(5, 0.0005), 0.007)
-        self.assertEqual(v.verdict, DISAGREES, v.reason)
-
-    def test_noisy_is_not_resolved(self):
-        y = 0.814 + 0.007 * (self.F > 1)
-        v = step_change(self.F, y, np.full(5, 0.004), 0.007)
-        self.assertEqual(v.verdict, UNRESOLVED, v.reason)
-
-
 class Values(unittest.TestCase):
     def test_compare_value(self):
-        self.assertEqual(compare_value(1.62, 0.02, 1.63, 0.03).verdict, AGREES)
+        self.assertEqual(compare_value(1.62, 0.005, 1.63, tolerance=0.03, alternative=0.06).verdict,
+                         AGREES)
         self.assertEqual(compare_value(1.40, 0.02, 1.63, 0.03).verdict, DISAGREES)
-        self.assertEqual(compare_value(1.53, 0.02, 1.63, 0.03).verdict, UNRESOLVED)
-        self.assertEqual(compare_value(1.0, 0.5, 1.63, resolve=0.1).verdict, UNRESOLVED)
+        # kept but with little power against the source's alternative
+        self.assertEqual(compare_value(1.62, 0.05, 1.63, alternative=0.06).verdict, UNRESOLVED)
+        # the source names no alternative: it cannot agree, only disagree
+        self.assertEqual(compare_value(1.63, 0.001, 1.63).verdict, UNRESOLVED)
         self.assertEqual(compare_value(float("nan"), 0.1, 1.63).verdict, UNRESOLVED)
 
     def test_bound(self):
         self.assertEqual(below_bound(2e-5, 1e-5, 1e-4).verdict, AGREES)
         self.assertEqual(below_bound(5e-4, 1e-4, 1e-4).verdict, DISAGREES)
         self.assertEqual(below_bound(8e-5, 5e-5, 1e-4).verdict, UNRESOLVED)
+        # below the bound, but a value at the bound would be told apart from 0 with 64 % only
+        v = below_bound(0.0, 1e-4 / 2.0, 1e-4)
+        self.assertEqual(v.verdict, UNRESOLVED, v.reason)
+
+
+class Power(unittest.TestCase):
+    def test_textbook_values(self):
+        # 80 % power at 5 % two-sided: effect/σ = 1.960 + 0.8416; χ²₁ noncentrality its square
+        self.assertAlmostEqual(power_two_sided(2.8016, 1.0), 0.80, places=3)
+        self.assertAlmostEqual(chi2_power(2.8016 ** 2, 1), 0.80, places=3)
+        self.assertAlmostEqual(chi2_power(0.0, 4), 0.05, places=6)
+        # tabulated: 80 % power of a χ²₂ test at 5 % needs λ = 9.635
+        self.assertAlmostEqual(chi2_power(9.635, 2), 0.80, places=3)
+
+    def test_student_t(self):
+        # tabulated two-sided: t₁₂ = 3.055 at 1 %, t₃ = 3.182 at 5 %
+        self.assertAlmostEqual(t_sf2(3.0545, 12), 0.01, places=4)
+        self.assertAlmostEqual(t_sf2(3.1824, 3), 0.05, places=4)
 
 
 class Chi2(unittest.TestCase):
@@ -112,10 +105,13 @@ class Chi2(unittest.TestCase):
     def test_consistent_and_not(self):
         rng = np.random.default_rng(1)
         e = np.full(8, 0.01)
-        v, p = chi2_consistent(rng.normal(0, 0.01, 8), e)
+        v, p = chi2_consistent(rng.normal(0, 0.01, 8), e, alternative=np.full(8, 0.02))
         self.assertEqual(v.verdict, AGREES, v.reason)
         v, p = chi2_consistent(rng.normal(0.05, 0.01, 8), e)
         self.assertEqual(v.verdict, DISAGREES, v.reason)
+        # no alternative from the source (segregation, T-start, the RFM transient): never agrees
+        v, p = chi2_consistent(np.zeros(8), e)
+        self.assertEqual(v.verdict, UNRESOLVED, v.reason)
 
 
 class Series(unittest.TestCase):

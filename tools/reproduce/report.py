@@ -9,6 +9,7 @@ import os
 import platform
 import subprocess
 
+import departures
 from verdicts import AGREES, DISAGREES, UNRESOLVED
 
 
@@ -24,6 +25,17 @@ class Claim:
     resolve: str = ""        # when not resolved: the budget that would resolve it
     chart: str = ""          # PNG path relative to the report folder
     values: dict = field(default_factory=dict)  # numbers for claims.csv
+    power: str = ""          # the test's power against the source's alternative at this length
+    null: str = ""           # the test's null hypothesis
+    alternative: str = ""    # the alternative the source names or shows, with its size
+    power_at: object = None  # k ↦ the power at k times the run's length (not written)
+
+
+def test_of(v):
+    """the null, alternative and power of a verdicts.Verdict, as Claim keywords"""
+    p = v.power
+    return dict(power=f"{p:.2f}" if p is not None and p == p else "", null=v.null,
+                alternative=v.alternative, power_at=v.power_at)
 
 
 BADGE = {AGREES: "#1a7f37", DISAGREES: "#c62828", UNRESOLVED: "#8a6d00"}
@@ -61,25 +73,44 @@ def write_csv(path, claims):
     keys = sorted({k for c in claims for k in c.values})
     with open(path, "w", newline="") as f:
         w = csv.writer(f)
-        w.writerow(["id", "topic", "where", "verdict", "measured", "reason"] + keys)
+        w.writerow(["id", "topic", "where", "verdict", "power", "measured", "reason", "null",
+                    "alternative"] + keys)
         for c in claims:
-            w.writerow([c.id, c.topic, c.where, c.verdict, c.measured, c.reason]
-                       + [c.values.get(k, "") for k in keys])
+            w.writerow([c.id, c.topic, c.where, c.verdict, c.power, c.measured, c.reason, c.null,
+                        c.alternative] + [c.values.get(k, "") for k in keys])
 
 
-def write_markdown(path, title, intro, meta, claims, notes):
+def _cell(t):
+    return t.replace("|", "\\|").replace("\n", " ")
+
+
+def departures_markdown(study):
+    """the departures table of a report's header, in Markdown"""
+    lines = ["## Departures from the source", "", departures.head(study), "",
+             "| departure | source printed | program runs | why | effect measured |",
+             "|---|---|---|---|---|"]
+    for what, printed, runs, why, (text, link), effect in departures.rows(study):
+        lines.append(f"| {_cell(what)} | {_cell(printed)} | {_cell(runs)} | {_cell(why)} "
+                     f"([{text}]({link})) | {_cell(effect)} |")
+    return lines
+
+
+def write_markdown(path, title, intro, meta, claims, notes, study=""):
     n = _counts(claims)
     lines = [f"# {title}", "", intro, ""]
     lines += [f"- **{k}**: {v}" for k, v in meta]
-    lines += ["", f"**Verdicts**: {n[AGREES]} agree, {n[DISAGREES]} disagree, "
+    if study:
+        lines += [""] + departures_markdown(study)
+    lines += ["", "## Verdicts", "",
+              f"**Verdicts**: {n[AGREES]} agree, {n[DISAGREES]} disagree, "
               f"{n[UNRESOLVED]} not resolved at this budget.", "",
-              "| claim | source says | program measured | verdict |", "|---|---|---|---|"]
-    def cell(t):
-        return t.replace("|", "\\|").replace("\n", " ")
+              "| claim | source says | program measured | verdict | power |",
+              "|---|---|---|---|---|"]
+    cell = _cell
 
     for c in claims:
         lines.append(f"| [{c.id}](#{c.id}) | {cell(c.source)} ({cell(c.where)}) | "
-                     f"{cell(c.measured)} | **{c.verdict}** |")
+                     f"{cell(c.measured)} | **{c.verdict}** | {cell(c.power) or '—'} |")
     topic = None
     for c in claims:
         if c.topic != topic:
@@ -88,6 +119,9 @@ def write_markdown(path, title, intro, meta, claims, notes):
         lines += ["", f"### {c.id}", "", f"<a id=\"{c.id}\"></a>", "",
                   f"> {c.source}", ">", f"> — {c.where}", "",
                   f"**Measured**: {c.measured}", "", f"**Verdict: {c.verdict}** — {c.reason}"]
+        if c.power or c.null:
+            lines += ["", f"**Power**: {c.power or '—'} (null: {c.null or '—'}; alternative: "
+                      f"{c.alternative or '—'})"]
         if c.resolve:
             lines += ["", f"**To resolve**: {c.resolve}"]
         if c.chart:
@@ -107,7 +141,19 @@ def _img(folder, rel):
     return f'<img alt="{html.escape(rel)}" src="data:image/png;base64,{data}">'
 
 
-def write_html(path, title, intro, meta, claims, notes):
+def departures_html(study):
+    """the departures table of a report's header, in HTML"""
+    e = html.escape
+    out = ["<h2>Departures from the source</h2>", f"<p>{e(departures.head(study))}</p>",
+           "<table><tr><th>departure</th><th>source printed</th><th>program runs</th>"
+           "<th>why</th><th>effect measured</th></tr>"]
+    for what, printed, runs, why, (text, link), effect in departures.rows(study):
+        out.append(f"<tr><td>{e(what)}</td><td>{e(printed)}</td><td>{e(runs)}</td>"
+                   f'<td>{e(why)} (<a href="{e(link)}">{e(text)}</a>)</td><td>{e(effect)}</td></tr>')
+    return out + ["</table>"]
+
+
+def write_html(path, title, intro, meta, claims, notes, study=""):
     folder = os.path.dirname(os.path.abspath(path))
     e = html.escape
     n = _counts(claims)
@@ -125,10 +171,13 @@ def write_html(path, title, intro, meta, claims, notes):
            ".claim{border-top:1px solid #ddd;margin-top:1.5em;padding-top:0.5em}",
            "</style></head><body>", f"<h1>{e(title)}</h1>", f"<p>{e(intro)}</p>", "<ul>"]
     out += [f"<li><b>{e(k)}</b>: {e(str(v))}</li>" for k, v in meta]
-    out += ["</ul>", f"<p><b>Verdicts</b>: {n[AGREES]} agree, {n[DISAGREES]} disagree, "
-            f"{n[UNRESOLVED]} not resolved at this budget.</p>",
+    out.append("</ul>")
+    if study:
+        out += departures_html(study)
+    out += ["<h2>Verdicts</h2>", f"<p><b>Verdicts</b>: {n[AGREES]} agree, {n[DISAGREES]} "
+            f"disagree, {n[UNRESOLVED]} not resolved at this budget.</p>",
             "<table><tr><th>claim</th><th>source says</th><th>program measured</th>"
-            "<th>verdict</th></tr>"]
+            "<th>verdict</th><th>power</th></tr>"]
 
     def badge(v):
         return f'<span class="badge" style="background:{BADGE[v]}">{e(v)}</span>'
@@ -136,7 +185,7 @@ def write_html(path, title, intro, meta, claims, notes):
     for c in claims:
         out.append(f'<tr><td><a href="#{e(c.id)}">{e(c.id)}</a></td><td>{e(c.source)} '
                    f"<i>({e(c.where)})</i></td><td>{e(c.measured)}</td><td>{badge(c.verdict)}"
-                   "</td></tr>")
+                   f"</td><td>{e(c.power) or '—'}</td></tr>")
     out.append("</table>")
     topic = None
     for c in claims:
@@ -147,6 +196,9 @@ def write_html(path, title, intro, meta, claims, notes):
                 f"<blockquote>{e(c.source)}<br>— <i>{e(c.where)}</i></blockquote>",
                 f"<p><b>Measured</b>: {e(c.measured)}</p>",
                 f"<p><b>Verdict</b>: {e(c.reason)}</p>"]
+        if c.power or c.null:
+            out.append(f"<p><b>Power</b>: {e(c.power or '—')} (null: {e(c.null or '—')}; "
+                       f"alternative: {e(c.alternative or '—')})</p>")
         if c.resolve:
             out.append(f"<p><b>To resolve</b>: {e(c.resolve)}</p>")
         out.append(_img(folder, c.chart))
@@ -158,13 +210,16 @@ def write_html(path, title, intro, meta, claims, notes):
         f.write("\n".join(out) + "\n")
 
 
-def write_report(folder, title, intro, meta, claims, notes=()):
+def write_report(folder, title, intro, meta, claims, notes=(), study=""):
+    """study ("tapping", "rfm") puts its departures table in the header"""
     ids = [c.id for c in claims]
     if len(ids) != len(set(ids)):
         raise ValueError("claim ids repeat: " + ", ".join(ids))
     for c in claims:
         if c.verdict not in BADGE:
             raise ValueError(f"claim {c.id}: verdict {c.verdict!r}")
-    write_markdown(os.path.join(folder, "report.md"), title, intro, meta, claims, list(notes))
-    write_html(os.path.join(folder, "report.html"), title, intro, meta, claims, list(notes))
+    write_markdown(os.path.join(folder, "report.md"), title, intro, meta, claims, list(notes),
+                   study)
+    write_html(os.path.join(folder, "report.html"), title, intro, meta, claims, list(notes),
+               study)
     write_csv(os.path.join(folder, "claims.csv"), claims)

@@ -74,7 +74,8 @@ def _gate(v, runs, need=1.0):
     t = min(r["info"].get("t_steady", r["info"].get("discard_time", 0.0)) for r in runs)
     if v.verdict != UNRESOLVED and t < need - 1e-6:
         return Verdict(UNRESOLVED, f"the runs discard only {t:.2g} s of transient, the thesis measures "
-                       f"after the first second; at face value: {v.verdict}, {v.reason}")
+                       f"after the first second; at face value: {v.verdict}, {v.reason}",
+                       v.null, v.alternative, v.power, v.scale)
     return v
 
 

@@ -155,18 +155,14 @@ int finish_analysis(const std::vector<TapRunInput>& runs, const std::vector<RunS
   return kExitOk;
 }
 
-// plain φ series (--series, --manifest): no scene, so the test area is given
-int analyze_plain(const AnalyzeOptions& opt, const std::string& out) {
-  double area = opt.test_area;
-  const std::vector<PlainSeries> given = plain_series(opt, area);
-  if (!(area > 0.0))
-    throw InputError("", "--test-area",
-                     "plain series need the area of their test region in m² (--test-area, or a "
-                     "test_area column in the manifest): V_g = area·φ̄ of the reference");
+// plain φ series (FILE[:label], --series, --manifest): no scene, so the test area comes from
+// the command line or the manifest; without it the φ statistics are the analysis
+int analyze_plain(const AnalyzeOptions& opt, const std::vector<PlainSeries>& given, double area,
+                  const std::string& out) {
   TapAnalysisOptions ao;
   ao.discard = opt.discard >= 0 ? opt.discard : 10;
   ao.discard_auto = opt.discard_auto;
-  ao.test_area = area;
+  ao.test_area = area > 0.0 ? area : 0.0;
   ao.reference = opt.reference;
   ao.reference2 = opt.reference2;
   std::vector<TapRunInput> runs;
@@ -186,26 +182,47 @@ int analyze_plain(const AnalyzeOptions& opt, const std::string& out) {
     sources.push_back({f.parent_path().string(), f.string(), p.protocol, p.control, "plain"});
     runs.push_back(std::move(in));
   }
+  if (!(area > 0.0) && !opt.quiet)
+    std::fprintf(stderr,
+                 "gransim analyze: no --test-area (m²): φ statistics only; β̂ and the quadron "
+                 "fit need the area of the test region (V_g = area·φ̄ of the reference)\n");
   return finish_analysis(runs, sources, ao, opt, out);
 }
 
-int analyze_command(const AnalyzeOptions& opt) {
-  const bool plain = !opt.series.empty() || !opt.manifest.empty();
+int analyze_command(const AnalyzeOptions& given_opt) {
+  // positional arguments that name files are plain series (FILE[:label]), the rest run dirs
+  AnalyzeOptions opt = given_opt;
+  {
+    auto files = split_series_arguments(opt.dirs);
+    opt.files.insert(opt.files.end(), files.begin(), files.end());
+  }
+  const bool plain = !opt.files.empty() || !opt.series.empty() || !opt.manifest.empty();
   if (plain && !opt.dirs.empty())
-    throw InputError("", "DIR",
-                     "give run directories or plain series (--series, --manifest), not both");
+    throw InputError(opt.dirs[0], "DIR",
+                     "give run directories or plain series (FILE[:label], --series, --manifest), "
+                     "not both");
   if (!plain && opt.dirs.empty())
     throw InputError("", "DIR",
-                     "give at least one run or sweep directory (or --series, --manifest)");
+                     "give at least one run or sweep directory, or plain series: FILE[:label] "
+                     "(a CSV with a phi column), --series PROTOCOL:CONTROL:FILE, --manifest");
   if (opt.dirs.size() > 1 && opt.out.empty())
     throw InputError("", "--out",
                      "several directories are analysed together into one folder: "
                      "give it with --out");
-  if (plain && opt.manifest.empty() && opt.out.empty())
-    throw InputError("", "--out", "plain series need an analysis folder: give it with --out");
+  std::vector<PlainSeries> series;
+  double area = opt.test_area;
+  if (plain) series = plain_series(opt, area);
+  if (plain && opt.manifest.empty() && opt.out.empty() && series.size() > 1)
+    throw InputError("", "--out",
+                     "several series are analysed together into one folder: give it with --out");
+  // one plain series: its analysis beside it, named after it
   const std::string out = !opt.out.empty() ? opt.out
-                          : plain ? (fs::path(opt.manifest).parent_path() / "analysis").string()
-                                  : (fs::path(opt.dirs[0]) / "analysis").string();
+                          : !plain         ? (fs::path(opt.dirs[0]) / "analysis").string()
+                          : !opt.manifest.empty()
+                              ? (fs::path(opt.manifest).parent_path() / "analysis").string()
+                              : (fs::path(series[0].file).parent_path() /
+                                 (fs::path(series[0].file).stem().string() + "_analysis"))
+                                    .string();
   // the analysis never writes over a run or an input: its files (series.csv, …) would
   // replace the run's own
   {
@@ -221,9 +238,8 @@ int analyze_command(const AnalyzeOptions& opt) {
                              "); the analysis would overwrite its files: choose another --out");
     // nor over the plain series it reads (its series.csv may be one of them)
     if (plain) {
-      double area = opt.test_area;
       std::vector<std::string> inputs;
-      for (const PlainSeries& p : plain_series(opt, area)) inputs.push_back(p.file);
+      for (const PlainSeries& p : series) inputs.push_back(p.file);
       if (!opt.manifest.empty()) inputs.push_back(opt.manifest);
       for (const std::string& f : inputs) {
         const fs::path dir = fs::weakly_canonical(fs::absolute(f, ec).parent_path(), ec);
@@ -238,7 +254,7 @@ int analyze_command(const AnalyzeOptions& opt) {
     }
   }
   const DirLock lock(out, "analyze");
-  if (plain) return analyze_plain(opt, out);
+  if (plain) return analyze_plain(opt, series, area, out);
   // Random Force Model runs (DIR/rfm.json or DIR/*/rfm.json): app/analyze/rfm_analyze.cpp
   if (std::all_of(opt.dirs.begin(), opt.dirs.end(),
                   [](const std::string& d) { return is_rfm_run(d); }))

@@ -9,8 +9,10 @@
 namespace gs {
 
 struct AnalyzeOptions {
-  std::vector<std::string> dirs;  ///< run directories and/or sweep directories
-  std::string out;                ///< analysis folder (default DIR/analysis for one DIR)
+  std::vector<std::string> dirs;   ///< run directories and/or sweep directories
+  std::vector<std::string> files;  ///< plain φ series FILE[:label] (positional arguments that
+                                   ///< name files: split from dirs by analyze_command)
+  std::string out;                 ///< analysis folder (default DIR/analysis for one DIR)
   int discard = -1;           ///< transient taps to drop (−1: the scenes' output.discard_taps)
   bool discard_auto = false;  ///< per run, the larger of discard and the MSER-5 cut
   std::string reference;      ///< reference run label (default: the library's choice)
@@ -26,14 +28,20 @@ struct AnalyzeOptions {
 /// a plain series with where it came from
 struct PlainSeries {
   std::string file;      ///< the CSV
-  std::string protocol;  ///< protocol or label of the experiment
-  double control = 0.0;  ///< its control value
+  std::string protocol;  ///< protocol or label of the experiment; "" when not known
+  double control = 0.0;  ///< its control value; NaN when not known
   std::string label;     ///< "" = <protocol>_<control>
 };
 
-/// the series given by --series and --manifest, checked (files exist, controls are numbers,
-/// one test area); test_area is set from the manifest when given there. InputError names the
-/// argument or the manifest's file:line and column.
+/// the positional arguments that are plain series (FILE or FILE:label naming a file), in
+/// order; the others (directories) are left in `dirs`. A missing file that looks like a series
+/// (FILE:label, *.csv, *.txt, *.dat) is an InputError naming the argument.
+std::vector<std::string> split_series_arguments(std::vector<std::string>& dirs);
+
+/// the series given as files, by --series and by --manifest, checked (files exist, controls
+/// are numbers, one test area) and labelled uniquely (two series with one protocol and control
+/// are told apart by their file names); test_area is set from the manifest when given there.
+/// InputError names the argument or the manifest's file:line and column.
 std::vector<PlainSeries> plain_series(const AnalyzeOptions& opt, double& test_area);
 
 /// one tapping run found on disk

@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include "app/analyze/analyze.hpp"
@@ -50,10 +51,87 @@ void check_file(const std::string& file, const std::string& where, const std::st
   }
 }
 
+bool is_file(const std::string& path) {
+  std::error_code ec;
+  return !path.empty() && fs::exists(path, ec) && !fs::is_directory(path, ec);
+}
+
+// FILE or FILE:label → the file and its label ("" when none)
+std::pair<std::string, std::string> file_and_label(const std::string& arg) {
+  if (is_file(arg)) return {arg, ""};
+  const auto colon = arg.rfind(':');
+  if (colon != std::string::npos && colon > 0) return {arg.substr(0, colon), arg.substr(colon + 1)};
+  return {arg, ""};
+}
+
+bool looks_like_series(const std::string& file) {
+  const std::string ext = fs::path(file).extension().string();
+  return ext == ".csv" || ext == ".CSV" || ext == ".txt" || ext == ".dat" || ext == ".tsv";
+}
+
+// the label a series is known by in the analysis
+std::string effective_label(const PlainSeries& p) {
+  if (!p.label.empty()) return p.label;
+  std::ostringstream c;
+  c << p.control;
+  return (p.protocol.empty() ? std::string("run") : p.protocol) + "_" + c.str();
+}
+
+// series labelled automatically that share a label (one protocol and control, or one file
+// name): each named after its file as well, its stem first, else its path as given
+void make_labels_unique(std::vector<PlainSeries>& series, const std::vector<bool>& automatic) {
+  for (int pass = 0; pass < 2; ++pass) {
+    std::map<std::string, int> uses;
+    for (const auto& p : series) ++uses[effective_label(p)];
+    for (std::size_t i = 0; i < series.size(); ++i) {
+      PlainSeries& p = series[i];
+      if (!automatic[i] || uses[effective_label(p)] < 2) continue;
+      const std::string name = pass == 0 ? fs::path(p.file).stem().string() : p.file;
+      p.label = p.protocol.empty()
+                    ? name
+                    : effective_label(PlainSeries{"", p.protocol, p.control, ""}) + "@" + name;
+    }
+  }
+}
+
 }  // namespace
+
+std::vector<std::string> split_series_arguments(std::vector<std::string>& dirs) {
+  std::vector<std::string> files, rest;
+  for (const auto& arg : dirs) {
+    std::error_code ec;
+    if (fs::is_directory(arg, ec)) {
+      rest.push_back(arg);
+      continue;
+    }
+    const auto [file, label] = file_and_label(arg);
+    if (is_file(file)) {
+      files.push_back(arg);
+    } else if (!label.empty() || looks_like_series(file)) {
+      throw InputError(arg, "FILE", "no such file (a plain series is FILE or FILE:label)");
+    } else {
+      rest.push_back(arg);  // find_tap_runs names it: not a directory
+    }
+  }
+  dirs = rest;
+  return files;
+}
 
 std::vector<PlainSeries> plain_series(const AnalyzeOptions& opt, double& test_area) {
   std::vector<PlainSeries> out;
+  std::vector<bool> automatic;  // labelled by the program, not by the user
+  // positional FILE[:label]: a series of unknown protocol and control, named by its label or
+  // its file's stem
+  for (const auto& arg : opt.files) {
+    const auto [file, label] = file_and_label(arg);
+    PlainSeries p;
+    p.file = file;
+    p.control = std::nan("");
+    p.label = label.empty() ? fs::path(file).stem().string() : label;
+    check_file(p.file, arg, "FILE");
+    out.push_back(p);
+    automatic.push_back(label.empty());
+  }
   // --series PROTOCOL:CONTROL:FILE
   for (const auto& text : opt.series) {
     const auto a = text.find(':'), b = a == std::string::npos ? a : text.find(':', a + 1);
@@ -65,6 +143,7 @@ std::vector<PlainSeries> plain_series(const AnalyzeOptions& opt, double& test_ar
     p.file = text.substr(b + 1);
     check_file(p.file, "--series " + text, "FILE");
     out.push_back(p);
+    automatic.push_back(true);
   }
   // --manifest: a CSV with a header naming file, protocol, control and optionally label and
   // test_area; files are relative to the manifest
@@ -120,10 +199,12 @@ std::vector<PlainSeries> plain_series(const AnalyzeOptions& opt, double& test_ar
       }
       check_file(p.file, where, "file");
       out.push_back(p);
+      automatic.push_back(p.label.empty());
     }
     if (head.empty()) throw InputError(opt.manifest, "--manifest", "no header row");
   }
   if (out.empty()) throw InputError("", "--series", "no series given");
+  make_labels_unique(out, automatic);
   return out;
 }
 

@@ -75,6 +75,16 @@ std::string secs(double v) {
   return o.str();
 }
 
+// the paper's time-step check (section IV): Δt halved at two pulse strengths, as long as the
+// study's own runs, beside them in the pool and analysed apart (analysis/timestep)
+PlannedSweep timestep_sweep(const std::string& scene, int taps, double dt) {
+  std::ostringstream half;
+  half.precision(17);
+  half << "integrator.dt=" << dt / 2;
+  return tapping_sweep("timestep", scene, "drive.g_p", {6, 20}, taps, 3.0, 1184, dt / 2,
+                       {half.str()});
+}
+
 ReproducePlan tapping_plan(Budget b) {
   ReproducePlan p;
   p.study = "tapping";
@@ -106,9 +116,10 @@ ReproducePlan tapping_plan(Budget b) {
                                        {2, 4, 6, 9, 12, 16, 20, 25, 30}, 250, 3.0, 1184, dt));
       p.sweeps.push_back(
           tapping_sweep("rotating_g", rot, "drive.f", {0.5, 0.75, 1.25, 2}, 200, 3.0, 1184, dt));
+      p.sweeps.push_back(timestep_sweep(neg, 250, dt));
       p.purpose =
-          "the paper's pile, 200–250 taps per value: σ_φ, the overlapping histograms "
-          "and the quadron fit";
+          "the paper's pile, 200–250 taps per value: σ_φ, the overlapping histograms, "
+          "the quadron fit and the time-step check";
       break;
     case Budget::Full:
       p.sweeps.push_back(tapping_sweep("negative_g", neg, "drive.g_p",
@@ -117,6 +128,7 @@ ReproducePlan tapping_plan(Budget b) {
       p.sweeps.push_back(tapping_sweep("rotating_g", rot, "drive.f",
                                        {0.25, 0.5, 0.75, 1, 1.25, 1.5, 1.75, 2}, 3000, 3.0, 1184,
                                        dt));
+      p.sweeps.push_back(timestep_sweep(neg, 3000, dt));
       p.purpose = "the paper's own scale: 3000 taps per value (a cluster job)";
       break;
   }

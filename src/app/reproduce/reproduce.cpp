@@ -47,13 +47,6 @@ int mpi_rank() {
   return 0;
 }
 
-std::string shell_quote(const std::string& s) {
-  if (s.find_first_of(" '\"\\$`*?[]{}()<>|&;") == std::string::npos) return s;
-  std::string o = "'";
-  for (char c : s) o += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return o + "'";
-}
-
 void print_plan(const ReproducePlan& p, const std::string& out, int cores) {
   std::printf("gransim reproduce %s --budget %s: %s\n", p.study.c_str(), budget_name(p.budget),
               p.purpose.c_str());
@@ -121,6 +114,27 @@ void write_plan_json(const ReproducePlan& p, const fs::path& out, const std::str
   if (!o) throw OutputError((out / "plan.json").string() + ": cannot be written");
 }
 
+// a published report written again from the series it ships: no run, no analysis
+int report_from_series(const ReproducePlan& plan, const std::string& out) {
+  const fs::path dir(out);
+  if (!fs::exists(dir / "report.json"))
+    throw InputError((dir / "report.json").string(), "",
+                     "missing: --from-series needs a report folder with its series (written by "
+                     "gransim reproduce)");
+  const std::string tools = find_tools_dir("reproduce_report.py");
+  if (tools.empty())
+    throw InputError("reproduce_report.py", "",
+                     "the report script is not beside the executable (set GS_TOOLS_DIR)");
+  const std::string err =
+      run_process({python_interpreter(), tools + "/reproduce_report.py", "--study", plan.study,
+                   "--budget", budget_name(plan.budget), "--from-series", out});
+  if (!err.empty()) {
+    std::fprintf(stderr, "reproduce: the report could not be written: %s\n", err.c_str());
+    return kExitFailure;
+  }
+  return kExitOk;
+}
+
 }  // namespace
 
 int reproduce_command(const ReproduceOptions& opt) {
@@ -129,6 +143,7 @@ int reproduce_command(const ReproduceOptions& opt) {
       opt.out.empty() ? "runs/reproduce-" + opt.study + "-" + opt.budget : opt.out;
   const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   const bool root = mpi_rank() == 0;
+  if (opt.from_series) return root ? report_from_series(plan, out) : kExitOk;
   if (root && !opt.quiet) print_plan(plan, out, cores);
   if (plan.budget == Budget::Full && !opt.run_full && !opt.report_only) {
     if (root) print_cluster_commands(plan, out);
@@ -156,8 +171,8 @@ int reproduce_command(const ReproduceOptions& opt) {
     report_lock = std::make_unique<DirLock>(out, "reproduce --report-only", ".report.lock");
   fs::create_directories(dir / "sweeps", ec);
   if (ec) throw OutputError(out + ": cannot create the directory: " + ec.message());
-  std::string command =
-      "gransim reproduce " + opt.study + " --budget " + opt.budget + " --out " + shell_quote(out);
+  // as a reader would type it: where this machine put the runs is no part of the study
+  const std::string command = "gransim reproduce " + opt.study + " --budget " + opt.budget;
   if (root && (!opt.report_only || !fs::exists(dir / "plan.json")))
     write_plan_json(plan, dir, command);
 
@@ -222,12 +237,18 @@ int reproduce_command(const ReproduceOptions& opt) {
   if (begun.empty())
     throw InputError(out, "", "no sweep of the study has begun: nothing to report");
   if (plan.study == "tapping") {
-    AnalyzeOptions ao;
-    for (const auto& s : begun) ao.dirs.push_back((dir / "sweeps" / s.name).string());
+    // the protocols together; the time-step check's runs apart (their labels repeat the
+    // study's and they are no part of its fits)
+    AnalyzeOptions ao, check;
+    for (const auto& s : begun)
+      (s.name == "timestep" ? check : ao).dirs.push_back((dir / "sweeps" / s.name).string());
     ao.out = (dir / "analysis").string();
-    ao.quiet = opt.quiet;
-    ao.discard_auto = true;  // a weak pulse compacts the pile over far more than 10 taps
-    code = analyze_command(ao);
+    check.out = (dir / "analysis" / "timestep").string();
+    for (AnalyzeOptions* a : {&ao, &check}) {
+      a->quiet = opt.quiet;
+      a->discard_auto = true;  // a weak pulse compacts the pile over far more than 10 taps
+      if (!a->dirs.empty()) code = std::max(code, analyze_command(*a));
+    }
   } else {
     for (const auto& s : begun) {
       AnalyzeOptions ao;
@@ -275,7 +296,12 @@ CLI::App* add_reproduce_command(CLI::App& app, ReproduceOptions& opt) {
   c->add_option("-j,--jobs", opt.jobs, "runs at a time (default: the number of cores)")
       ->check(cli_check::non_negative);
   c->add_flag("--run", opt.run_full, "run the full budget here instead of printing its commands");
-  c->add_flag("--report-only", opt.report_only, "analyse and report what is there; start no run");
+  auto* report_only = c->add_flag("--report-only", opt.report_only,
+                                  "analyse and report what is there; start no run");
+  c->add_flag("--from-series", opt.from_series,
+              "write the report in --out again from the series it ships (DIR/series, "
+              "DIR/report.json): no run, no analysis")
+      ->excludes(report_only);
   c->add_flag("-q,--quiet", opt.quiet, "no progress display");
   return c;
 }

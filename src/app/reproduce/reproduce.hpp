@@ -17,6 +17,7 @@ struct ReproduceOptions {
   int jobs = 0;                  ///< runs at a time (0: the number of cores)
   bool run_full = false;         ///< the full budget runs only when asked
   bool report_only = false;      ///< analyse and report what is there, start no run
+  bool from_series = false;      ///< the report again from DIR/series alone (a published one)
   bool quiet = false;            ///< no progress display
 };
 

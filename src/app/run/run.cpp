@@ -18,6 +18,7 @@
 #include <optional>
 #include <sstream>
 
+#include "app/openmp_team.hpp"
 #include "app/run/observers.hpp"
 #include "app/run/run_bounds.hpp"
 #include "app/run/run_info.hpp"
@@ -47,7 +48,7 @@ std::string default_out(const std::string& name) {
 }
 
 void print_banner(const SceneSpec& scene, const Simulation& sim, const ProtocolClock& clock) {
-  const double dt = scene.integrator.dt;
+  const double dt = sim.dt();  // the step the simulation takes, whatever the scene asked
   const auto nsteps = static_cast<long long>(std::llround(clock.nominal_duration() / dt));
   const std::string sorted =
       sim.sort_every() > 0 ? ", sorted every " + std::to_string(sim.sort_every()) + " steps" : "";
@@ -56,6 +57,12 @@ void print_banner(const SceneSpec& scene, const Simulation& sim, const ProtocolC
       program_version().data(), scene.name.c_str(), sim.world().size(), nsteps, dt,
       std::string(to_string(scene.integrator.kind)).c_str(), sim.broadphase().name(),
       sorted.c_str(), sim.model().min_contact_time());
+  // the runtime read its wait policy as this process started: say how to choose a better one
+  if (openmp_team().threads > 1 && !wait_policy_chosen())
+    std::fprintf(stderr,
+                 "gransim: several threads with the OpenMP runtime's default wait policy; on a "
+                 "virtual machine start gransim with %s (docs/threads.md)\n",
+                 kSpinCount);
   if (is_tapping(scene.drive))
     std::fprintf(
         stderr, "gransim: %s, settle %g s, then %d taps of T = %g s (excitation %g s)%s%s\n",

@@ -13,6 +13,7 @@
 #include <thread>
 
 #include "app/locations.hpp"
+#include "app/openmp_team.hpp"
 #include "app/progress.hpp"
 #include "app/run/run.hpp"
 #include "app/run/run_info.hpp"
@@ -77,6 +78,9 @@ std::vector<std::string> child_environment(int threads) {
   const std::string parent = std::string(kParentPidVariable) + "=";
   std::erase_if(env, [&](const std::string& v) { return v.rfind(parent, 0) == 0; });
   env.push_back(parent + std::to_string(::getpid()));
+  // a child of several threads waits with a long spin unless the user chose a policy: its
+  // runtime reads the choice as it starts, so the parent makes it (docs/threads.md)
+  if (threads > 1 && !wait_policy_chosen()) env.push_back(kSpinCount);
   return env;
 }
 
