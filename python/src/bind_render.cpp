@@ -3,8 +3,10 @@
 #include <pybind11/stl.h>
 
 #include <cstring>
+#include <limits>
 #include <string>
 
+#include "arguments.hpp"
 #include "bindings.hpp"
 #include "core/error.hpp"
 #include "output/png.hpp"
@@ -15,6 +17,11 @@
 #endif
 
 namespace gs::py_bind {
+
+namespace {
+// a side longer than this is no frame (16K video is 15360 wide)
+constexpr py::ssize_t kMaxSide = 16384;
+}  // namespace
 
 py::array image_to_array(Image img, int channels) {
   if (channels != 3 && channels != 4)
@@ -33,6 +40,10 @@ Image array_to_image(const py::array& any) {
   const auto a = py::array_t<std::uint8_t, py::array::c_style | py::array::forcecast>::ensure(any);
   if (!a || a.ndim() != 3 || (a.shape(2) != 3 && a.shape(2) != 4))
     throw InputError("image", "image", "must be an H×W×3 or H×W×4 uint8 array");
+  if (a.shape(0) < 1 || a.shape(1) < 1 || a.shape(0) > kMaxSide || a.shape(1) > kMaxSide)
+    throw InputError("image", "image",
+                     "must be 1 to " + std::to_string(kMaxSide) + " pixels on each side (got " +
+                         std::to_string(a.shape(1)) + "×" + std::to_string(a.shape(0)) + ")");
   Image img(static_cast<int>(a.shape(1)), static_cast<int>(a.shape(0)));
   const auto c = static_cast<std::size_t>(a.shape(2));
   const std::uint8_t* src = a.data();
@@ -57,6 +68,7 @@ struct PyRenderer {
     view = ViewSettings::from(s);
   }
   py::array render(const PySim& s, int channels) {
+    Args("Renderer.render").count("channels", channels, 3, 4);
     const Simulation& sim = *s.sim;
     const World& w = sim.world();
     Image img;
@@ -96,6 +108,7 @@ void bind_render(py::module_& m) {
   m.def(
       "read_png",
       [](const std::string& path, int channels) {
+        Args("read_png").count("channels", channels, 3, 4);
         return image_to_array(read_png(path), channels);
       },
       py::arg("path"), py::arg("channels") = 4, "read a PNG as an H×W×channels uint8 array");
@@ -105,6 +118,11 @@ void bind_render(py::module_& m) {
   py::class_<PyMovie>(m, "MovieEncoder", "MP4 (H.264, else MPEG-4) from uint8 frames")
       .def(py::init([](const std::string& path, int width, int height, int fps, int crf,
                        const std::string& preset, const std::string& codec) {
+             Args("MovieEncoder")
+                 .count("width", width, 2, kMaxSide)
+                 .count("height", height, 2, kMaxSide)
+                 .count("fps", fps, 1, 1000)
+                 .count("crf", crf, 0, 51);
              auto p = std::make_unique<PyMovie>();
              MovieOptions o;
              o.fps = fps;
@@ -140,6 +158,9 @@ void bind_render(py::module_& m) {
   m.def(
       "movie_frame",
       [](const std::string& path, int index, int channels) {
+        Args("movie_frame")
+            .count("index", index, 0, std::numeric_limits<int>::max())
+            .count("channels", channels, 3, 4);
         return image_to_array(movie_frame(path, index), channels);
       },
       py::arg("path"), py::arg("index"), py::arg("channels") = 3);

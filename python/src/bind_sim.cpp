@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "arguments.hpp"
 #include "bindings.hpp"
 #include "core/error.hpp"
 #include "drive/schedule.hpp"
@@ -101,9 +102,16 @@ std::array<double, 4> rect_or_scene(const SceneSpec& scene, const py::object& re
   if (rect.is_none())
     return {scene.output.test_rect[0], scene.output.test_rect[1], scene.output.test_rect[2],
             scene.output.test_rect[3]};
-  const auto r = rect.cast<std::vector<double>>();
+  const Args args("rect");
+  std::vector<double> r;
+  try {
+    r = rect.cast<std::vector<double>>();
+  } catch (const py::cast_error&) {
+    args.fail("rect", "must be [x0, y0, x1, y1], four numbers");
+  }
   if (r.size() != 4 || !(r[2] > r[0]) || !(r[3] > r[1]))
     throw InputError("rect", "rect", "must be [x0, y0, x1, y1] with x1 > x0 and y1 > y0");
+  args.all_finite("rect", r);
   return {r[0], r[1], r[2], r[3]};
 }
 
@@ -173,9 +181,14 @@ void bind_scene_sim(py::module_& m) {
       .def(
           "run",
           [](PySim& s, double t) {
-            if (!(t >= 0.0) || !std::isfinite(t))
-              throw InputError("run", "t", "must be a finite time >= 0 s");
-            s.advance(std::llround(t / s.sim->dt()));
+            const Args args("Simulation.run");
+            args.non_negative("t", t);
+            // as many steps as an int64 counts, with room to spare (10¹⁵ steps are years)
+            const double steps = std::round(t / s.sim->dt());
+            args.require(steps <= 1e15, "t",
+                         Args::text(t) + " s is " + Args::text(steps) + " steps of " +
+                             Args::text(s.sim->dt()) + " s; at most 1e15 steps at once");
+            s.advance(static_cast<std::int64_t>(steps));
           },
           py::arg("t"), "advance by simulated time t (s), rounded to whole steps")
       .def(

@@ -41,6 +41,13 @@ std::vector<double> linspace(double a, double b, int n);
 std::vector<double> kde(const std::vector<double>& x, const std::vector<double>& grid, double h,
                         Kernel k = Kernel::Normal);
 
+/// the estimate at the centres lo + (j + ½)·width of nb bins that hold every sample, in
+/// O(n + nb·h/δ) instead of kde()'s O(n·nb): for the normal kernel the samples are first shared
+/// between the two nearest centres of a grid δ ≤ h/32 fine (linear binning; relative error
+/// ≈ (δ/h)²/12 ≤ 1e-4); the other kernels, short-ranged, are summed exactly
+std::vector<double> kde_on_bins(const std::vector<double>& x, double lo, double width, int nb,
+                                double h, Kernel k = Kernel::Normal);
+
 /// a density estimate on a grid
 struct KdeCurve {
   std::vector<double> x;        ///< grid, units of the data

@@ -117,18 +117,17 @@ std::vector<BetaEstimate> chain_links(const std::vector<std::vector<double>>& ph
   return links;
 }
 
-// a moving-block bootstrap resample of a series
-std::vector<double> resample(const std::vector<double>& x, int block, std::mt19937_64& rng) {
-  const int n = static_cast<int>(x.size());
+// a moving-block bootstrap resample of a series of n values: the indices it takes
+std::vector<int> resample(int n, int block, std::mt19937_64& rng) {
   block = std::clamp(block, 1, n);
   std::uniform_int_distribution<int> start(0, n - block);
-  std::vector<double> out;
-  out.reserve(n + block);
+  std::vector<int> out;
+  out.reserve(static_cast<std::size_t>(n + block));
   while (static_cast<int>(out.size()) < n) {
     const int s = start(rng);
-    out.insert(out.end(), x.begin() + s, x.begin() + s + block);
+    for (int i = s; i < s + block; ++i) out.push_back(i);
   }
-  out.resize(n);
+  out.resize(static_cast<std::size_t>(n));
   return out;
 }
 
@@ -175,6 +174,8 @@ JointFit joint_histogram_fit(const std::vector<std::vector<double>>& counts,
   }
   for (int u = 0; u < U; ++u)
     for (int j : bins) n_run[u] += counts[use[u]][j];
+  std::vector<double> ln_n(U);
+  for (int u = 0; u < U; ++u) ln_n[u] = std::log(n_run[u]);
 
   // the convex objective of the multiple-histogram likelihood (as MBAR's), with
   // a_kj = f_k − b_k x_j: F = Σ_j T_j ln Σ_k N_k e^{a_kj} − Σ_kj c_kj a_kj; its minimum has
@@ -203,7 +204,7 @@ JointFit joint_histogram_fit(const std::vector<std::vector<double>>& counts,
     for (int j : bins) {
       double m = -std::numeric_limits<double>::infinity();
       for (int u = 0; u < U; ++u) {
-        p[u] = std::log(n_run[u]) + exponent(t, u, j);
+        p[u] = ln_n[u] + exponent(t, u, j);
         m = std::max(m, p[u]);
       }
       double s = 0.0;
@@ -329,13 +330,28 @@ MultiHistResult multi_histogram_beta(const std::vector<std::vector<double>>& phi
   if (opts.bootstrap > 0) {
     std::mt19937_64 rng(opts.seed);
     std::vector<std::vector<double>> cb(K), cz(K), jb(K), jz(K);
-    std::vector<std::vector<double>> sample(K), sample_x(K);
+    std::vector<std::vector<double>> sample(K);
+    // each value's place among the pooled values, found once: a replica's counts are then
+    // tallied in O(n) on the pooled values (the values it lacks have no count, and the joint
+    // fit skips them), where pooling each replica again would sort it
+    std::vector<std::vector<int>> place(K);
+    for (int k = 0; k < K; ++k)
+      for (double v : xs[k])
+        place[k].push_back(static_cast<int>(std::lower_bound(pooled.x.begin(), pooled.x.end(), v) -
+                                            pooled.x.begin()));
+    std::vector<std::vector<double>> counts(K, std::vector<double>(pooled.x.size(), 0.0));
     for (int rep = 0; rep < opts.bootstrap; ++rep) {
       for (int k = 0; k < K; ++k) {
         const double tau =
             opts.tau_int.size() == static_cast<std::size_t>(K) ? opts.tau_int[k] : 0.5;
-        sample[k] = resample(phi[k], static_cast<int>(std::lround(2.0 * tau)), rng);
-        sample_x[k] = inverse(sample[k]);
+        const std::vector<int> take = resample(static_cast<int>(phi[k].size()),
+                                               static_cast<int>(std::lround(2.0 * tau)), rng);
+        sample[k].resize(take.size());
+        std::fill(counts[k].begin(), counts[k].end(), 0.0);
+        for (std::size_t i = 0; i < take.size(); ++i) {
+          sample[k][i] = phi[k][static_cast<std::size_t>(take[i])];
+          counts[k][static_cast<std::size_t>(place[k][static_cast<std::size_t>(take[i])])] += 1.0;
+        }
       }
       MultiHistOptions o = opts;
       const auto links = chain_links(sample, r.order, v_g, o);
@@ -343,8 +359,7 @@ MultiHistResult multi_histogram_beta(const std::vector<std::vector<double>>& phi
       for (int k = 0; k < K; ++k)
         if (chain[k].valid) cb[k].push_back(chain[k].dbeta), cz[k].push_back(chain[k].dlnz);
       {
-        const Pooled ps = pool(sample_x);
-        const JointFit f = joint_histogram_fit(ps.counts, ps.x, ref, jf.b, opts.max_iterations,
+        const JointFit f = joint_histogram_fit(counts, pooled.x, ref, jf.b, opts.max_iterations,
                                                opts.tolerance, linked, jf.dlnz);
         if (f.converged)
           for (int k = 0; k < K; ++k)

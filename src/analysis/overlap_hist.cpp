@@ -222,8 +222,8 @@ QFit q_fit(const std::vector<double>& ref, const std::vector<double>& sample,
   // region from following the noise of the very counts that are fitted (a selection bias).
   const double h0 = opts.bandwidth > 0.0 ? opts.bandwidth : silverman_bandwidth(ref);
   const double h1 = opts.bandwidth > 0.0 ? opts.bandwidth : silverman_bandwidth(sample);
-  const auto k0 = kde(ref, grid, h0, opts.kernel);
-  const auto k1 = kde(sample, grid, h1, opts.kernel);
+  const auto k0 = kde_on_bins(ref, lo, width, nb, h0, opts.kernel);
+  const auto k1 = kde_on_bins(sample, lo, width, nb, h1, opts.kernel);
   const double m0 = *std::max_element(k0.begin(), k0.end());
   const double m1 = *std::max_element(k1.begin(), k1.end());
   std::vector<int> region;

@@ -39,12 +39,15 @@ void PairCorrelation2D::count_brute(std::span<const Vec2> r) {
 
 void PairCorrelation2D::count_cells(std::span<const Vec2> r) {
   // cells at least R_max wide: every pair closer than R_max is in neighbouring cells
-  const int nc = static_cast<int>(box_ / r_max_);
+  // (no more than 1024 a side: wider cells only hold more pairs)
+  const int nc = static_cast<int>(std::min(box_ / r_max_, 1024.0));
   const double cw = box_ / nc;
-  std::vector<std::vector<std::size_t>> cell(static_cast<std::size_t>(nc * nc));
+  std::vector<std::vector<std::size_t>> cell(static_cast<std::size_t>(nc) *
+                                             static_cast<std::size_t>(nc));
+  // a coordinate's cell, wrapped into the box in floating point first (any finite x)
   auto wrap = [&](double x) {
-    int c = static_cast<int>(std::floor(x / cw)) % nc;
-    return c < 0 ? c + nc : c;
+    const double u = x / cw - nc * std::floor(x / cw / nc);
+    return std::clamp(static_cast<int>(u), 0, nc - 1);
   };
   for (std::size_t i = 0; i < r.size(); ++i)
     cell[static_cast<std::size_t>(wrap(r[i].y) * nc + wrap(r[i].x))].push_back(i);

@@ -98,6 +98,17 @@ std::string tap_run_label(const TapRunInput& run) {
 TapAnalysisResult run_tap_analysis(const std::vector<TapRunInput>& runs,
                                    const TapAnalysisOptions& opts) {
   if (runs.empty()) throw InputError("", "runs", "the tapping analysis needs at least one run");
+  // the options every caller may get wrong, checked before any series is cut with them
+  if (opts.discard < 0)
+    throw InputError("", "discard", "must be >= 0 taps (got " + std::to_string(opts.discard) + ")");
+  if (!(opts.level > 0.0 && opts.level < 1.0))
+    throw InputError("", "level", "must lie strictly between 0 and 1");
+  if (!(opts.alpha > 0.0 && opts.alpha < 1.0))
+    throw InputError("", "alpha", "must lie strictly between 0 and 1");
+  if (!(opts.test_area > 0.0) || !std::isfinite(opts.test_area))
+    throw InputError("", "test_area", "must be a finite area > 0 (m²)");
+  if (opts.bootstrap < 0) throw InputError("", "bootstrap", "must be >= 0");
+  if (opts.overlap.bins < 0) throw InputError("", "bins", "must be >= 0");
   TapAnalysisResult r;
 
   // per-run statistics after dropping the transient

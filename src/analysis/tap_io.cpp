@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "analysis/tap_analysis.hpp"
+#include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/input_file.hpp"
 
@@ -97,11 +98,22 @@ std::string jarr(const std::vector<double>& v) {
   return o + "]";
 }
 
-std::ofstream open_out(const std::filesystem::path& p) {
-  std::ofstream f(p);
-  if (!f) throw InputError(p.string(), "", "cannot open the file for writing");
-  return f;
-}
+// an output file built in memory and written whole by close() (write_file_atomic): a full disk
+// is an OutputError naming it and leaves no partial file; never closed, it is never written
+class OutFile {
+ public:
+  explicit OutFile(std::filesystem::path p) : path_(std::move(p)) {}
+  template <class T>
+  OutFile& operator<<(const T& v) {
+    text_ << v;
+    return *this;
+  }
+  void close() { write_file_atomic(path_.string(), text_.str()); }
+
+ private:
+  std::filesystem::path path_;
+  std::ostringstream text_;
+};
 
 // one quadron fit as a JSON object, with the curve φ̄(β), σ_φ(β), Δln Z(β) over the data range
 std::string quadron_json(const QuadronFit& f, const TapAnalysisResult& r,
@@ -259,7 +271,7 @@ void write_tap_analysis(const TapAnalysisResult& r, const std::vector<TapRunInpu
 
   // pairs.csv: two-sample tests of runs at the same protocol and control value
   if (!r.pairs.empty()) {
-    auto f = open_out(dir / "pairs.csv");
+    OutFile f(dir / "pairs.csv");
     f << "label_a,label_b,protocol,control,n_eff_a,n_eff_b,mean_diff,mean_diff_err,p_mean,"
          "sigma_ratio,p_sigma,ks_d,ks_p\n";
     for (const TapPairTest& p : r.pairs) {
@@ -271,11 +283,12 @@ void write_tap_analysis(const TapAnalysisResult& r, const std::vector<TapRunInpu
         << num(t.mean_diff_err) << ',' << num(t.p_mean) << ',' << num(t.sigma_ratio) << ','
         << num(t.p_sigma) << ',' << num(t.ks_d) << ',' << num(t.ks_p) << '\n';
     }
+    f.close();
   }
 
   // summary.csv: one row per run
   {
-    auto f = open_out(dir / "summary.csv");
+    OutFile f(dir / "summary.csv");
     f << "label,protocol,control,n_total,n_used,phi_mean,phi_err,phi_mean_lo,phi_mean_hi,"
          "phi_mean_lo_tau,phi_mean_hi_tau,sigma,sigma_lo,sigma_hi,sigma_lo_tau,sigma_hi_tau,"
          "tau_int,tau_err,tau_window,chi2,chi2_bins,chi2_dof,chi2_p,normal,mean_left,"
@@ -297,11 +310,12 @@ void write_tap_analysis(const TapAnalysisResult& r, const std::vector<TapRunInpu
         << num(s.has_halves ? s.sigma_right / s.sigma : nan) << ',' << s.discard << ','
         << (s.steady ? 1 : 0) << '\n';
     }
+    f.close();
   }
 
   // series.csv: the time series (Fig. 4), with the transient marked
   {
-    auto f = open_out(dir / "series.csv");
+    OutFile f(dir / "series.csv");
     f << "label,protocol,control,tap,phi,used\n";
     for (std::size_t i = 0; i < runs.size(); ++i) {
       const auto& s = runs[i].series;
@@ -310,11 +324,12 @@ void write_tap_analysis(const TapAnalysisResult& r, const std::vector<TapRunInpu
           << num(k < s.tap.size() ? s.tap[k] : static_cast<double>(k)) << ',' << num(s.phi[k])
           << ',' << (static_cast<int>(k) >= r.runs[i].discard ? 1 : 0) << '\n';
     }
+    f.close();
   }
 
   // kde.csv: the three kernels on each run's grid (Figs 7a, 8a, 13)
   {
-    auto f = open_out(dir / "kde.csv");
+    OutFile f(dir / "kde.csv");
     f << "label,protocol,control,bandwidth,phi,p_normal,p_epanechnikov,p_box\n";
     for (std::size_t i = 0; i < r.runs.size(); ++i) {
       const auto& c = r.kde_normal[i];
@@ -323,6 +338,7 @@ void write_tap_analysis(const TapAnalysisResult& r, const std::vector<TapRunInpu
           << num(c.bandwidth) << ',' << num(c.x[k]) << ',' << num(c.density[k]) << ','
           << num(r.kde_epanechnikov[i][k]) << ',' << num(r.kde_box[i][k]) << '\n';
     }
+    f.close();
   }
 
   // q_lines.csv and beta.csv, for each reference (Figs 7b–c, 8b–c, 9, 10); none without β̂
@@ -330,8 +346,8 @@ void write_tap_analysis(const TapAnalysisResult& r, const std::vector<TapRunInpu
   auto* all = r.quadron.count("all") ? &r.quadron.at("all") : nullptr;
   const bool fit_ok = all && all->converged;
   if (has_beta) {
-    auto fq = open_out(dir / "q_lines.csv");
-    auto fb = open_out(dir / "beta.csv");
+    OutFile fq(dir / "q_lines.csv");
+    OutFile fb(dir / "beta.csv");
     fq << "reference,label,protocol,control,inv_phi,q,q_err,q_line\n";
     fb << "reference,label,protocol,control,phi_mean,phi_err,sigma,sigma_lo_tau,sigma_hi_tau,"
           "dbeta,dbeta_err,dlnz,dlnz_err,cov,r2,quad,quad_err,chi2,dof,points,valid,beta,"
@@ -367,12 +383,14 @@ void write_tap_analysis(const TapAnalysisResult& r, const std::vector<TapRunInpu
     };
     write(r.ref, r.beta);
     if (r.ref2 >= 0) write(r.ref2, r.beta2);
+    fq.close();
+    fb.close();
   }
 
   // beta_multi.csv: β̂ and ln Z directly against the reference, through the chain of
   // neighbours and from the joint multiple-histogram fit, side by side
   if (!r.multi.chain.empty()) {
-    auto f = open_out(dir / "beta_multi.csv");
+    OutFile f(dir / "beta_multi.csv");
     f << "label,protocol,control,phi_mean,phi_err,direct_valid,direct_dbeta,direct_dbeta_err,"
          "direct_dlnz,direct_dlnz_err,chain_valid,chain_dbeta,chain_dbeta_err,chain_dlnz,"
          "chain_dlnz_err,joint_valid,joint_dbeta,joint_dbeta_err,joint_dlnz,joint_dlnz_err\n";
@@ -388,11 +406,12 @@ void write_tap_analysis(const TapAnalysisResult& r, const std::vector<TapRunInpu
         << ',' << num(c.dlnz_err) << ',' << (j.valid ? 1 : 0) << ',' << num(j.dbeta) << ','
         << num(j.dbeta_err) << ',' << num(j.dlnz) << ',' << num(j.dlnz_err) << '\n';
     }
+    f.close();
   }
 
   // quadron.json: the fits with their curves
   if (has_beta) {
-    auto f = open_out(dir / "quadron.json");
+    OutFile f(dir / "quadron.json");
     f << "{\n  \"phi_rlp\": " << jnum(opts.quadron.phi_rlp)
       << ",\n  \"phi_rcp\": " << jnum(opts.quadron.phi_rcp) << ",\n  \"v_g\": " << jnum(r.v_g)
       << ",\n  \"reference\": " << jstr(ref.label) << ",\n  \"fits\": {";
@@ -402,11 +421,12 @@ void write_tap_analysis(const TapAnalysisResult& r, const std::vector<TapRunInpu
       first = false;
     }
     f << "\n  }\n}\n";
+    f.close();
   }
 
   // analysis.json: options, references, per-run digest, the two-reference check, notes
   {
-    auto f = open_out(dir / "analysis.json");
+    OutFile f(dir / "analysis.json");
     f << "{\n  \"discard\": " << opts.discard
       << ",\n  \"discard_auto\": " << (opts.discard_auto ? "true" : "false")
       << ",\n  \"level\": " << jnum(opts.level) << ",\n  \"alpha\": " << jnum(opts.alpha)
@@ -441,6 +461,7 @@ void write_tap_analysis(const TapAnalysisResult& r, const std::vector<TapRunInpu
       << (r.multi.chain.empty() ? "" : ", \"beta_multi.csv\"") << "],\n  \"notes\": [";
     for (std::size_t i = 0; i < r.notes.size(); ++i) f << (i ? ", " : "") << jstr(r.notes[i]);
     f << "]\n}\n";
+    f.close();
   }
 }
 

@@ -11,6 +11,7 @@
 
 #include "app/analyze/analyze.hpp"
 #include "app/analyze/rfm_models.hpp"
+#include "app/cli_checks.hpp"
 #include "app/render/render_cmd.hpp"
 #include "app/reproduce/reproduce.hpp"
 #include "app/run/run.hpp"
@@ -80,12 +81,12 @@ int run_cli(int argc, char** argv) {
   sweep
       ->add_option("-j,--jobs", so.jobs,
                    "runs at a time (default: the number of cores; under mpirun: 1 per rank)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(cli_check::non_negative);
   sweep
       ->add_option("--replicas", so.replicas,
                    "runs per value; replica r > 0 gets a seed hashed from the scene's and r, "
                    "in <name>_rep=<r> (default 1)")
-      ->check(CLI::PositiveNumber);
+      ->check(cli_check::positive);
   sweep->add_flag("--force", so.force, "redo unfinished runs (completed runs are always kept)");
   sweep->add_flag("-q,--quiet", so.quiet, "no progress display");
   sweep->add_flag("--allow-unstable", so.allow_unstable, "skip the up-front time-step check");
@@ -106,14 +107,14 @@ int run_cli(int argc, char** argv) {
       ->add_option("--test-area", ao.test_area,
                    "area of the test region of plain series, m² (V_g = area·φ̄_ref); "
                    "without it, φ statistics only (no β̂, no quadron fit)")
-      ->check(CLI::PositiveNumber);
+      ->check(cli_check::positive);
   analyze->add_option(
       "-o,--out", ao.out,
       "analysis folder (default DIR/analysis, FILE's folder/<stem>_analysis; needed "
       "for several DIRs or series)");
   analyze
       ->add_option("--discard", ao.discard, "transient taps to drop (default: output.discard_taps)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(cli_check::non_negative);
   analyze->add_flag("--discard-auto", ao.discard_auto,
                     "per run, drop the larger of --discard and the transient the marginal "
                     "standard error rule (MSER-5) finds");

@@ -1,6 +1,7 @@
 // moving per-particle arrays between slots (the spatial sort, Simulation::sort_particles):
 // perm[k] is the old slot whose value slot k receives
 #pragma once
+#include <algorithm>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -15,6 +16,16 @@ void gather_permuted(std::vector<T>& v, std::span<const std::uint32_t> perm, std
   tmp.resize(perm.size());
   for (std::size_t k = 0; k < perm.size(); ++k) tmp[k] = v[perm[k]];
   v.swap(tmp);
+}
+
+/// v[k] ← v[perm[k]] for every slot k, through tmp, and copied back: v keeps its buffer, so that
+/// a view onto it (the Python module's NumPy arrays) stays on the same quantity
+template <class T>
+void gather_in_place(std::vector<T>& v, std::span<const std::uint32_t> perm, std::vector<T>& tmp) {
+  if (v.empty()) return;
+  tmp.resize(perm.size());
+  for (std::size_t k = 0; k < perm.size(); ++k) tmp[k] = v[perm[k]];
+  std::copy(tmp.begin(), tmp.end(), v.begin());
 }
 
 /// the inverse permutation: out[perm[k]] = k

@@ -21,6 +21,13 @@ enum class Stage : std::uint8_t {
 };
 inline constexpr std::size_t kStageCount = 7;
 
+/// a monotonic clock in seconds: the profile's time source (a test gives its own, so that no
+/// test depends on how busy the machine is)
+using ClockSeconds = double (*)();
+inline double steady_seconds() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
 /// the stage's name in run.json and in `gransim run --profile`
 constexpr std::string_view stage_name(Stage s) {
   constexpr std::array<std::string_view, kStageCount> names{
@@ -43,11 +50,14 @@ struct StepProfile {
   static constexpr double kTimedStepMin = 50e-6;
   static constexpr std::uint32_t kMaxStride = 64;
   double timed_step_min = kTimedStepMin;  ///< 0: every step timed
-  /// the sums back to zero, the sampling kept
+  ClockSeconds now = steady_seconds;      ///< the clock the stages are timed on
+  /// the sums back to zero, the sampling and the clock kept
   void clear() {
     const double m = timed_step_min;
+    const ClockSeconds c = now;
     *this = StepProfile{};
     timed_step_min = m;
+    now = c;
   }
   double& operator[](Stage s) { return seconds[static_cast<std::size_t>(s)]; }
   double operator[](Stage s) const { return seconds[static_cast<std::size_t>(s)]; }
@@ -84,7 +94,7 @@ class StageClock {
  public:
   StageClock(StepProfile& p, std::int64_t step)
       : profile_(p.times(step) ? &p : nullptr), weight_(p.stride) {
-    if (profile_ != nullptr) first_ = last_ = Clock::now();
+    if (profile_ != nullptr) first_ = last_ = p.now();
   }
   StageClock(const StageClock&) = delete;
   StageClock& operator=(const StageClock&) = delete;
@@ -92,20 +102,19 @@ class StageClock {
   ~StageClock() {
     if (profile_ == nullptr) return;
     ++profile_->timed;
-    profile_->adapt(std::chrono::duration<double>(last_ - first_).count());
+    profile_->adapt(last_ - first_);
   }
   void lap(Stage s) {
     if (profile_ == nullptr) return;
-    const Clock::time_point t = Clock::now();
-    (*profile_)[s] += weight_ * std::chrono::duration<double>(t - last_).count();
+    const double t = profile_->now();
+    (*profile_)[s] += weight_ * (t - last_);
     last_ = t;
   }
 
  private:
-  using Clock = std::chrono::steady_clock;
   StepProfile* profile_;
   double weight_;
-  Clock::time_point first_, last_;
+  double first_ = 0.0, last_ = 0.0;  ///< clock reads, s
 };
 
 }  // namespace gs

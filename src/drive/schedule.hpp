@@ -3,6 +3,7 @@
 // rest — lives in drive/protocol.hpp; the simulation step calls gravity_at once per force
 // evaluation)
 #pragma once
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 
@@ -99,7 +100,12 @@ inline std::int64_t steps_before_excitation(const DriveSpec& d, double origin, d
 inline Vec2 gravity_at(const DriveSpec& d, double origin, double t) {
   if (d.kind == DriveKind::Gravity) {
     const double n = std::hypot(d.gx, d.gy);
-    return n > 0 ? Vec2{d.g * d.gx / n, d.g * d.gy / n} : Vec2{};
+    if (n > 0 && std::isfinite(n)) return Vec2{d.g * d.gx / n, d.g * d.gy / n};
+    // a direction too long for its norm (|g| near the largest double): scaled first
+    const double s = std::max(std::abs(d.gx), std::abs(d.gy));
+    if (!(s > 0)) return Vec2{};
+    const double ux = d.gx / s, uy = d.gy / s, m = std::hypot(ux, uy);
+    return Vec2{d.g * ux / m, d.g * uy / m};
   }
   if (!is_tapping(d)) return {};  // none, random force: no gravity at all
   if (protocol_time(origin, t) < 0.0) return {0.0, -d.g};

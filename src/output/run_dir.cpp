@@ -14,11 +14,38 @@ namespace fs = std::filesystem;
 
 namespace gs {
 
-void prepare_run_dir(const std::string& dir, bool force) {
+void SetAside::discard() {
+  if (dir_.empty()) return;
   std::error_code ec;
+  fs::remove_all(fs::path(dir_) / kFolder, ec);
+  dir_.clear();
+}
+
+void SetAside::restore() noexcept {
+  if (dir_.empty()) return;
+  try {
+    const fs::path dir(dir_), aside = dir / kFolder;
+    std::error_code ec;
+    for (const auto& e : fs::directory_iterator(dir, ec)) {
+      const fs::path name = e.path().filename();
+      if (name != ".lock" && name != kFolder) fs::remove_all(e.path(), ec);
+    }
+    for (const auto& e : fs::directory_iterator(aside, ec))
+      fs::rename(e.path(), dir / e.path().filename(), ec);
+    fs::remove_all(aside, ec);
+  } catch (...) {  // (a directory that vanished meanwhile: nothing left to put back)
+  }
+  dir_.clear();
+}
+
+SetAside prepare_run_dir(const std::string& dir, bool force) {
+  std::error_code ec;
+  SetAside aside;
   if (fs::exists(dir, ec)) {
     if (!fs::is_directory(dir, ec))
       throw InputError(dir, "--out", "exists and is not a directory; choose another --out");
+    // (files a killed earlier --force left aside belong to a run that was to be replaced)
+    fs::remove_all(fs::path(dir) / SetAside::kFolder, ec);
     bool empty = true;
     for (const auto& e : fs::directory_iterator(dir, ec))
       if (e.path().filename() != ".lock") empty = false;
@@ -27,8 +54,21 @@ void prepare_run_dir(const std::string& dir, bool force) {
         throw InputError(dir, "--out",
                          "is not empty; refusing to overwrite a previous run (use --force, or "
                          "choose another --out)");
-      for (const auto& e : fs::directory_iterator(dir))
-        if (e.path().filename() != ".lock") fs::remove_all(e.path(), ec);
+      // set aside by renaming within the directory (one file system: nothing is copied)
+      const fs::path folder = fs::path(dir) / SetAside::kFolder;
+      fs::create_directory(folder, ec);
+      if (ec) throw InputError(dir, "--out", "cannot set the old run aside: " + ec.message());
+      aside = SetAside(dir);
+      for (const auto& e : fs::directory_iterator(dir)) {
+        const fs::path name = e.path().filename();
+        if (name == ".lock" || name == SetAside::kFolder) continue;
+        fs::rename(e.path(), folder / name, ec);
+        if (ec) {
+          aside.restore();
+          throw InputError(e.path().string(), "--out",
+                           "cannot set the old run's file aside: " + ec.message());
+        }
+      }
     }
   } else {
     fs::create_directories(dir, ec);
@@ -40,6 +80,7 @@ void prepare_run_dir(const std::string& dir, bool force) {
   if (fd < 0) throw InputError(dir, "--out", std::string("cannot write: ") + std::strerror(errno));
   ::close(fd);
   ::unlink(probe.c_str());
+  return aside;
 }
 
 DirLock::DirLock(const std::string& dir, const std::string& what) : DirLock(dir, what, ".lock") {}

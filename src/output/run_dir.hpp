@@ -3,16 +3,45 @@
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/atomic_file.hpp"  // write_file_atomic, for the run directory's summaries
 
 namespace gs {
 
+/// a previous run's files set aside in DIR/.gransim-replaced while a new run (--force) proves
+/// itself: discarded once it has passed its first health check, restored if it fails before
+class SetAside {
+ public:
+  SetAside() = default;
+  explicit SetAside(std::string dir) : dir_(std::move(dir)) {}
+  SetAside(SetAside&& o) noexcept : dir_(std::exchange(o.dir_, {})) {}
+  SetAside& operator=(SetAside&& o) noexcept {
+    restore();
+    dir_ = std::exchange(o.dir_, {});
+    return *this;
+  }
+  SetAside(const SetAside&) = delete;
+  /// neither discarded nor restored (an error on the way): the old files are put back
+  ~SetAside() { restore(); }
+  /// are files set aside?
+  bool holds() const { return !dir_.empty(); }
+  /// the new run is sound: the old files are deleted
+  void discard();
+  /// the new run failed: its files are deleted and the old ones put back where they were
+  void restore() noexcept;
+  /// the folder the old files wait in
+  static constexpr const char* kFolder = ".gransim-replaced";
+
+ private:
+  std::string dir_;  ///< the run directory ("" when nothing is set aside)
+};
+
 /// make `dir` ready for a new run: create it, or accept it if empty; a non-empty directory is
-/// refused (InputError) unless force, in which case its contents are removed (all but the
-/// directory's .lock, which the caller may hold)
-void prepare_run_dir(const std::string& dir, bool force);
+/// refused (InputError) unless force, in which case its contents (all but the directory's
+/// .lock, which the caller may hold) are set aside, not yet deleted
+[[nodiscard]] SetAside prepare_run_dir(const std::string& dir, bool force);
 /// one writer per directory: an advisory lock (flock) on DIR/.lock, held while the object
 /// lives; the kernel releases it when the process ends, however it ends (kill -9 leaves no
 /// stale lock). The holder writes its PID into the file so that a refused writer can name it.

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <limits>
 #include <sstream>
+#include <utility>
 
 #include "core/input_file.hpp"
 #include "scene/reader.hpp"
@@ -265,6 +266,26 @@ void read_preparation(const Ctx& ctx, const TableReader& top, SceneSpec& s,
     part.vy = q.number("vy", 0.0, Range::any());
     part.omega = q.number("omega", 0.0, Range::any());
     p.particles.push_back(part);
+  }
+  // two grains at one point touch in no direction: their contact could not push them apart
+  {
+    std::vector<std::size_t> order(p.particles.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    auto at = [&](std::size_t i) { return std::pair{p.particles[i].x, p.particles[i].y}; };
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+      return std::pair{at(a), a} < std::pair{at(b), b};
+    });
+    for (std::size_t k = 1; k < order.size(); ++k)
+      if (at(order[k]) == at(order[k - 1])) {
+        const std::size_t i = std::min(order[k], order[k - 1]),
+                          j = std::max(order[k], order[k - 1]);
+        TableReader q(ctx, *tables[j], "preparation.particle[" + std::to_string(j) + "]",
+                      {"species", "x", "y", "theta", "vx", "vy", "omega"});
+        q.fail("x", "is at the same point as preparation.particle[" + std::to_string(i) + "] (" +
+                        scene_detail::format_double(p.particles[j].x) + ", " +
+                        scene_detail::format_double(p.particles[j].y) +
+                        "): their contact has no direction; move one of them");
+      }
   }
 
   // counts: required for placement, implied by the list for explicit particles

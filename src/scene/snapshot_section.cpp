@@ -27,6 +27,12 @@ void read_snapshots(const TableReader& output, SceneSpec& s) {
   SnapshotSpec& o = s.output.snapshots;
   o.given = true;
   o.every_time = r.number("every_time", 0.0, Range::non_negative());
+  // no schedule is finer than a step: one snapshot per step at most
+  if (o.every_time > 0.0 && o.every_time < s.integrator.dt)
+    r.fail("every_time",
+           "is shorter than the time step integrator.dt = " + format_double(s.integrator.dt) +
+               " s; a snapshot is taken after a step at most once: give every_time "
+               ">= integrator.dt (or 0 for none)");
   // times: finite, non-negative, strictly ascending
   if (const toml::node* n = r.get("times")) {
     const std::string form = "an array of times in s, ascending";

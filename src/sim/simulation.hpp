@@ -113,6 +113,8 @@ class Simulation {
     profile_.timed_step_min = seconds;
     profile_.stride = 1;
   }
+  /// time the stages on `clock` (steady_seconds by default)
+  void time_profile_on(ClockSeconds clock) { profile_.now = clock; }
   /// does anything drive the system (gravity, pulses, noise)?
   bool driven() const;
   /// can the mechanical energy only decrease (no drive, or constant gravity)?

@@ -66,13 +66,14 @@ void World::clear_particles() {
   s = State{};
 }
 
+// each array keeps its buffer (views onto the World's arrays stay on their quantity)
 void World::permute(std::span<const std::uint32_t> perm, PermuteScratch& scratch) {
   if (perm.size() != size()) throw std::invalid_argument("World::permute: wrong size");
   for (auto* v : {&radius, &mass, &inv_mass, &inv_inertia, &s.x, &s.y, &s.th, &s.vx, &s.vy,
                   &s.omega, &s.ax, &s.ay, &s.alpha})
-    gather_permuted(*v, perm, scratch.d);
-  for (auto* v : {&sp, &s.wrap_x, &s.wrap_y}) gather_permuted(*v, perm, scratch.i);
-  gather_permuted(id, perm, scratch.u);
+    gather_in_place(*v, perm, scratch.d);
+  for (auto* v : {&sp, &s.wrap_x, &s.wrap_y}) gather_in_place(*v, perm, scratch.i);
+  gather_in_place(id, perm, scratch.u);
 }
 
 std::vector<std::uint32_t> World::slots_by_id() const { return inverse_permutation(id); }

@@ -30,6 +30,9 @@ struct Outcome {
 struct Launch {
   std::vector<std::string> env;  ///< "NAME=value" added to the environment
   int alarm_s = 30;              ///< SIGALRM after this long (stops hangs)
+  /// SIGXCPU after this much CPU time (−1: none): a bound on work that a busy machine does not
+  /// stretch, unlike alarm_s
+  int cpu_limit_s = -1;
   double signal_after_s = -1.0;  ///< send `signal` after this many seconds (−1: never)
   /// send `signal` once this returns true (polled every 5 ms; wins over signal_after_s): an
   /// observed event such as a checkpoint file appearing, robust on a loaded machine
@@ -53,6 +56,10 @@ inline Outcome run_binary(const std::vector<std::string>& args, const std::files
     ::dup2(fd, 2);
     for (std::string& e : env) ::putenv(e.data());
     ::alarm(static_cast<unsigned>(how.alarm_s));
+    if (how.cpu_limit_s >= 0) {
+      const rlimit cpu{static_cast<rlim_t>(how.cpu_limit_s), static_cast<rlim_t>(how.cpu_limit_s)};
+      ::setrlimit(RLIMIT_CPU, &cpu);
+    }
     if (how.file_size_limit >= 0) {
       // writes past the limit fail with EFBIG instead of killing the process
       ::signal(SIGXFSZ, SIG_IGN);

@@ -1,5 +1,5 @@
 // `gransim run --profile`: the wall time of each stage of the step as a table at the end, and
-// in run.json ("profile"), whose stages add up to the step loop's wall time ("step_loop_s")
+// in run.json ("profile") beside the step loop's wall time ("step_loop_s")
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -39,17 +39,12 @@ TEST(RunProfile, TableAtTheEndAndEveryStageInRunJson) {
   }
   const double loop = j["step_loop_s"].get<double>();
   EXPECT_GT(loop, 0.0);
-  // every step timed: the laps add up to the loop; steps under 50 µs are sampled, and the
-  // weighted sum is then an estimate of it
+  // how the stages add up to the steps' time is tested on an injected clock
+  // (tests/sim/test_step_profile.cpp): wall times themselves depend on the machine's load
   const auto timed = j["profile_timed_steps"].get<std::int64_t>();
   EXPECT_GT(timed, 0);
   EXPECT_LE(timed, j["steps"].get<std::int64_t>());
-  if (timed == j["steps"].get<std::int64_t>()) {
-    EXPECT_LE(sum, loop * 1.0001);
-    EXPECT_GT(sum, 0.9 * loop);
-  } else {
-    EXPECT_NEAR(sum, loop, 0.25 * loop);
-  }
+  EXPECT_GT(sum, 0.0);
   fs::remove_all(dir);
 }
 

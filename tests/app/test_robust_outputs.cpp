@@ -58,6 +58,54 @@ TEST(RobustOutputs, ModelOnAFullDiskKeepsWholeRowsAndExitsFive) {
   fs::remove_all(tmp);
 }
 
+// a full disk under `analyze` and `movie`: exit 5 naming the file, and no partial file left
+// (each table is whole or absent; a movie that could not be finished is removed)
+TEST(RobustOutputs, AnalyzeAndMovieOnAFullDiskLeaveNoPartialFile) {
+  const fs::path tmp = testing::fresh_test_dir("gs-robust");
+  {
+    std::ofstream s(tmp / "g6.csv");
+    s << "tap,phi\n";
+    for (int k = 1; k <= 200; ++k) s << k << "," << 0.80 + 0.001 * (k * 7 % 11) << "\n";
+  }
+  Launch full;
+  full.file_size_limit = 2000;
+  const auto a =
+      run_binary({"analyze", "--series", "negative_g:6:" + (tmp / "g6.csv").string(), "--test-area",
+                  "0.01", "--out", (tmp / "a").string(), "--no-charts", "-q"},
+                 tmp / "analyze.log", full);
+  ASSERT_TRUE(a.exited) << "killed by signal " << a.code;
+  EXPECT_EQ(a.code, 5) << a.output;
+  EXPECT_NE(a.output.find((tmp / "a").string()), std::string::npos) << a.output;
+  EXPECT_NE(a.output.find("File too large"), std::string::npos) << a.output;
+  for (const auto& e : fs::directory_iterator(tmp / "a")) {
+    if (e.path().filename() == ".lock") continue;
+    EXPECT_NE(e.path().extension(), ".tmp") << e.path();
+    EXPECT_GT(fs::file_size(e.path()), 0u) << e.path() << " is empty";
+  }
+  // the same analysis with room: every table
+  const auto ok =
+      run_binary({"analyze", "--series", "negative_g:6:" + (tmp / "g6.csv").string(), "--test-area",
+                  "0.01", "--out", (tmp / "b").string(), "--no-charts", "-q"},
+                 tmp / "analyze.log");
+  EXPECT_EQ(ok.code, 0) << ok.output;
+  EXPECT_TRUE(fs::exists(tmp / "b" / "series.csv"));
+
+  // a movie of the fixture run's frames into 1500 bytes
+  const fs::path run = tmp / "run";
+  fs::copy(fs::path(GS_SOURCE_DIR) / "tests/app/hostile/fixture_run", run,
+           fs::copy_options::recursive);
+  full.file_size_limit = 1500;
+  const auto m = run_binary({"movie", run.string(), "-o", (tmp / "m.mp4").string(), "-q"},
+                            tmp / "movie.log", full);
+  ASSERT_TRUE(m.exited) << "killed by signal " << m.code;
+  if (m.output.find("without FFmpeg") == std::string::npos) {
+    EXPECT_EQ(m.code, 5) << m.output;
+    EXPECT_NE(m.output.find("m.mp4"), std::string::npos) << m.output;
+    EXPECT_FALSE(fs::exists(tmp / "m.mp4")) << "a partial movie is left";
+  }
+  fs::remove_all(tmp);
+}
+
 // a resume continues the run with the scene it started with: an edited scene.toml is refused
 // (exit 2, naming the file and the changed line); restored, the resume goes on
 TEST(RobustOutputs, ResumeRefusesAnEditedSceneToml) {

@@ -189,6 +189,16 @@ TEST(Study, BadStudyFileNamesFileLineAndKey) {
   r = sh(gransim("study " + f.string() + " --out " + (dir / "o").string()));
   EXPECT_EQ(r.code, 2) << r.output;
   EXPECT_NE(r.output.find("tapping.discard"), std::string::npos) << r.output;
+  // a step no contact is resolved with in 10⁴ steps (10⁻³⁰⁰ t_c: "the bodies never touched")
+  for (const char* at : {"[matrix]\nintegrators = [\"gear6\"]\ndt_over_tc = [1e-300]\n",
+                         "reference_dt_over_tc = 1e-300\n[matrix]\nintegrators = [\"gear6\"]\n"
+                         "dt_over_tc = [0.05]\n"}) {
+    std::ofstream(f) << "name = \"bad\"\nproblems = [\"two_disk\"]\n" << at;
+    r = sh(gransim("study " + f.string() + " --out " + (dir / "o").string()));
+    EXPECT_EQ(r.code, 2) << r.output;
+    EXPECT_NE(r.output.find("dt_over_tc"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("1e-4"), std::string::npos) << r.output;
+  }
   // a missing matrix
   std::ofstream(f) << "problems = [\"pile\"]\n";
   r = sh(gransim("study " + f.string() + " --out " + (dir / "o").string()));

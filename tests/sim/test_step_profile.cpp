@@ -3,7 +3,8 @@
 // correction by ranges) and a forced disk gas (velocity Verlet's kick in the force pass)
 #include <gtest/gtest.h>
 
-#include <chrono>
+#include <cmath>
+#include <cstdint>
 #include <string>
 
 #include "test_world.hpp"
@@ -17,33 +18,36 @@ Simulation make_sim(const SceneSpec& s) {
   return Simulation(std::move(w), SimSettings::from(s));
 }
 
-// runs `steps` steps in runs of 10, every step timed, and checks the profile against the wall
-// time around them
+// a clock the test owns: each read moves it on by one tick, so that the profile is a count of
+// the clock reads and no result depends on how busy the machine is
+std::uint64_t g_reads = 0;
+double g_tick = 0.0;  // s, a power of 2 (the sums are exact)
+double counting_clock() { return static_cast<double>(++g_reads) * g_tick; }
+
+// runs `steps` steps in runs of 10, every step timed on the counting clock: a step of L laps
+// reads the clock 1 + L times and is charged L ticks, so the stages' sum is the steps' time
+// (their reads) less one tick per step; and every stage that runs in each step is charged
 void check_profile(Simulation& sim, int steps, const char* what) {
+  g_tick = std::ldexp(1.0, -10);
+  sim.time_profile_on(counting_clock);
   sim.sample_steps_under(0.0);
   sim.clear_profile();
-  double wall = 0.0;
-  for (int k = 0; k < steps; k += 10) {
-    const auto t0 = std::chrono::steady_clock::now();
-    sim.run(10);
-    wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  }
+  const std::uint64_t reads0 = g_reads;
+  for (int k = 0; k < steps; k += 10) sim.run(10);
+  const double reads = static_cast<double>(g_reads - reads0);
   const StepProfile& p = sim.profile();
   EXPECT_EQ(p.steps, static_cast<std::uint64_t>(steps)) << what;
+  EXPECT_EQ(p.timed, p.steps) << what;
   for (std::size_t k = 0; k < kStageCount; ++k) {
     const Stage s = static_cast<Stage>(k);
     EXPECT_GE(p[s], 0.0) << what << " " << stage_name(s);
-    // the stages that run in every step took some time (the fused kick's pass is both laws
-    // and correction, and counted as correct)
+    // the fused kick's pass is both laws and correction, and counted as correct
     if (s != Stage::Drive && s != Stage::Health && s != Stage::Laws) {
-      EXPECT_GT(p[s], 0.0) << what << " " << stage_name(s);
+      EXPECT_GE(p[s], steps * g_tick) << what << " " << stage_name(s);
     }
   }
   EXPECT_GT(p[Stage::Laws] + p[Stage::Correct], 0.0) << what;
-  // laps on one clock: the stages' sum is the steps' time, less the calls between them
-  EXPECT_LE(p.total(), wall) << what;
-  EXPECT_GT(p.total(), 0.9 * wall) << what;
-  EXPECT_EQ(p.timed, p.steps) << what;
+  EXPECT_EQ(p.total(), (reads - static_cast<double>(steps)) * g_tick) << what;
 }
 
 TEST(StepProfile, EveryStageTimedAndTheSumIsTheStepsWallTime) {
@@ -58,25 +62,48 @@ TEST(StepProfile, EveryStageTimedAndTheSumIsTheStepsWallTime) {
   check_profile(b, 200, "gas");
 }
 
-// short steps are sampled (here every step counts as short): one in 64 timed, each counting
-// for 64, the weighted sum an estimate of the steps' wall time (bounds wide enough for a
-// preempted timed step; a weight left out would give 1/64 of it)
+// on the real clock the stages' laps lie inside the span of the calls around them, however
+// busy the machine (one monotonic clock)
+TEST(StepProfile, OnTheSteadyClockTheLapsLieInsideTheRun) {
+  SceneSpec pile = build::decagon_pile(40, 0.2, 0.4, 1);
+  Simulation a = make_sim(pile);
+  a.sample_steps_under(0.0);
+  a.clear_profile();
+  const double t0 = steady_seconds();
+  a.run(50);
+  const double wall = steady_seconds() - t0;
+  for (double s : a.profile().seconds) EXPECT_GE(s, 0.0);
+  EXPECT_GT(a.profile().total(), 0.0);
+  EXPECT_LE(a.profile().total(), wall * (1.0 + 1e-9));
+}
+
+// short steps are sampled (on the counting clock every step is short): one in 64 timed, each
+// counting for 64, so that the weighted sum estimates the time every step would have been
+// charged; the timed steps are a deterministic hash of the step index, about Binomial(n, 1/64)
+// of them (4σ bounds; a weight left out would give 1/64 of the estimate)
 TEST(StepProfile, ShortStepsAreSampledAndStillAddUpToTheWallTime) {
   SceneSpec pile = build::decagon_pile(40, 0.2, 0.4, 1);
   Simulation a = make_sim(pile);
   a.run(100);
-  a.sample_steps_under(1.0);
+  g_tick = std::ldexp(1.0, -30);
+  a.time_profile_on(counting_clock);
+  // the charge of one step when every step is timed
+  a.sample_steps_under(0.0);
   a.clear_profile();
-  const int steps = 4000;
-  const auto t0 = std::chrono::steady_clock::now();
+  a.run(100);
+  const double per_step = a.profile().total() / 100.0;
+  ASSERT_GT(per_step, 0.0);
+  ASSERT_LT(64.0 * per_step, StepProfile::kTimedStepMin);
+  a.sample_steps_under(StepProfile::kTimedStepMin);
+  a.clear_profile();
+  const int steps = 20000;
   a.run(steps);
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const StepProfile& p = a.profile();
   EXPECT_EQ(p.steps, static_cast<std::uint64_t>(steps));
-  EXPECT_LT(p.timed, p.steps / 16);
-  EXPECT_GT(p.timed, p.steps / 256);
-  EXPECT_GT(p.total(), 0.25 * wall);
-  EXPECT_LT(p.total(), 8.0 * wall);
+  EXPECT_EQ(p.stride, StepProfile::kMaxStride);
+  const double mean = steps / 64.0, sd = std::sqrt(mean * 63.0 / 64.0);
+  EXPECT_NEAR(static_cast<double>(p.timed), mean, 4.0 * sd);
+  EXPECT_NEAR(p.total(), steps * per_step, 4.0 * sd / mean * steps * per_step);
 }
 
 TEST(StepProfile, NamesEveryStageOnce) {

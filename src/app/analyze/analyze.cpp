@@ -10,6 +10,7 @@
 #include <fstream>
 #include <map>
 #include <set>
+#include <sstream>
 
 #include "analysis/tap_analysis.hpp"
 #include "app/analyze/rfm_analyze.hpp"
@@ -101,13 +102,13 @@ int finish_analysis(const std::vector<TapRunInput>& runs, const std::vector<RunS
   write_tap_analysis(res, runs, ao, out);
   {
     // runs.csv: where each run came from, for the per-run charts
-    std::ofstream f(out + "/runs.csv");
+    std::ostringstream f;
     f << "label,dir,protocol,control,status,taps,file\n";
     for (std::size_t i = 0; i < runs.size(); ++i)
       f << csv_field(tap_run_label(runs[i])) << ',' << csv_field(src[i].dir) << ','
         << csv_field(src[i].protocol) << ',' << src[i].control << ',' << src[i].status << ','
         << runs[i].series.phi.size() << ',' << csv_field(src[i].file) << '\n';
-    if (!f) throw InputError(out + "/runs.csv", "", "cannot write");
+    write_file_atomic(out + "/runs.csv", f.str());  // a full disk: exit 5 naming it
   }
   if (!opt.quiet) {
     std::printf("%-28s %6s %10s %9s %9s %21s %7s\n", "run", "taps", "phi_mean", "+-(tau)", "sigma",
@@ -235,14 +236,22 @@ int analyze_command(const AnalyzeOptions& given_opt) {
         throw InputError(out, "--out",
                          std::string("holds a run or sweep (") + f +
                              "); the analysis would overwrite its files: choose another --out");
-    for (const auto& p : series)
-      for (const char* f : {"series.csv", "summary.csv", "kde.csv", "pairs.csv", "runs.csv",
-                            "beta.csv", "q_lines.csv", "beta_multi.csv"})
-        if (fs::weakly_canonical(p.file, ec) == o / f)
+    // nor over the plain series it reads (its series.csv may be one of them)
+    if (plain) {
+      std::vector<std::string> inputs;
+      for (const PlainSeries& p : series) inputs.push_back(p.file);
+      if (!opt.manifest.empty()) inputs.push_back(opt.manifest);
+      for (const std::string& f : inputs) {
+        const fs::path dir = fs::weakly_canonical(fs::absolute(f, ec).parent_path(), ec);
+        const fs::path root = o.has_filename() ? o : o.parent_path();  // "D/" as "D"
+        const auto [end, _] = std::mismatch(root.begin(), root.end(), dir.begin(), dir.end());
+        if (end == root.end())
           throw InputError(out, "--out",
-                           std::string("the analysis writes ") + f +
-                               " there, which would replace the series " + p.file +
-                               ": choose another --out");
+                           "holds the input " + f +
+                               ", which the analysis's own files could replace: choose an "
+                               "--out that holds none of the inputs");
+      }
+    }
   }
   const DirLock lock(out, "analyze");
   if (plain) return analyze_plain(opt, series, area, out);

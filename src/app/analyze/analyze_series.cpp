@@ -190,6 +190,8 @@ std::vector<PlainSeries> plain_series(const AnalyzeOptions& opt, double& test_ar
       if (c_label >= 0) p.label = cell(c_label);
       if (c_area >= 0 && !cell(c_area).empty()) {
         const double a = number(cell(c_area), where, "test_area");
+        if (!(a > 0.0))
+          throw InputError(where, "test_area", "must be an area > 0 m² (got " + cell(c_area) + ")");
         if (test_area > 0.0 && std::abs(a - test_area) > 1e-12 * a)
           throw InputError(where, "test_area",
                            "differs from the other rows' (one test region for the study)");

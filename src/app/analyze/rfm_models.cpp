@@ -2,6 +2,7 @@
 #include "app/analyze/rfm_models.hpp"
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -125,6 +126,31 @@ void run_bisection(const Common& c, BisectionOpt o) {
   finish(c, out);
 }
 
+// a walk's step is no finer than a millionth of its time scale (M²l²/D)^(1/3) for the region
+// of size l: each walk of the default 1000 steps per time scale would otherwise take millions
+void check_walk_step(const char* command, const char* size_flag, const models::WalkParams& p,
+                     double l) {
+  const auto num = [](double v) {
+    std::ostringstream s;
+    s.precision(6);
+    s << v;
+    return s.str();
+  };
+  const double ts = models::walk_time_scale(p, l), vs = models::walk_velocity_scale(p, l);
+  if (!(ts > 0.0) || !std::isfinite(ts) || !(vs > 0.0) || !std::isfinite(vs))
+    throw InputError(command, size_flag,
+                     num(l) + " m with --mass " + num(p.mass) + " and --noise " + num(p.noise) +
+                         " gives the walk no finite time scale (M²l²/D)^(1/3) = " + num(ts) +
+                         " s or velocity scale (Dl/M²)^(1/3) = " + num(vs) +
+                         " m/s: choose sizes and parameters nearer each other's scale");
+  if (p.dt > 0.0 && p.dt < 1e-6 * ts)
+    throw InputError(command, "--dt",
+                     num(p.dt) + " s is finer than a millionth of the walk's time scale " +
+                         num(ts) + " s (size " + num(l) +
+                         " m): each walk would take over 10^6 steps; give --dt >= " +
+                         num(1e-6 * ts) + " s, or 0 for the time scale/1000");
+}
+
 // Q(v, l) of the single-particle walk in discs of fixed radius, optionally with l drawn
 // from a measured free-path table (the Single Particle Model), and free heating
 void run_walk(const Common& c, WalkOpt o) {
@@ -134,6 +160,7 @@ void run_walk(const Common& c, WalkOpt o) {
   for (double l : o.radii)
     if (!(l > 0) || !std::isfinite(l))
       throw InputError("gransim model walk", "--radius", "radii must be positive and finite");
+  for (double l : o.radii) check_walk_step("gransim model walk", "--radius", o.p, l);
   // the free-path table is read before anything is written
   rfm::CsvTable paths;
   if (!o.paths.empty()) paths = rfm::read_csv(o.paths);
@@ -151,6 +178,7 @@ void run_walk(const Common& c, WalkOpt o) {
     } catch (const InputError& e) {
       throw InputError(o.paths, "", e.what());
     }
+    check_walk_step("gransim model walk", "--paths", o.p, tab.l.back());
   }
   const auto lock = open_out(c);
   std::vector<std::pair<std::string, double>> f;
@@ -162,18 +190,27 @@ void run_walk(const Common& c, WalkOpt o) {
     name << "walk_l" << l << ".csv";
     models::write_walk_csv(out / name.str(), r, p, l);
     const std::string k = "l_" + num(l);
+    double tail_c = 0.0;
+    try {
+      tail_c = models::gaussian_tail_coefficient(r, p, l);
+    } catch (const InputError&) {
+      throw InputError("gransim model walk", "--walks",
+                       std::to_string(o.p.walks) + " walks fill too few of the " +
+                           std::to_string(p.bins) +
+                           " velocity bins for the Gaussian tail fit: raise --walks or lower "
+                           "--bins");
+    }
     f.insert(f.end(), {{k + "_mean_exit_time", r.mean_exit_time},
                        {k + "_time_scale", models::walk_time_scale(p, l)},
                        {k + "_mean_v2", r.mean_v2},
-                       {k + "_gaussian_tail_c", models::gaussian_tail_coefficient(r, p, l)},
+                       {k + "_gaussian_tail_c", tail_c},
                        {k + "_heating_residual", r.heating_residual},
                        {k + "_heating_residual_err", r.heating_residual_err}});
     if (!c.quiet)
       std::printf(
           "disc walk l = %g m: <tau> = %.4g s (time scale %.4g s), <v_x^2> = %.4g m2/s2, "
           "Gaussian tail c = %.3f (thesis 0.98)\n",
-          l, r.mean_exit_time, models::walk_time_scale(p, l), r.mean_v2,
-          models::gaussian_tail_coefficient(r, p, l));
+          l, r.mean_exit_time, models::walk_time_scale(p, l), r.mean_v2, tail_c);
   }
   // the Single Particle Model with a measured P_l (columns l and P of a freepath.csv)
   if (!o.paths.empty()) {
@@ -210,8 +247,9 @@ void run_interval(const Common& c, IntervalOpt o) {
   o.p.seed = c.seed;
   if (!(o.length > 0) || !std::isfinite(o.length))
     throw InputError("gransim model interval", "--length", "must be positive");
-  if (o.p.v_max == 0) o.p.v_max = 5.0 * models::walk_velocity_scale(o.p, o.length);
   o.p.validate();
+  check_walk_step("gransim model interval", "--length", o.p, o.length);
+  if (o.p.v_max == 0) o.p.v_max = 5.0 * models::walk_velocity_scale(o.p, o.length);
   models::IntervalStart st;
   if (o.start == "uniform")
     st = models::IntervalStart::uniform;
@@ -222,9 +260,15 @@ void run_interval(const Common& c, IntervalOpt o) {
                      "must be uniform or centre (got '" + o.start + "')");
   const auto lock = open_out(c);
   const models::WalkResult r = models::interval_walk(o.p, o.length, st);
-  models::write_interval_csv(out / "interval.csv", r, o.p, o.length);
   const double theory =
       models::appendix_b_mean_exit_time_coefficient() * models::walk_time_scale(o.p, o.length);
+  // a result is written only when it is a number
+  if (!std::isfinite(r.mean_exit_time) || !std::isfinite(theory))
+    throw InputError("gransim model interval", "--length",
+                     num(o.length) + " m gives no finite mean exit time (walks " +
+                         num(r.mean_exit_time) + " s, appendix B " + num(theory) +
+                         " s): choose a length nearer the scale of --noise and --mass");
+  models::write_interval_csv(out / "interval.csv", r, o.p, o.length);
   write_model_json(out, "interval",
                    {{"length", o.length},
                     {"mean_exit_time", r.mean_exit_time},
@@ -248,6 +292,11 @@ void run_cascade(const Common& c, CascadeOpt o) {
     p.kind = models::cascade_from_name(k);
     p.validate();
   }
+  if (!(o.fit_lo > 0.0) || !std::isfinite(o.fit_lo) || !(o.fit_hi > o.fit_lo) ||
+      !std::isfinite(o.fit_hi))
+    throw InputError("gransim model cascade", "--fit-hi",
+                     "the D_f fit window needs 0 < --fit-lo < --fit-hi, finite (got " +
+                         num(o.fit_lo) + " and " + num(o.fit_hi) + ")");
   const auto lock = open_out(c);
   std::vector<std::pair<std::string, double>> f;
   for (const std::string& k : kinds) {
@@ -259,8 +308,17 @@ void run_cascade(const Common& c, CascadeOpt o) {
     const models::CascadeResult r = models::cascade_structure_factor(p);
     const auto exact = models::cascade_expected_sk(p.kind, p.levels, nmax, p.box);
     const double two_pi_l = 2.0 * std::numbers::pi / p.box;
-    const rfm::DfFit fit =
-        rfm::fit_df(r.shells, two_pi_l * o.fit_lo * (1 - 1e-9), two_pi_l * o.fit_hi * (1 + 1e-9));
+    rfm::DfFit fit;
+    try {
+      fit =
+          rfm::fit_df(r.shells, two_pi_l * o.fit_lo * (1 - 1e-9), two_pi_l * o.fit_hi * (1 + 1e-9));
+    } catch (const InputError&) {
+      throw InputError("gransim model cascade", "--fit-hi",
+                       "fewer than two shells with S(k) > 0 in |n| from --fit-lo " + num(o.fit_lo) +
+                           " to --fit-hi " + num(o.fit_hi) + " (" + k +
+                           ", the grid reaches |n| = " + std::to_string(nmax) +
+                           "): widen the window or raise --levels");
+    }
     models::write_cascade_csv(out / ("cascade_" + k + ".csv"), r, exact, p.kind, &fit);
     const double d2 = models::correlation_dimension(p.kind);
     // a mass fractal in the plane has 0 < D_f ≤ 2; a fit outside, or with an error above half
@@ -294,7 +352,18 @@ void guarded(F&& f) {
   try {
     f();
   } catch (const InputError& e) {
-    std::fprintf(stderr, "gransim: error: %s\n", e.what());
+    // a model's own check names its parameter ("walks: key 'noise'"): name the flag instead
+    std::string flag = "--" + e.key();
+    std::replace(flag.begin(), flag.end(), '_', '-');
+    const bool internal = !e.key().empty() && e.key().rfind("--", 0) != 0 &&
+                          e.where().find('/') == std::string::npos &&
+                          e.where().rfind("gransim", 0) != 0;
+    const std::string text = e.what();
+    const std::string::size_type colon = text.find("': ");
+    if (internal && colon != std::string::npos)
+      std::fprintf(stderr, "gransim: error: %s: %s\n", flag.c_str(), text.c_str() + colon + 3);
+    else
+      std::fprintf(stderr, "gransim: error: %s\n", e.what());
     throw CLI::RuntimeError(kExitBadInput);
   } catch (const OutputError& e) {
     std::fprintf(stderr, "gransim: cannot write output: %s\n", e.what());

@@ -129,6 +129,9 @@ class FrameRecorder final : public Observer {
         // a pulse shorter than the frame interval gets a frame of its own (else the movie
         // might never show it)
         if (begins && t + half >= spec_.start && excitation_length(d) < interval) return true;
+        // frame times closer than a step: a frame after every step from the start (no frame
+        // index to count, however fine the schedule)
+        if (interval <= sim.dt()) return t + half >= spec_.start;
         if (t + half < at(next_k_)) return false;
         // the first frame time after this step: jump near it, then settle with the same
         // comparison (a slow-motion schedule may pass many frame times in one step)

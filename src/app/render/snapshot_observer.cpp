@@ -2,7 +2,11 @@
 // resumed run removes any written after it and rewrites the collection and the index
 #include "app/render/snapshot_observer.hpp"
 
+#include <algorithm>
+#include <charconv>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 
@@ -25,15 +29,23 @@ std::vector<std::string> index_columns() {
 }
 
 // the number k of a snapshot file (snap_000012.vtp, contacts_000012.csv), −1 for other names
-long snapshot_number(const std::string& name) {
-  for (const char* stem : {"snap_", "contacts_"}) {
-    const std::string s = stem;
-    if (name.rfind(s, 0) != 0) continue;
-    const std::size_t dot = name.find('.', s.size());
-    if (dot == std::string::npos || dot == s.size()) return -1;
-    const std::string digits = name.substr(s.size(), dot - s.size());
-    if (digits.find_first_not_of("0123456789") != std::string::npos) return -1;
-    return std::stol(digits);
+// the snapshot number k of a file this writer writes under `spec` (exactly
+// snapshot_file(stem, k, ext) for a format it has on), or −1 for any other file: a resume
+// removes only its own later snapshots, never a file that merely looks like one
+long snapshot_number(const std::string& name, const SnapshotSpec& spec) {
+  const std::pair<const char*, const char*> kinds[] = {
+      {"snap_", spec.vtp ? "vtp" : nullptr},
+      {"snap_", spec.xyz ? "xyz" : nullptr},
+      {"contacts_", spec.contacts ? "csv" : nullptr}};
+  for (const auto& [stem, ext] : kinds) {
+    if (ext == nullptr || name.rfind(stem, 0) != 0) continue;
+    const std::size_t begin = std::strlen(stem), dot = name.find('.', begin);
+    if (dot == std::string::npos || name.compare(dot + 1, std::string::npos, ext) != 0) continue;
+    long k = -1;
+    const auto [end, ec] = std::from_chars(name.data() + begin, name.data() + dot, k);
+    if (ec != std::errc() || end != name.data() + dot || k < 0) continue;  // not a number of ours
+    const std::string exact(stem, begin - 1);
+    if (snapshot_file(exact.c_str(), k, ext) == name) return k;
   }
   return -1;
 }
@@ -114,8 +126,8 @@ class SnapshotWriter final : public Observer {
     fs::create_directories(dir_, ec);
     if (ec) throw OutputError(dir_ + ": cannot create the snapshot folder: " + ec.message());
     for (const auto& e : fs::directory_iterator(dir_, ec)) {
-      const long k = snapshot_number(e.path().filename().string());
-      if (k >= keep) fs::remove(e.path(), ec);
+      const long k = snapshot_number(e.path().filename().string(), spec_);
+      if (k >= keep && e.is_regular_file(ec)) fs::remove(e.path(), ec);
     }
     index_ = CsvWriter((fs::path(dir_) / kSnapshotIndexFile).string(), index_columns());
     for (std::size_t k = 0; k < taken_.size(); ++k) index_row(taken_[k], static_cast<long>(k));
@@ -137,8 +149,11 @@ class SnapshotWriter final : public Observer {
     at_time_ = false;
     if (now >= next_time()) {
       at_time_ = true;
-      if (spec_.every_time > 0.0)
+      // the first grid time after now, by division (then settled with the same comparison)
+      if (spec_.every_time > 0.0) {
+        next_k_ = std::max(next_k_, static_cast<std::int64_t>(std::floor(now / spec_.every_time)));
         while (spec_.every_time * static_cast<double>(next_k_) <= now) ++next_k_;
+      }
       while (next_i_ < spec_.times.size() && spec_.times[next_i_] <= now) ++next_i_;
     }
     // the tap observer's test, so that every taps.csv row has its snapshot

@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "app/analyze/analyze.hpp"
+#include "app/cli_checks.hpp"
 #include "app/locations.hpp"
 #include "app/reproduce/plan.hpp"
 #include "app/run/run_info.hpp"
@@ -154,6 +155,14 @@ int reproduce_command(const ReproduceOptions& opt) {
   for (const auto& s : plan.sweeps) scenes.push_back(find_scenes_dir(s.scene) + "/" + s.scene);
   const fs::path dir(out);
   std::error_code ec;
+  // a run or a sweep is no study folder: its files would be mixed with the study's
+  if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
+    throw InputError(out, "--out", "is a file, not a folder; choose another --out");
+  for (const char* f : {"run.json", "scene.toml", "taps.csv", "rfm.json", "sweep.json"})
+    if (fs::exists(dir / f, ec))
+      throw InputError(out, "--out",
+                       std::string("holds a run or a sweep (") + f +
+                           "), not a study of `gransim reproduce`: choose another --out");
   // the runs' writer holds DIR/.lock, whoever analyses and reports DIR/.report.lock: a report
   // of a study still running can be made beside it (--report-only), one report at a time
   std::unique_ptr<DirLock> lock, report_lock;
@@ -207,13 +216,23 @@ int reproduce_command(const ReproduceOptions& opt) {
   // each RFM sweep on its own
   if (!report_lock) report_lock = std::make_unique<DirLock>(out, "reproduce", ".report.lock");
   // a report of a study still running covers the sweeps that have begun
+  // (a sweep counts once one of its runs has written what the analysis reads)
+  const char* data = plan.study == "tapping" ? "taps.csv" : "rfm.json";
+  auto has_data = [&](const fs::path& sweep) {
+    std::error_code e;
+    for (const auto& run : fs::directory_iterator(sweep, e))
+      if (run.is_directory(e) && fs::exists(run.path() / data, e)) return true;
+    return false;
+  };
   std::vector<PlannedSweep> begun;
   for (const auto& s : plan.sweeps) {
-    if (fs::is_directory(dir / "sweeps" / s.name))
+    if (has_data(dir / "sweeps" / s.name))
       begun.push_back(s);
     else
-      std::fprintf(stderr, "reproduce: sweep %s has not begun; the report leaves it out\n",
-                   s.name.c_str());
+      std::fprintf(stderr,
+                   "reproduce: sweep %s has not begun (no run with %s yet); the report leaves it "
+                   "out\n",
+                   s.name.c_str(), data);
   }
   if (begun.empty())
     throw InputError(out, "", "no sweep of the study has begun: nothing to report");
@@ -275,7 +294,7 @@ CLI::App* add_reproduce_command(CLI::App& app, ReproduceOptions& opt) {
       ->check(CLI::IsMember({"smoke", "quick", "standard", "full"}));
   c->add_option("-o,--out", opt.out, "directory (default runs/reproduce-<study>-<budget>)");
   c->add_option("-j,--jobs", opt.jobs, "runs at a time (default: the number of cores)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(cli_check::non_negative);
   c->add_flag("--run", opt.run_full, "run the full budget here instead of printing its commands");
   auto* report_only = c->add_flag("--report-only", opt.report_only,
                                   "analyse and report what is there; start no run");

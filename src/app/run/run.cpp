@@ -2,11 +2,17 @@
 // and hand it to the run loop (app/run/run_loop.cpp)
 #include "app/run/run.hpp"
 
+#ifdef __linux__
+#include <sys/prctl.h>
+#endif
+#include <unistd.h>
+
 #include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <ctime>
 #include <filesystem>
 #include <optional>
@@ -109,6 +115,14 @@ bool stop_requested() { return g_stop.load(); }
 void install_stop_handlers() {
   std::signal(SIGINT, on_stop_signal);
   std::signal(SIGTERM, on_stop_signal);
+  std::signal(SIGHUP, on_stop_signal);  // the terminal closed: stop as cleanly as for Ctrl-C
+  // a sweep's run stops (checkpointed) with the sweep, however the sweep ends (kill -9 too)
+  if (const char* parent = std::getenv(kParentPidVariable)) {
+#ifdef __linux__
+    ::prctl(PR_SET_PDEATHSIG, SIGTERM);
+#endif
+    if (std::to_string(::getppid()) != parent) g_stop = true;  // it is already gone
+  }
 }
 
 int run_command(const RunOptions& opt) {
@@ -137,7 +151,8 @@ int run_command(const RunOptions& opt) {
   check_time_step(sim, scene);
   const std::string out = opt.out.empty() ? default_out(scene.name) : opt.out;
   const DirLock lock(out, "run");
-  prepare_run_dir(out, opt.force);
+  // a replaced run's files wait aside until this run has passed its first health check
+  SetAside replaced = prepare_run_dir(out, opt.force);
   write_file_atomic(out + "/scene.toml", scene_to_toml(scene));
 
   RunSession rs;
@@ -159,7 +174,17 @@ int run_command(const RunOptions& opt) {
   rs.observers = make_observers(scene);
   for (auto& o : rs.observers) o->start(sim, out);
   write_series_row(rs);  // the prepared state is the first row
-  return run_session(rs);
+  rs.replaced = &replaced;
+  const int code = run_session(rs);
+  if (replaced.holds() && code == kExitUnstable) {
+    replaced.restore();
+    std::fprintf(stderr,
+                 "gransim: the run failed its first health check; %s holds the run it "
+                 "was to replace, as it was\n",
+                 out.c_str());
+  }
+  replaced.discard();
+  return code;
 }
 
 int resume_command(const ResumeOptions& opt) {
@@ -169,7 +194,10 @@ int resume_command(const ResumeOptions& opt) {
     return kExitOk;
   }
   if (std::error_code ec; !std::filesystem::is_directory(opt.dir, ec))
-    throw InputError(opt.dir, "DIR", "not a run directory (it does not exist)");
+    throw InputError(opt.dir, "DIR",
+                     std::filesystem::exists(opt.dir, ec)
+                         ? "is a file, not a run directory: give the folder the run wrote"
+                         : "not a run directory (it does not exist)");
   const DirLock lock(opt.dir, "resume");
   const Checkpoint c = newest_valid_checkpoint(opt.dir);
   check_scene_unchanged(opt.dir, c);

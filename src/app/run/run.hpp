@@ -27,8 +27,12 @@ struct ResumeOptions {
 /// and the run goes on exactly as it would have without the interruption
 int resume_command(const ResumeOptions& opt);
 
-/// set by SIGINT/SIGTERM; long loops poll it and stop cleanly
+/// set by SIGINT/SIGTERM/SIGHUP; long loops poll it and stop cleanly
 bool stop_requested();
+/// the stop signals set stop_requested(); a process started with kParentPidVariable set to its
+/// parent's PID (a sweep's run) also gets SIGTERM when that parent ends
 void install_stop_handlers();
+/// the environment variable a sweep sets in its runs' environment: its own PID
+inline constexpr const char* kParentPidVariable = "GS_STOP_WITH_PARENT";
 
 }  // namespace gs

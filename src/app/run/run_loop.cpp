@@ -189,6 +189,11 @@ int run_session(RunSession& rs) {
       since_check += m;
       // non-finite state is caught at once, whatever health.check_every is
       if (first) sim.check_finite();
+      // the first health check has passed: a replaced run's files can go
+      if (rs.replaced != nullptr && sim.world().s.step >= scene.health.check_every) {
+        rs.replaced->discard();
+        rs.replaced = nullptr;
+      }
       // may end a relaxation early (moves the clock origin) or ask for a quench's reset
       if (clock.after_step(sim.world()) == ClockEvent::Quench) sim.zero_velocities();
       if (rs.wall_settled < 0 && !settling()) rs.wall_settled = wall_now();

@@ -9,6 +9,7 @@
 #include "app/openmp_team.hpp"
 #include "drive/protocol.hpp"
 #include "output/csv.hpp"
+#include "output/run_dir.hpp"
 #include "scene/spec.hpp"
 #include "sim/checkpoint.hpp"
 #include "sim/observer.hpp"
@@ -31,6 +32,8 @@ struct RunSession {
   double wall_settled = -1.0;       ///< wall time when settling ended (−1: not yet), s
   int sessions = 1;                 ///< 1 + number of resumes
   OpenMpTeam team = openmp_team();  ///< the threads and CPUs this session runs on
+  /// a replaced run's files (run --force), discarded once the first health check has passed
+  SetAside* replaced = nullptr;
 };
 
 /// the series.csv columns

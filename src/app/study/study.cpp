@@ -193,7 +193,7 @@ StabilityRow stability_sweep(const StudySpec& s, StudyProblem p, IntegratorKind 
 int study_command(const StudyOptions& opt) {
   const StudySpec s = parse_study_file(opt.file);
   const std::string out = opt.out.empty() ? "runs/study-" + s.name : opt.out;
-  prepare_run_dir(out, opt.force);
+  prepare_run_dir(out, opt.force).discard();
   const auto t0 = std::chrono::steady_clock::now();
 
   double dt_min = s.dt_over_tc.front();

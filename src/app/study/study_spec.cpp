@@ -78,13 +78,19 @@ std::vector<bool> bool_list(const TableReader& r, std::string_view k, std::vecto
 }
 
 // a problem's own list of Δt/t_c (empty when the key is absent)
+// a contact resolved in at most 10⁴ steps: a finer step only spends the study's time (a Δt of
+// 10⁻³⁰⁰ t_c would never see two bodies meet)
+constexpr double kMinDtOverTc = 1e-4;
+constexpr const char* kDtListRule =
+    "must hold numbers from 1e-4 to 100 (time steps in contact times; 1e-4 resolves a contact in "
+    "10^4 steps)";
+
 std::vector<double> dt_list(const TableReader& r, std::string_view k) {
   std::vector<double> out;
   if (const toml::array* a = array_at(r, k)) {
     for (const auto& e : *a) {
       const auto v = e.value<double>();
-      if (!v || e.is_boolean() || !(*v > 0.0) || *v > 100.0)
-        r.fail(k, "must hold numbers in (0, 100] (time steps in contact times)");
+      if (!v || e.is_boolean() || !(*v >= kMinDtOverTc) || *v > 100.0) r.fail(k, kDtListRule);
       out.push_back(*v);
     }
   }
@@ -129,6 +135,8 @@ void read_stat_sizes(const TableReader& top, StudySpec& s) {
       r.fail("duration", "must hold at least two samples per block (blocks × sample × 2)");
     z.rfm_seed = static_cast<std::uint64_t>(r.integer("seed", 1, 0, INT64_MAX));
     z.rfm_reference_dt_over_tc = r.number("reference_dt_over_tc", 0.0, Range::non_negative());
+    if (z.rfm_reference_dt_over_tc > 0.0 && z.rfm_reference_dt_over_tc < kMinDtOverTc)
+      r.fail("reference_dt_over_tc", "must be 0 (automatic) or from 1e-4 up");
     s.rfm_dt_over_tc = dt_list(r, "dt_over_tc");
   }
 }
@@ -218,6 +226,8 @@ StudySpec parse_study_file(const std::string& path) {
   s.problems = problem_list(top, "problems", {});
   if (s.problems.empty()) top.fail("problems", "is required: a list of reference problems");
   s.reference_dt_over_tc = top.number("reference_dt_over_tc", 0.0, Range::non_negative());
+  if (s.reference_dt_over_tc > 0.0 && s.reference_dt_over_tc < kMinDtOverTc)
+    top.fail("reference_dt_over_tc", "must be 0 (automatic) or from 1e-4 up");
   s.sizes.seed = static_cast<std::uint64_t>(top.integer("seed", 7, 0, INT64_MAX));
   read_sizes(top, s.sizes);
   read_stat_sizes(top, s);
@@ -238,8 +248,8 @@ StudySpec parse_study_file(const std::string& path) {
   if (const toml::array* a = array_at(mr, "dt_over_tc")) {
     for (const auto& e : *a) {
       const auto v = e.value<double>();
-      if (!v || e.is_boolean() || !(*v > 0.0) || *v > 100.0)
-        mr.fail("dt_over_tc", "must hold numbers in (0, 100] (time steps in contact times)");
+      if (!v || e.is_boolean() || !(*v >= kMinDtOverTc) || *v > 100.0)
+        mr.fail("dt_over_tc", kDtListRule);
       s.dt_over_tc.push_back(*v);
     }
   } else {

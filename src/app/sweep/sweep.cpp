@@ -186,6 +186,23 @@ SweepPlan plan_sweep(const SweepOptions& opt, bool check_dirs) {
       j.expected = scene_to_toml(s);  // compared with an existing run's scene.toml below
       plan.jobs.push_back(std::move(j));
     }
+  // nor may a replica's directory be a value's ("x_rep=1" swept beside x with replicas)
+  std::map<std::string, const Job*> dirs;
+  for (const Job& j : plan.jobs) {
+    const auto [it, fresh] = dirs.emplace(j.run.name, &j);
+    if (fresh) continue;
+    auto what = [](const Job& k) {
+      std::string ov;
+      for (std::size_t i = 0; i < k.run.overrides.size(); ++i)
+        if (k.run.overrides[i].rfind("preparation.seed=", 0) != 0 || k.replica == 0)
+          ov += (ov.empty() ? "" : ", ") + k.run.overrides[i];
+      return ov + (k.replica > 0 ? " (replica " + std::to_string(k.replica) + ")" : "");
+    };
+    throw InputError("", opt.replicas > 1 ? "--replicas" : "--param",
+                     "the runs " + what(*it->second) + " and " + what(j) +
+                         " would share the run directory '" + j.run.name +
+                         "'; sweep values that do not end in _rep=N");
+  }
 
   // the sweep directory; an earlier sweep there must come from the same base scene
   plan.out = opt.out;

@@ -74,6 +74,10 @@ std::vector<std::string> child_environment(int threads) {
     env.push_back(std::move(v));
   }
   if (!has_omp) env.push_back("OMP_NUM_THREADS=" + std::to_string(std::max(1, threads)));
+  // the runs stop (checkpointed) when this process ends, however it ends
+  const std::string parent = std::string(kParentPidVariable) + "=";
+  std::erase_if(env, [&](const std::string& v) { return v.rfind(parent, 0) == 0; });
+  env.push_back(parent + std::to_string(::getpid()));
   // a child of several threads waits with a long spin unless the user chose a policy: its
   // runtime reads the choice as it starts, so the parent makes it (docs/threads.md)
   if (threads > 1 && !wait_policy_chosen()) env.push_back(kSpinCount);

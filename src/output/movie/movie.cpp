@@ -10,6 +10,7 @@ extern "C" {
 }
 
 #include <algorithm>
+#include <cstdio>
 #include <cstring>
 #include <vector>
 
@@ -41,6 +42,7 @@ struct MovieEncoder::Impl {
   SwsContext* sws = nullptr;
   std::vector<std::uint8_t> padded;  ///< the RGBA frame grown to even size when needed
   std::string codec;
+  bool created = false;  ///< the file at `path` is this encoder's (opened for writing)
 
   ~Impl() {
     sws_freeContext(sws);
@@ -54,6 +56,13 @@ struct MovieEncoder::Impl {
   [[noreturn]] void fail(const std::string& what, int code = 0) const {
     throw InputError(path, "", what + (code ? ": " + av_error(code) : std::string()));
   }
+  // the file could not be written (a full disk): no partial movie is left behind
+  [[noreturn]] void fail_write(const std::string& what, int code) {
+    if (fmt && fmt->pb) avio_closep(&fmt->pb);
+    if (created) std::remove(path.c_str());
+    throw OutputError(path + ": " + what + ": " + av_error(code) +
+                      (created ? " (the partial movie is removed)" : ""));
+  }
 
   // send one frame (or nullptr to flush) and write every packet that comes out
   void encode(AVFrame* f) {
@@ -63,7 +72,7 @@ struct MovieEncoder::Impl {
       av_packet_rescale_ts(packet, ctx->time_base, stream->time_base);
       packet->stream_index = stream->index;
       rc = av_interleaved_write_frame(fmt, packet);
-      if (rc < 0) fail("cannot write a packet", rc);
+      if (rc < 0) fail_write("cannot write a packet", rc);
     }
     if (rc != AVERROR(EAGAIN) && rc != AVERROR_EOF) fail("encoder failed", rc);
   }
@@ -139,12 +148,13 @@ void MovieEncoder::open(const std::string& path, int width, int height, const Mo
 
   // the file, with the index moved to the front for streaming
   if ((rc = avio_open(&im->fmt->pb, path.c_str(), AVIO_FLAG_WRITE)) < 0)
-    im->fail("cannot open for writing", rc);
+    im->fail_write("cannot open for writing", rc);
+  im->created = true;
   AVDictionary* opts = nullptr;
   av_dict_set(&opts, "movflags", "+faststart", 0);
   rc = avformat_write_header(im->fmt, &opts);
   av_dict_free(&opts);
-  if (rc < 0) im->fail("cannot write the mp4 header", rc);
+  if (rc < 0) im->fail_write("cannot write the mp4 header", rc);
 
   // a reusable frame, packet and RGBA → YUV converter
   im->frame = av_frame_alloc();
@@ -186,7 +196,12 @@ void MovieEncoder::add_frame(const Image& img) {
   const int stride = im.ew * 4;
   sws_scale(im.sws, &src, &stride, 0, im.eh, im.frame->data, im.frame->linesize);
   im.frame->pts = im.count++;
-  im.encode(im.frame);
+  try {
+    im.encode(im.frame);
+  } catch (const OutputError&) {
+    impl_.reset();  // the file is gone: nothing is left to close
+    throw;
+  }
   frames_ = im.count;
 }
 
@@ -196,7 +211,7 @@ void MovieEncoder::close() {
   // drain the encoder, then the trailer (the mp4 index)
   im->encode(nullptr);
   const int rc = av_write_trailer(im->fmt);
-  if (rc < 0) im->fail("cannot write the mp4 trailer", rc);
+  if (rc < 0) im->fail_write("cannot write the mp4 trailer", rc);
 }
 
 bool MovieEncoder::is_open() const { return impl_ != nullptr; }

@@ -67,6 +67,8 @@ def make_more():
     command("2-output", 0, "", "model bisection --realisations 10 --out {nonempty} --force --no-charts -q")
     command("2-output", 2, "not a folder", "model interval --walks 10 --out {run}/state.csv --no-charts -q")
     command("2-output", 2, "same run directory", "sweep {run}/scene.toml --param scene.description=\"x\",x --out {out} -q")
+    command("2-output", 2, "_rep=N", "sweep {run}/scene.toml --param scene.description=a,a_rep=1 --replicas 2 --out {out} -q")
+    command("2-output", 2, "is a file", "resume {run}/state.csv -q")
     command("2-output", 2, "holds a run", "sweep {run}/scene.toml --param drive.kind=none --out {run} -q")
     command("2-output", 2, "not empty", "sweep {run}/scene.toml --param drive.kind=none --out {nonempty} -q")
     command("2-output", 2, "choose another --out", "analyze {run} --out {run} --no-charts -q")
@@ -121,6 +123,11 @@ def make_more():
     command("4-hang", 2, "realisations", "model cascade --realisations 1000000000 --out {out} --no-charts -q")
     command("4-hang", 2, "walks", "model interval --walks 100000000000 --out {out} --no-charts -q")
     command("4-hang", 2, "the same", "analyze --series negative_g:6:{gen_constant} --test-area 0.01 --out {out} --no-charts -q")
+    # schedules finer than a step: refused up front, never counted through
+    case("hang_snapshots_every_time_tiny.toml", BASE + "\n[output.snapshots]\nevery_time = 1e-300\n", "every_time", 2, "4-hang")
+    case("hang_snapshots_every_time_below_dt.toml", BASE + "\n[output.snapshots]\nevery_time = 5e-7\n", "integrator.dt", 2, "4-hang")
+    command("4-hang", 2, "--dt", "model walk --dt 1e-300 --walks 10 --radius 0.001 --out {out} --no-charts -q --no-heating")
+    command("4-hang", 2, "--dt", "model interval --dt 1e-300 --walks 10 --out {out} --no-charts -q")
 
     # ---- class 5: bad data (exit 2 naming file, line, column) and unwritable outputs (exit 5)
     case("series_phi_nan.csv", "tap,phi\n1,0.8\n2,nan\n3,0.81\n", ":3", 2, "5-data", SERIES)
