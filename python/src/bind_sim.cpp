@@ -33,17 +33,6 @@ py::array view(const py::object& owner, const std::vector<T>& v) {
   return a;
 }
 
-/// two vectors side by side as an N×2 array (a copy: the World keeps them apart)
-py::array_t<double> pairs(const std::vector<double>& a, const std::vector<double>& b) {
-  py::array_t<double> out({static_cast<py::ssize_t>(a.size()), py::ssize_t{2}});
-  auto o = out.mutable_unchecked<2>();
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    o(i, 0) = a[i];
-    o(i, 1) = b[i];
-  }
-  return out;
-}
-
 py::dict contacts_dict(const Simulation& sim) {
   const ContactSet& cs = sim.contacts();
   const auto n = static_cast<py::ssize_t>(cs.records.size());
@@ -313,6 +302,16 @@ void bind_scene_sim(py::module_& m) {
       .def(
           "contacts", [](const PySim& s) { return contacts_dict(*s.sim); },
           "the last step's touching contacts as arrays (copies)");
+}
+
+py::array_t<double> pairs(const std::vector<double>& a, const std::vector<double>& b) {
+  py::array_t<double> out({static_cast<py::ssize_t>(a.size()), py::ssize_t{2}});
+  auto o = out.mutable_unchecked<2>();
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    o(i, 0) = a[i];
+    o(i, 1) = b[i];
+  }
+  return out;
 }
 
 }  // namespace gs::py_bind

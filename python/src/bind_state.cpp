@@ -111,16 +111,6 @@ void set_state(PySim& s, const py::object& positions, const py::object& velociti
   s.sim->restart_from_state();
 }
 
-py::array_t<double> copy_pairs(const std::vector<double>& a, const std::vector<double>& b) {
-  py::array_t<double> out({static_cast<py::ssize_t>(a.size()), py::ssize_t{2}});
-  auto o = out.mutable_unchecked<2>();
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    o(i, 0) = a[i];
-    o(i, 1) = b[i];
-  }
-  return out;
-}
-
 template <class T>
 py::array_t<T> copy_of(const std::vector<T>& v) {
   return py::array_t<T>(static_cast<py::ssize_t>(v.size()), v.data());
@@ -133,8 +123,8 @@ py::dict snapshot_of(const PySim& s) {
   d["step"] = w.s.step;
   d["box"] = py::make_tuple(w.Lx, w.Ly);
   d["periodic"] = w.box != BoxKind::Walls;
-  d["positions"] = copy_pairs(w.s.x, w.s.y);
-  d["velocities"] = copy_pairs(w.s.vx, w.s.vy);
+  d["positions"] = pairs(w.s.x, w.s.y);
+  d["velocities"] = pairs(w.s.vx, w.s.vy);
   d["theta"] = copy_of(w.s.th);
   d["omega"] = copy_of(w.s.omega);
   d["species"] = copy_of(w.sp);

@@ -34,6 +34,8 @@ struct PySim {
 py::array image_to_array(Image img, int channels);
 /// an H×W×3 or H×W×4 uint8 array as an Image (opaque alpha for 3 channels)
 Image array_to_image(const py::array& a);
+/// two vectors side by side as an N×2 array (a copy: the World keeps them apart)
+py::array_t<double> pairs(const std::vector<double>& a, const std::vector<double>& b);
 /// an N×2 float array (or a list of pairs) as points, m
 std::vector<Vec2> to_points(
     const py::array_t<double, py::array::c_style | py::array::forcecast>& a);
