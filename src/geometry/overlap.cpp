@@ -36,20 +36,18 @@ struct TaggedRing : detail::Ring<kRingCap> {
   }
 };
 
-// clip the ring (x, y, flags f; kFresh: a's own vertices less (ox, oy), every edge on a's
-// boundary, f unused) to the inside of b's edge from o along e (left of the edge, line included),
-// into `out`. A new vertex on an edge of a's boundary is a crossing; the edge that follows an exit
-// runs along b's edge line and so is not on a's boundary. Returns false, leaving `out` untouched,
+// clip the ring (x, y, flags f; kFresh: a's own vertices, every edge on a's boundary, f unused)
+// to the inside of b's edge from o along e (left of the edge, line included), into `out`.
+// A new vertex on an edge of a's boundary is a crossing; the edge that follows an exit runs
+// along b's edge line and so is not on a's boundary. Returns false, leaving `out` untouched,
 // when the line cuts nothing off (the common case once a has been cut down to a small cap).
 // a's vertices are read in place, with no copy into a ring.
 template <bool kFresh>
 bool clip_tagged(int n, const double* x, const double* y, const std::uint8_t* f, TaggedRing& out,
-                 Vec2 o, Vec2 e, double ox = 0.0, double oy = 0.0) {
+                 Vec2 o, Vec2 e) {
   if (n == 0) return false;
-  auto vx = [&](int i) { return kFresh ? x[i] - ox : x[i]; };
-  auto vy = [&](int i) { return kFresh ? y[i] - oy : y[i]; };
   // side of vertex i (> 0 outside; NaN counts as neither inside nor outside)
-  auto side = [&](int i) { return (vx(i) - o.x) * e.y - (vy(i) - o.y) * e.x; };
+  auto side = [&](int i) { return (x[i] - o.x) * e.y - (y[i] - o.y) * e.x; };
   auto flags = [&](int i) -> unsigned { return kFresh ? kEdgeA : f[i]; };
   int m = 0;  // vertices written
   // append, merging an exact repeat of the previous vertex: crossing marks add up and the
@@ -73,11 +71,11 @@ bool clip_tagged(int n, const double* x, const double* y, const std::uint8_t* f,
   }
   if (!cut) return false;
   // Sutherland–Hodgman pass over the edges p → q
-  double px = vx(n - 1), py = vy(n - 1);
+  double px = x[n - 1], py = y[n - 1];
   double sp = s[n - 1];
   unsigned fp = flags(n - 1);
   for (int i = 0; i < n; ++i) {
-    const double qx = vx(i), qy = vy(i);
+    const double qx = x[i], qy = y[i];
     const double sq = s[i];
     const unsigned fq = flags(i);
     const unsigned on_a = fp & kEdgeA;
@@ -166,8 +164,8 @@ const TaggedRing& clip_all(const Poly& a, const Poly& b, TaggedRing& r1, TaggedR
 }
 
 // area, crossings and (when asked for, or when there is no contact line) centroid of the
-// clipped ring, whose coordinates are relative to `origin`
-Overlap finish(const TaggedRing& r, bool want_centroid, Vec2 origin = {}) {
+// clipped ring
+Overlap finish(const TaggedRing& r, bool want_centroid) {
   Overlap o;
   if (r.n == 0) return o;
   // area of the intersection polygon (degenerate rings: area 0)
@@ -183,7 +181,7 @@ Overlap finish(const TaggedRing& r, bool want_centroid, Vec2 origin = {}) {
     if (!seen) xs[nx++] = i;
   }
   o.crossings = nx;
-  if (nx == 1) o.c1 = o.c2 = origin + r[xs[0]];
+  if (nx == 1) o.c1 = o.c2 = r[xs[0]];
   if (nx >= 2) {
     // the pair farthest apart (the only pair in a normal contact)
     int bi = 0, bj = 1;
@@ -197,12 +195,12 @@ Overlap finish(const TaggedRing& r, bool want_centroid, Vec2 origin = {}) {
           bj = j;
         }
       }
-    o.c1 = origin + r[xs[bi]];
-    o.c2 = origin + r[xs[bj]];
+    o.c1 = r[xs[bi]];
+    o.c2 = r[xs[bj]];
   }
   // centroid (degenerate rings: the vertex mean)
   if (want_centroid || nx < 2 || (o.c1.x == o.c2.x && o.c1.y == o.c2.y))
-    o.centroid = origin + detail::ring_centroid(r);
+    o.centroid = detail::ring_centroid(r);
   return o;
 }
 
@@ -219,58 +217,43 @@ Overlap overlap(const Poly& a, const Poly& b) {
   return finish(clip_all(a, b, r1, r2), true);
 }
 
-namespace {
-
-// the edge of b whose outward normal points most along d (facing_edge() on prepared
-// polygons), chosen without a branch (which way each comparison goes is data: with branches
-// this loop took a fifth of the overlap's time in the settled pile)
-int facing_edge(const PolyRef& b, Vec2 d) {
+// The same clips as clip_all, in the same order, on the same numbers (vertex means, edge
+// vectors and side values are computed by identical expressions), so the ring and the result
+// are bitwise those of overlap(Poly, Poly). What is skipped is provably a no-op there:
+//  - pairs whose bounding circles are apart (every clip sequence then ends empty);
+//  - clips by edge lines that leave every vertex of the current ring strictly inside. After the
+//    facing edge has cut a down to the cap inside b, the cap lies in a box (centre c, half-widths
+//    hx, hy), and the side value of any of its vertices against edge k is at most
+//    s_k(c) + |e_k.y|·hx + |e_k.x|·hy; when that is negative by more than a round-off margin,
+//    clip_tagged would find no vertex outside and return false. A clip that does cut only
+//    shrinks the ring (its new vertices lie on old edges), so the box stays a bound for the rest
+//    of the loop.
+Overlap overlap(const PolyRef& a, const PolyRef& b) {
+  if (a.n < 3 || b.n < 3) return {};
+  const Vec2 dc = b.mean - a.mean;
+  const double rr = a.radius + b.radius;
+  if (norm2(dc) > rr * rr) return {};
+  // facing edge of b, as facing_edge(): the first edge of the highest score, chosen without
+  // a branch (which way each comparison goes is data: with branches this loop took a fifth of
+  // the overlap's time in the settled pile)
+  const Vec2 d = a.mean - b.mean;
   int k0 = 0;
   double best_score = -1e300;
   for (int k = 0; k < b.n; ++k) {
     const double score = b.ey(k) * d.x - b.ex(k) * d.y;
     const int take = -static_cast<int>(score > best_score);  // all ones where better
     k0 = (k & take) | (k0 & ~take);
-    best_score = std::max(best_score, score);
+    best_score = std::max(best_score, score);  // the same bits as `better ? score : best`
   }
-  return k0;
-}
-
-}  // namespace
-
-// The clips of clip_all (facing edge first, then the other edge lines in order), with two
-// differences:
-//  - every coordinate is taken relative to the clipping polygon's facing-edge vertex O, so the
-//    crossings are rounded at the pair's scale, not at the world's (a pile 0.5 m from the
-//    origin against overlaps of microns: the world frame loses five digits of the area);
-//  - edge lines that provably cut nothing of the cap are skipped. After the facing edge has
-//    cut the polygon down to the cap, the cap lies in a box (centre c, half-widths hx, hy), and
-//    the side value of any of its vertices against edge k is at most
-//    s_k(c) + |e_k.y|·hx + |e_k.x|·hy; when that is negative by more than a round-off margin,
-//    clip_tagged would find no vertex outside and return false. A clip that does cut only
-//    shrinks the ring (its new vertices lie on old edges), so the box stays a bound for the rest
-//    of the loop.
-// Bounding circles reject separated pairs first (every clip sequence then ends empty).
-Overlap overlap(const PolyRef& a, const PolyRef& b, bool want_centroid) {
-  if (a.n < 3 || b.n < 3) return {};
-  const Vec2 dc = b.mean - a.mean;
-  const double rr = a.radius + b.radius;
-  if (norm2(dc) > rr * rr) return {};
-  const int k0 = facing_edge(b, a.mean - b.mean);
-  // the local frame: origin O at b's vertex k0
-  const double ox = b.x[k0], oy = b.y[k0];
-  // b's vertex k in the local frame
-  auto bx = [&](int k) { return b.x[k] - ox; };
-  auto by = [&](int k) { return b.y[k] - oy; };
   // the first clip reads a in place; only when it cuts nothing off does a become the ring
   TaggedRing r1, r2;
   TaggedRing* cur = &r1;
   TaggedRing* nxt = &r2;
-  if (!clip_tagged<true>(a.n, a.x, a.y, nullptr, r1, {0.0, 0.0}, {b.ex(k0), b.ey(k0)}, ox, oy)) {
+  if (!clip_tagged<true>(a.n, a.x, a.y, nullptr, r1, {b.x[k0], b.y[k0]}, {b.ex(k0), b.ey(k0)})) {
     r1.n = a.n;
     for (int i = 0; i < a.n; ++i) {
-      r1.x[i] = a.x[i] - ox;
-      r1.y[i] = a.y[i] - oy;
+      r1.x[i] = a.x[i];
+      r1.y[i] = a.y[i];
       r1.f[i] = kEdgeA;
     }
   }
@@ -289,18 +272,17 @@ Overlap overlap(const PolyRef& a, const PolyRef& b, bool want_centroid) {
   const double hx = 0.5 * (x1 - x0), hy = 0.5 * (y1 - y0);
   // which of the other edge lines may cut the cap: s_k(c) + |e_k.y|·hx + |e_k.x|·hy ≥ −margin.
   // Round-off of the side values is ~1e-16 of |x − o_k|₁·|e_k|, with |x − o_k|₁ ≤
-  // |c − mean_b|₁ + hx + hy + 2·radius_b; that of the centre, the half-widths, the new vertices
-  // of later clips and the shift to the local frame ~1e-16 of |c|₁ + |O|₁: the margin is wide.
-  const double cl1 = std::abs(cx - (b.mean.x - ox)) + std::abs(cy - (b.mean.y - oy));
+  // |c − mean_b|₁ + hx + hy + 2·radius_b; that of the centre, the half-widths and the new
+  // vertices of later clips ~1e-16 of |c|₁: the margin is wide, also far from the origin.
+  const double cl1 = std::abs(cx - b.mean.x) + std::abs(cy - b.mean.y);
   const double slack =  // the margin over |e|, a length (the near test below needs no division)
-      1e-9 * (cl1 + 2.0 * b.radius + hx + hy) +
-      1e-14 * (std::abs(cx) + std::abs(cy) + std::abs(ox) + std::abs(oy));
+      1e-9 * (cl1 + 2.0 * b.radius + hx + hy) + 1e-14 * (std::abs(cx) + std::abs(cy));
   const double margin = slack * b.len;
   // as a bit mask, bit j for edge k0 + 1 + j (clip_all's order)
   auto may_cut = [&](int k) -> std::uint64_t {
     const double ex = b.ex(k), ey = b.ey(k);
     const double reach = std::abs(ey) * hx + std::abs(ex) * hy + margin;
-    const double sc = (cx - bx(k)) * ey - (cy - by(k)) * ex;
+    const double sc = (cx - b.x[k]) * ey - (cy - b.y[k]) * ex;
     return !(sc + reach < 0.0);  // NaN: clip
   };
   const int k1 = k0 + 1 == b.n ? 0 : k0 + 1;
@@ -308,7 +290,7 @@ Overlap overlap(const PolyRef& a, const PolyRef& b, bool want_centroid) {
   // a regular b and a cap near the facing edge's midpoint (PolyRef::near): only the two
   // neighbouring edge lines can cut it (the margin as a length, that of the side values over
   // |e|, to round-off; the bound's own 10⁻⁶ slack is far wider still)
-  const double mx = 0.5 * bx(k1), my = 0.5 * by(k1);  // vertex k0 is the origin
+  const double mx = 0.5 * (b.x[k0] + b.x[k1]), my = 0.5 * (b.y[k0] + b.y[k1]);
   if (b.near > 0.0 && std::abs(cx - mx) + std::abs(cy - my) + hx + hy + slack < b.near) {
     cut = may_cut(k1) | may_cut(k0 == 0 ? b.n - 1 : k0 - 1) << (b.n - 2);
   } else {
@@ -320,9 +302,9 @@ Overlap overlap(const PolyRef& a, const PolyRef& b, bool want_centroid) {
     const int j = std::countr_zero(cut);
     cut &= cut - 1;
     const int k = k1 + j < b.n ? k1 + j : k1 + j - b.n;
-    if (clip_tagged(*cur, *nxt, {bx(k), by(k)}, {b.ex(k), b.ey(k)})) std::swap(cur, nxt);
+    if (clip_tagged(*cur, *nxt, {b.x[k], b.y[k]}, {b.ex(k), b.ey(k)})) std::swap(cur, nxt);
   }
-  return finish(*cur, want_centroid, {ox, oy});
+  return finish(*cur, false);
 }
 
 }  // namespace gs

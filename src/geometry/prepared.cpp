@@ -1,5 +1,5 @@
-// prepared convex polygons: per-polygon quantities computed once (the vertex mean by the
-// expressions overlap(Poly, Poly) uses)
+// prepared convex polygons: per-polygon quantities computed once, by the same expressions
+// overlap(Poly, Poly) uses, so that the prepared overlap reproduces it bit for bit
 #include "geometry/prepared.hpp"
 
 #include <algorithm>

@@ -84,12 +84,11 @@ class PolyStore {
   std::vector<Meta> meta_;
 };
 
-/// exact overlap of prepared convex polygons a and b: the same intersection as
-/// overlap(Poly, Poly) (area, crossings c1 and c2, centroid), computed in a frame
-/// local to the pair and so rounded at the pair's scale rather than the world's; `centroid` is
-/// only computed when asked for or when a caller needs it (fewer than two distinct crossings,
-/// or c1 == c2) and is left zero otherwise. Faster: bounding circles reject separated pairs,
-/// and edge lines that provably cut nothing of the cap are skipped.
-Overlap overlap(const PolyRef& a, const PolyRef& b, bool want_centroid = false);
+/// exact overlap of prepared convex polygons a and b: the same result, bit for bit, as
+/// overlap(Poly, Poly), except that `centroid` is only computed when a caller needs it
+/// (fewer than two distinct crossings, or c1 == c2) and is left zero otherwise. Faster:
+/// bounding circles reject separated pairs, and after the facing edge has cut a down to the
+/// cap inside b, the edge lines of b that provably cut nothing of the cap are skipped.
+Overlap overlap(const PolyRef& a, const PolyRef& b);
 
 }  // namespace gs
