@@ -148,7 +148,7 @@ void MovieEncoder::open(const std::string& path, int width, int height, const Mo
 
   // the file, with the index moved to the front for streaming
   if ((rc = avio_open(&im->fmt->pb, path.c_str(), AVIO_FLAG_WRITE)) < 0)
-    im->fail_write("cannot open for writing", rc);
+    im->fail("cannot open for writing", rc);  // a path the user named: nothing written yet
   im->created = true;
   AVDictionary* opts = nullptr;
   av_dict_set(&opts, "movflags", "+faststart", 0);
