@@ -107,7 +107,8 @@ TapAnalysisResult run_tap_analysis(const std::vector<TapRunInput>& runs,
     throw InputError("", "alpha", "must lie strictly between 0 and 1");
   // 0: not given (the φ statistics only, no β̂ and no quadron fit)
   if (!(opts.test_area >= 0.0) || !std::isfinite(opts.test_area))
-    throw InputError("", "test_area", "must be a finite area > 0 (m²), or none for the φ statistics only");
+    throw InputError("", "test_area",
+                     "must be a finite area > 0 (m²), or none for the φ statistics only");
   if (opts.bootstrap < 0) throw InputError("", "bootstrap", "must be >= 0");
   if (opts.overlap.bins < 0) throw InputError("", "bins", "must be >= 0");
   TapAnalysisResult r;
