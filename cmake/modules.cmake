@@ -2,7 +2,7 @@
 gs_module(core DEPS Eigen3::Eigen)
 gs_module(geometry DEPS gs_core)
 gs_module(integrate DEPS gs_core)
-gs_module(scene DEPS gs_geometry gs_integrate tomlplusplus::tomlplusplus)
+gs_module(scene DEPS gs_geometry tomlplusplus::tomlplusplus)
 gs_module(world DEPS gs_scene gs_geometry)
 gs_module(broadphase DEPS gs_world box2d::box2d)
 gs_module(contact DEPS gs_broadphase)

@@ -4,7 +4,7 @@
 #   (default 30 s each; targets: scene checkpoint state csv restore; the last three get a third
 #   of SECONDS each, so `tools/fuzz.sh 30` fuzzes for about 2.5 minutes in all)
 # Binaries and grown corpora go to build-fuzz/; crashes to build-fuzz/crashes/<target>/.
-# Each target compiles only the sources it needs (scene: src/{scene,geometry,integrate};
+# Each target compiles only the sources it needs (scene: src/{scene,geometry} and the integrators' names;
 # checkpoint: the decoder; state: + world and the state-file reader; csv: src/analysis;
 # restore: the simulation modules), so no full rebuild is needed.
 set -euo pipefail
@@ -53,7 +53,7 @@ build_all() {
 build_one() {
   local t=$1
   case $t in
-    scene) build scene fuzz/fuzz_scene.cpp src/scene/*.cpp src/geometry/*.cpp src/integrate/*.cpp \
+    scene) build scene fuzz/fuzz_scene.cpp src/scene/*.cpp src/geometry/*.cpp src/core/integrator_kind.cpp \
              src/core/input_file.cpp ;;
     checkpoint) build checkpoint fuzz/fuzz_checkpoint.cpp src/sim/checkpoint_read.cpp \
                   src/core/input_file.cpp ;;

@@ -14,8 +14,7 @@
 #include "measure/tap_measure.hpp"
 #include "scene/names.hpp"
 #include "scene/parse.hpp"
-#include "sim/stability.hpp"
-#include "world/prepare.hpp"
+#include "sim/prepare.hpp"
 
 namespace gs::py_bind {
 
@@ -106,15 +105,12 @@ std::array<double, 4> rect_or_scene(const SceneSpec& scene, const py::object& re
 
 }  // namespace
 
-PySim::PySim(const SceneSpec& spec) : scene(spec) {
-  // as `gransim run`: place the grains, start the protocol clock before the first force
-  // evaluation (settling gravity), then refuse an unstable time step
-  World w = make_world(scene);
-  place_particles(w, scene);
-  clock = std::make_unique<ProtocolClock>(scene);
-  clock->start(w);
-  sim = std::make_unique<Simulation>(std::move(w), SimSettings::from(scene));
-  check_time_step(*sim, scene);
+PySim::PySim(const SceneSpec& spec) {
+  // as `gransim run` builds its simulation (sim/prepare.hpp)
+  PreparedRun r = prepare_run(spec);
+  scene = std::move(r.scene);
+  sim = std::move(r.sim);
+  clock = std::move(r.clock);
 }
 
 void PySim::advance(std::int64_t n) {

@@ -4,6 +4,7 @@
 #include <cerrno>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -65,7 +66,10 @@ CsvWriter::CsvWriter(const std::filesystem::path& path, const std::vector<std::s
   if (!meta.empty()) {
     nlohmann::ordered_json j = nlohmann::ordered_json::object();
     for (const auto& [k, v] : meta) {
-      if (std::isfinite(v))
+      // whole numbers (the counts n, total, underflow, …) as JSON integers
+      if (std::isfinite(v) && v == std::trunc(v) && std::abs(v) < 9007199254740992.0)
+        j[k] = static_cast<std::int64_t>(v);
+      else if (std::isfinite(v))
         j[k] = v;
       else
         j[k] = nullptr;

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "integrate/integrator.hpp"
+#include "core/integrator_kind.hpp"
 
 namespace gs {
 

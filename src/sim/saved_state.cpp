@@ -46,7 +46,8 @@ SavedState from_checkpoint(Checkpoint c) {
   SavedState st;
   st.path = c.path;
   // species indices name the species of the scene the checkpoint carries
-  const SceneSpec embedded = parse_scene_string(c.scene_toml, c.path + " (embedded scene)");
+  const SceneSpec& embedded =
+      st.embedded.emplace(parse_scene_string(c.scene_toml, c.path + " (embedded scene)"));
   for (std::size_t i = 0; i < c.sp.size(); ++i) {
     if (c.sp[i] < 0 || static_cast<std::size_t>(c.sp[i]) >= embedded.species.size())
       throw InputError(
@@ -178,7 +179,7 @@ bool take_saved_history(Simulation& sim, const SavedState& st) {
   if (!st.checkpoint) return false;
   const Checkpoint& c = *st.checkpoint;
   const SimSettings& now = sim.settings();
-  const SceneSpec then = parse_scene_string(c.scene_toml, c.path + " (embedded scene)");
+  const SceneSpec& then = *st.embedded;
   if (c.integrator != static_cast<std::uint8_t>(now.integrator) ||
       then.integrator.kind != now.integrator || then.integrator.dt != now.dt ||
       then.model.kind != sim.world().model)

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "scene/spec.hpp"
 #include "sim/checkpoint.hpp"
 #include "sim/simulation.hpp"
 #include "world/world.hpp"
@@ -20,6 +21,7 @@ struct SavedState {
   std::vector<std::string> where;    ///< "file:line" (state file) or "file" of each grain
   std::vector<double> x, y, th, vx, vy, omega;
   std::optional<Checkpoint> checkpoint;  ///< set when read from a checkpoint
+  std::optional<SceneSpec> embedded;     ///< the checkpoint's own scene, parsed once
   std::size_t size() const { return x.size(); }
 };
 

@@ -238,7 +238,7 @@ TEST(Hostile, EveryManifestCaseEndsWithItsExitCode) {
     ASSERT_TRUE(o.exited) << what << ": killed by signal " << o.code
                           << (o.code == SIGXCPU || o.code == SIGKILL ? " (over the CPU limit)"
                               : o.code == SIGALRM                    ? " (over the time limit)"
-                                                  : "")
+                                                                     : "")
                           << "\n"
                           << o.output;
     EXPECT_EQ(o.code, c.code) << what << "\n" << o.output;

@@ -20,7 +20,6 @@
 
 #include "app/openmp_team.hpp"
 #include "app/run/observers.hpp"
-#include "app/run/run_bounds.hpp"
 #include "app/run/run_info.hpp"
 #include "app/run/run_session.hpp"
 #include "app/version.hpp"
@@ -28,9 +27,7 @@
 #include "output/run_dir.hpp"
 #include "scene/names.hpp"
 #include "scene/parse.hpp"
-#include "sim/saved_state.hpp"
-#include "sim/stability.hpp"
-#include "world/prepare.hpp"
+#include "sim/prepare.hpp"
 
 namespace gs {
 namespace {
@@ -127,28 +124,12 @@ void install_stop_handlers() {
 
 int run_command(const RunOptions& opt) {
   // scene and run directory are checked before any work is done
-  SceneSpec scene = parse_scene_file(opt.scene, opt.sets);
-  if (opt.allow_unstable) scene.health.allow_unstable = true;
-  // the grains: placed, or taken from a saved state (which also sets the counts left out)
-  std::optional<SavedState> saved;
-  if (!scene.prep.from_state.empty()) {
-    saved = read_saved_state(scene);
-    fit_scene_to_state(scene, *saved);
-  }
-  // counts and sizes derived from the scene, before anything is allocated or placed
-  check_run_bounds(scene, ProtocolClock(scene).nominal_duration());
-  World world = make_world(scene);
-  if (saved)
-    place_saved_state(world, *saved);
-  else
-    place_particles(world, scene);
-  // the protocol clock starts after preparation.settle_time (constant gravity until then); it
-  // is set before the first force evaluation so the initial accelerations see settling gravity
-  ProtocolClock clock(scene);
-  clock.start(world);
-  Simulation sim(std::move(world), SimSettings::from(scene));
-  const bool history = saved && take_saved_history(sim, *saved);
-  check_time_step(sim, scene);
+  std::vector<std::string> sets = opt.sets;
+  if (opt.allow_unstable) sets.emplace_back("health.allow_unstable=true");
+  PreparedRun prepared = prepare_run(parse_scene_file(opt.scene, sets));
+  const SceneSpec& scene = prepared.scene;
+  Simulation& sim = *prepared.sim;
+  ProtocolClock& clock = *prepared.clock;
   const std::string out = opt.out.empty() ? default_out(scene.name) : opt.out;
   const DirLock lock(out, "run");
   // a replaced run's files wait aside until this run has passed its first health check
@@ -165,10 +146,10 @@ int run_command(const RunOptions& opt) {
   rs.clock = &clock;
   rs.series = CsvWriter(out + "/series.csv", series_columns());
   print_banner(scene, sim, clock);
-  if (saved && !opt.quiet)
-    std::fprintf(stderr, "gransim: %zu grains from %s%s\n", saved->size(), saved->path.c_str(),
-                 history ? " (with its integrator history and contact springs)"
-                 : saved->checkpoint
+  if (const auto& from = prepared.from_state; from && !opt.quiet)
+    std::fprintf(stderr, "gransim: %zu grains from %s%s\n", from->grains, from->path.c_str(),
+                 from->history ? " (with its integrator history and contact springs)"
+                 : from->checkpoint
                      ? " (another integrator, time step or model: positions and velocities only)"
                      : "");
   rs.observers = make_observers(scene);

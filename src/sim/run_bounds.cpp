@@ -1,4 +1,4 @@
-#include "app/run/run_bounds.hpp"
+#include "sim/run_bounds.hpp"
 
 #include <unistd.h>
 
