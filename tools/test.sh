@@ -9,7 +9,8 @@ tools/setup.sh all
 # Hypothesis (random arguments thrown at every function of the module, tests/python/test_fuzz.py)
 # and Debian's venv, pip, setuptools and wheel (`pip install .` into a venv, offline)
 test_packages=(clang-format chromium python3-ase python3-vtk9 python3-pandas python3-pytest
-               python3-hypothesis python3-venv python3-pip python3-setuptools python3-wheel)
+               python3-hypothesis python3-venv python3-pip python3-setuptools python3-wheel
+               python3-h5py python3-mdanalysis)
 missing=()
 for p in "${test_packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
