@@ -45,7 +45,11 @@ class H5mdTrajectory:
     into species_names), radius N (m), ids N, sides N (0 for disks)."""
 
     def __init__(self, path):
+        """open the file at `path` read-only (h5py); FileNotFoundError when there is none"""
         import h5py
+
+        if not os.path.isfile(os.fspath(path)):
+            raise FileNotFoundError(errno.ENOENT, "no H5MD trajectory", os.fspath(path))
 
         self.path = os.fspath(path)
         self.file = h5py.File(self.path, "r")
