@@ -250,12 +250,37 @@ trajectory_formats = ["h5md"]
             delay *= 2
         else:
             self.fail("no kill with frames after the checkpoint in 8 attempts")
-        r = subprocess.run([BINARY, "resume", killed, "--quiet"], env=ENV, capture_output=True,
-                           text=True, timeout=300)
+        damaged = os.path.join(tmp, "damaged")
+        shutil.copytree(killed, damaged)
+
+        def resume(d):
+            return subprocess.run([BINARY, "resume", d, "--quiet"], env=ENV, capture_output=True,
+                                  text=True, timeout=300)
+
+        r = resume(killed)
         self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
         with h5py.File(os.path.join(killed, "trajectory.h5md"), "r") as f:
             for k, v in want.items():
                 np.testing.assert_array_equal(f["particles/all/" + k][()], v, err_msg=k)
+
+        # a file a kill damaged: the resume names it and says how to go on; moved aside, a new
+        # file starts at the checkpoint
+        h5 = os.path.join(damaged, "trajectory.h5md")
+        with open(h5, "r+b") as f:
+            f.write(b"\0" * 64)
+        r = resume(damaged)
+        self.assertNotEqual(r.returncode, 0)
+        self.assertIn("trajectory.h5md", r.stderr)
+        self.assertIn("move it aside", r.stderr)
+        os.rename(h5, h5 + ".damaged")
+        r = resume(damaged)
+        self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
+        self.assertIn("a new one starts at the checkpoint", r.stderr)
+        with h5py.File(h5, "r") as f:
+            self.assertEqual(list(f["particles/all/position/step"][()]),
+                             [s for s in steps if s > at])
+            np.testing.assert_array_equal(f["particles/all/position/value"][()],
+                                          want["position/value"][steps > at])
 
 
 if __name__ == "__main__":

@@ -239,9 +239,19 @@ class H5mdTrajectoryWriter final : public Observer {
   const char* name() const override { return "trajectory_h5md"; }
   // an HDF5 file cannot be cut back to a byte size: the checkpoint keeps its frame count
   void save(ByteWriter& out) const override { out.i64(h5_.frames()); }
+  // a file moved aside (damaged by a kill inside a write) is started afresh at the checkpoint
   void resume(const Simulation& sim, const std::string& dir, ByteReader& in) override {
     const std::int64_t frames = in.i64("trajectory_h5md: frames");
-    h5_.reopen((fs::path(dir) / kH5mdTrajectoryFile).string(), sim.world(), frames);
+    const std::string path = (fs::path(dir) / kH5mdTrajectoryFile).string();
+    std::error_code ec;
+    if (fs::exists(path, ec)) {
+      h5_.reopen(path, sim.world(), frames);
+      return;
+    }
+    std::fprintf(stderr,
+                 "gransim: %s is missing; a new one starts at the checkpoint (step %lld)\n",
+                 path.c_str(), static_cast<long long>(sim.world().s.step));
+    h5_.create(path, sim.world());
   }
   void start(const Simulation& sim, const std::string& dir) override {
     h5_.create((fs::path(dir) / kH5mdTrajectoryFile).string(), sim.world());

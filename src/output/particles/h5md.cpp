@@ -278,10 +278,13 @@ void H5mdWriter::reopen(const std::string& path, const World& w, std::int64_t fr
   close();
   quiet_hdf5();
   path_ = path;
-  if (H5Fis_hdf5(path.c_str()) <= 0)
-    throw InputError(path, "", "not an HDF5 file (damaged, or not written by this run)");
+  // a file a kill damaged inside a write: say how to go on without it
+  const std::string aside =
+      " (damaged, or not written by this run); move it aside and resume again to start a new "
+      "one at the checkpoint";
+  if (H5Fis_hdf5(path.c_str()) <= 0) throw InputError(path, "", "not an HDF5 file" + aside);
   file_ = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
-  if (file_ < 0) throw InputError(path, "", "cannot open the H5MD trajectory for appending");
+  if (file_ < 0) throw InputError(path, "", "cannot open the H5MD trajectory for appending" + aside);
   open_datasets();
   hsize_t dims[3] = {0, 0, 0};
   Handle space(H5Dget_space(ds_[Position]), H5Sclose);
