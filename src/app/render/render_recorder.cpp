@@ -248,8 +248,7 @@ class H5mdTrajectoryWriter final : public Observer {
       h5_.reopen(path, sim.world(), frames);
       return;
     }
-    std::fprintf(stderr,
-                 "gransim: %s is missing; a new one starts at the checkpoint (step %lld)\n",
+    std::fprintf(stderr, "gransim: %s is missing; a new one starts at the checkpoint (step %lld)\n",
                  path.c_str(), static_cast<long long>(sim.world().s.step));
     h5_.create(path, sim.world());
   }

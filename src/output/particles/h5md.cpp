@@ -284,7 +284,8 @@ void H5mdWriter::reopen(const std::string& path, const World& w, std::int64_t fr
       "one at the checkpoint";
   if (H5Fis_hdf5(path.c_str()) <= 0) throw InputError(path, "", "not an HDF5 file" + aside);
   file_ = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
-  if (file_ < 0) throw InputError(path, "", "cannot open the H5MD trajectory for appending" + aside);
+  if (file_ < 0)
+    throw InputError(path, "", "cannot open the H5MD trajectory for appending" + aside);
   open_datasets();
   hsize_t dims[3] = {0, 0, 0};
   Handle space(H5Dget_space(ds_[Position]), H5Sclose);
