@@ -213,7 +213,7 @@ void H5mdWriter::create(const std::string& path, const World& w) {
     attr_string(creator, "version", GS_VERSION, path);
   }
   group(f, "/particles", path);
-  Handle all = group(f, "/particles/all", path);
+  group(f, "/particles/all", path);
   {
     Handle box = group(f, "/particles/all/box", path);
     attr_ints<int>(box, "dimension", {3}, H5T_NATIVE_INT, path);
@@ -261,7 +261,6 @@ void H5mdWriter::create(const std::string& path, const World& w) {
   fixed(f, "/particles/all/radius", H5T_NATIVE_DOUBLE, radius, nullptr, path);
   fixed(f, "/particles/all/id", H5T_NATIVE_INT64, id, nullptr, path);
   fixed(f, "/particles/all/sides", H5T_NATIVE_INT, sides, nullptr, path);
-  (void)all;
   open_datasets();
   check(H5Fflush(f, H5F_SCOPE_GLOBAL), path, "flush the file");
 }
