@@ -86,8 +86,8 @@ class H5mdAndBinaryVtp(unittest.TestCase):
     def setUpClass(cls):
         cls.tmp = tempfile.mkdtemp(prefix="gs_h5md_py_")
         run(["run"] + TAPPING + ["--out", "bin"], cls.tmp)
-        run(["run"] + TAPPING + ["--out", "ascii", "--set",
-                                 'output.snapshots.vtp_encoding="ascii"'], cls.tmp)
+        run(["run"] + TAPPING + ["--out", "ascii", "--set", "render.trajectory_every=0",
+                                 "--set", 'output.snapshots.vtp_encoding="ascii"'], cls.tmp)
         cls.dir = os.path.join(cls.tmp, "bin")
         cls.h5 = os.path.join(cls.dir, "trajectory.h5md")
 
