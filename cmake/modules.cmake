@@ -58,6 +58,8 @@ endif()
 # per-particle files of a configuration (trajectory.xyz, VTK snapshots, contact CSVs): writers
 # of output/ that read the World, hence a library of their own above view/
 gs_module(particle_files DIRS output/particles DEPS gs_output gs_view)
+target_link_libraries(gs_particle_files PUBLIC HDF5::HDF5 ZLIB::ZLIB)
+target_compile_definitions(gs_particle_files PRIVATE GS_VERSION="${PROJECT_VERSION}")
 
 # app/ by capability: run, sweep, study, analyze, render, reproduce (each folder's README.md)
 gs_module(app DIRS app app/run app/sweep app/study app/analyze app/render app/reproduce

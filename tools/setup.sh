@@ -15,7 +15,7 @@ packages=(
   libpng-dev libfftw3-dev libfreetype-dev fonts-dejavu-core
   libosmesa6-dev libavcodec-dev libavformat-dev libswscale-dev libavutil-dev
   libopenmpi-dev openmpi-bin
-  nlohmann-json3-dev
+  nlohmann-json3-dev libhdf5-dev zlib1g-dev
   python3 python3-numpy python3-matplotlib python3-pybind11 python3-dev
 )
 

@@ -25,6 +25,7 @@ import os
 
 from . import _gransim
 from ._gransim import (  # noqa: F401  (re-exported)
+    H5mdTrajectoryWriter,
     HealthError,
     InputError,
     OutputError,
@@ -48,13 +49,13 @@ from ._gransim import (  # noqa: F401  (re-exported)
     write_png,
 )
 from ._toml import dumps as scene_toml, loads_value as _loads_value, value_text as _value_text
-from .run_dir import read_csv, read_run  # noqa: F401
+from .run_dir import H5mdTrajectory, read_csv, read_run  # noqa: F401
 
 __version__ = _gransim.__version__
 
 __all__ = [
-    "HealthError", "InputError", "OutputError", "PathNotFoundError", "RenderError", "Renderer",
-    "Scene", "Simulation",
+    "H5mdTrajectoryWriter", "HealthError", "InputError", "OutputError", "PathNotFoundError", "RenderError", "Renderer",
+    "H5mdTrajectory", "Scene", "Simulation",
     "autocorr_time", "beta_from_phi", "beta_from_volume", "fit_quadron", "have_movie",
     "have_osmesa", "load_scene", "mser_truncation", "normality_chi2", "quadron_gas_phi", "quadron_lnz",
     "quadron_phi", "read_csv", "read_png", "read_run", "rfm", "scene_toml", "tap_analysis",
@@ -142,9 +143,14 @@ class Simulation(_gransim.Simulation):
         return sim
 
     def trajectory(self, path, append=False):
-        """an extended-XYZ trajectory file (ASE, OVITO) to write frames of this simulation to:
-        `with sim.trajectory("t.xyz") as tr: … tr.write(sim)`"""
-        return TrajectoryWriter(os.fspath(path), append)
+        """a trajectory file to write frames of this simulation to, its format chosen by the
+        extension: .h5md or .h5 give H5MD on HDF5 (h5py, MDAnalysis; H5mdTrajectoryWriter),
+        any other extended XYZ (ASE, OVITO; TrajectoryWriter):
+        `with sim.trajectory("t.h5md") as tr: … tr.write(sim)`"""
+        path = os.fspath(path)
+        if os.path.splitext(path)[1].lower() in (".h5md", ".h5"):
+            return H5mdTrajectoryWriter(path, append)
+        return TrajectoryWriter(path, append)
 
     def write_snapshot(self, path):
         """write the configuration now: .vtp (VTK PolyData with the grains' outlines,

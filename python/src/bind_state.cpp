@@ -13,6 +13,7 @@
 #include "core/bytes.hpp"
 #include "core/error.hpp"
 #include "drive/schedule.hpp"
+#include "output/particles/h5md.hpp"
 #include "output/particles/snapshot_files.hpp"
 #include "output/particles/trajectory.hpp"
 #include "sim/checkpoint.hpp"
@@ -242,6 +243,34 @@ struct TrajectoryWriter {
   }
 };
 
+/// an H5MD trajectory (HDF5: h5py, MDAnalysis) written frame by frame (the run's
+/// trajectory.h5md format); the file is made at the first frame, when the grains are known
+struct H5mdTrajectoryWriter {
+  std::string path;
+  bool append = false;
+  H5mdWriter h5;
+  bool closed = false;
+  H5mdTrajectoryWriter(const std::string& p, bool a) : path(p), append(a) {}
+  void write(const PySim& s) {
+    if (closed) throw OutputError(path + ": the trajectory is closed");
+    const World& w = s.sim->world();
+    if (!h5.is_open()) {
+      std::ifstream exists(path);
+      if (append && exists.good())
+        h5.reopen(path, w, -1);
+      else
+        h5.create(path, w);
+    }
+    const long tap = tap_now(s);
+    h5.write(w, &s.sim->contacts(), s.sim->gravity(),
+             tap >= 0 ? std::optional<long>(tap) : std::nullopt);
+  }
+  void close() {
+    h5.close();
+    closed = true;
+  }
+};
+
 }  // namespace
 
 PySim::PySim(const Checkpoint& c) : scene(checkpoint_scene(c)) {
@@ -298,6 +327,21 @@ void bind_state(py::module_& m) {
       .def_readonly("frames", &TrajectoryWriter::frames, "frames written")
       .def("__enter__", [](py::object self) { return self; })
       .def("__exit__", [](TrajectoryWriter& t, const py::args&) { t.out.close(); });
+
+  py::class_<H5mdTrajectoryWriter>(
+      m, "H5mdTrajectoryWriter",
+      "an H5MD trajectory (HDF5: h5py, MDAnalysis) written frame by frame; each frame is on "
+      "disk when write() returns")
+      .def(py::init<const std::string&, bool>(), py::arg("path"), py::arg("append") = false)
+      .def("write", &H5mdTrajectoryWriter::write, py::arg("sim"),
+           "append the simulation's frame now (the first frame fixes the number of grains)")
+      .def("close", &H5mdTrajectoryWriter::close)
+      .def_readonly("path", &H5mdTrajectoryWriter::path)
+      .def_property_readonly(
+          "frames", [](const H5mdTrajectoryWriter& t) { return t.h5.frames(); },
+          "frames in the file")
+      .def("__enter__", [](py::object self) { return self; })
+      .def("__exit__", [](H5mdTrajectoryWriter& t, const py::args&) { t.close(); });
 }
 
 }  // namespace gs::py_bind

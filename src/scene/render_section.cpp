@@ -98,11 +98,32 @@ void read_render(const Ctx& ctx, const TableReader& top, SceneSpec& s) {
   const toml::table* t = sub_table(top, "render");
   static const toml::table empty;
   TableReader r(ctx, t ? *t : empty, "render",
-                {"enabled",  "frames",       "movie",         "schedule",  "every",
-                 "fps",      "slowmo",       "start",         "size",      "msaa",
-                 "camera",   "margin",       "color_by",      "colormap",  "range",
-                 "colorbar", "force_chains", "gravity_arrow", "test_rect", "clock",
-                 "title",    "crf",          "preset",        "renderer",  "trajectory_every"});
+                {"enabled",
+                 "frames",
+                 "movie",
+                 "schedule",
+                 "every",
+                 "fps",
+                 "slowmo",
+                 "start",
+                 "size",
+                 "msaa",
+                 "camera",
+                 "margin",
+                 "color_by",
+                 "colormap",
+                 "range",
+                 "colorbar",
+                 "force_chains",
+                 "gravity_arrow",
+                 "test_rect",
+                 "clock",
+                 "title",
+                 "crf",
+                 "preset",
+                 "renderer",
+                 "trajectory_every",
+                 "trajectory_formats"});
   RenderSpec& o = s.render;
   // outputs: nothing is recorded unless asked (a --set render.* must not start a movie)
   o.enabled = r.boolean("enabled", false);
@@ -164,11 +185,40 @@ void read_render(const Ctx& ctx, const TableReader& top, SceneSpec& s) {
 
   // trajectory export (independent of enabled)
   o.trajectory_every = static_cast<int>(r.integer("trajectory_every", 0, 0, INT_MAX));
+  // its formats: a non-empty list of distinct names out of "xyz", "h5md"
+  if (const toml::node* n = r.get("trajectory_formats")) {
+    const std::string form = "an array of trajectory formats (\"xyz\", \"h5md\")";
+    const toml::array* a = n->as_array();
+    if (!a)
+      r.fail("trajectory_formats", "expected " + form + ", got " + std::string(type_name(*n)));
+    o.trajectory_xyz = o.trajectory_h5md = false;
+    for (std::size_t i = 0; i < a->size(); ++i) {
+      const auto* e = (*a)[i].as_string();
+      if (!e)
+        r.fail("trajectory_formats",
+               form + "; element " + std::to_string(i) + " is " + std::string(type_name((*a)[i])));
+      const std::string v = e->get();
+      if (v != "xyz" && v != "h5md")
+        r.fail("trajectory_formats", "element " + std::to_string(i) +
+                                         " must be \"xyz\" or \"h5md\" (got " + quote(v) + ")" +
+                                         suggestion(v, {"xyz", "h5md"}));
+      bool& flag = v == "xyz" ? o.trajectory_xyz : o.trajectory_h5md;
+      if (flag) r.fail("trajectory_formats", "names " + quote(v) + " twice");
+      flag = true;
+    }
+    if (!o.trajectory_xyz && !o.trajectory_h5md)
+      r.fail("trajectory_formats", "is empty; name \"xyz\", \"h5md\" or both");
+  }
 }
 
 std::vector<std::pair<std::string, std::string>> render_entries(const RenderSpec& o) {
   auto flag = [](bool b) { return std::string(b ? "true" : "false"); };
   const std::string wh = "[" + std::to_string(o.width) + ", " + std::to_string(o.height) + "]";
+  std::string trajectory_formats = "[";
+  if (o.trajectory_xyz) trajectory_formats += "\"xyz\"";
+  if (o.trajectory_h5md)
+    trajectory_formats += std::string(o.trajectory_xyz ? ", " : "") + "\"h5md\"";
+  trajectory_formats += "]";
   return {
       {"enabled", flag(o.enabled)},
       {"frames", flag(o.frames)},
@@ -195,6 +245,7 @@ std::vector<std::pair<std::string, std::string>> render_entries(const RenderSpec
       {"preset", quote(o.preset)},
       {"renderer", quote(o.renderer)},
       {"trajectory_every", std::to_string(o.trajectory_every)},
+      {"trajectory_formats", trajectory_formats},
   };
 }
 

@@ -23,7 +23,7 @@ void read_snapshots(const TableReader& output, SceneSpec& s) {
   const toml::table* t = sub_table(output, "snapshots");
   if (!t) return;
   TableReader r(output.ctx(), *t, "output.snapshots",
-                {"every_time", "times", "at_taps", "formats", "contacts"});
+                {"every_time", "times", "at_taps", "formats", "vtp_encoding", "contacts"});
   SnapshotSpec& o = s.output.snapshots;
   o.given = true;
   o.every_time = r.number("every_time", 0.0, Range::non_negative());
@@ -78,6 +78,12 @@ void read_snapshots(const TableReader& output, SceneSpec& s) {
       flag = true;
     }
   }
+  // the .vtp arrays: compressed binary (smaller, exact) or ASCII text (readable by eye)
+  const std::string enc = r.string("vtp_encoding", "binary", false);
+  if (enc != "binary" && enc != "ascii")
+    r.fail("vtp_encoding", "must be \"binary\" or \"ascii\" (got " + quote(enc) + ")" +
+                               suggestion(enc, {"binary", "ascii"}));
+  o.vtp_binary = enc == "binary";
   o.contacts = r.boolean("contacts", o.contacts);
   if (!o.vtp && !o.xyz && !o.contacts)
     r.fail(r.has("contacts") ? "contacts" : "formats",
@@ -98,6 +104,7 @@ std::vector<std::pair<std::string, std::string>> snapshot_entries(const Snapshot
           {"times", times},
           {"at_taps", flag(o.at_taps)},
           {"formats", formats},
+          {"vtp_encoding", quote(o.vtp_binary ? "binary" : "ascii")},
           {"contacts", flag(o.contacts)}};
 }
 

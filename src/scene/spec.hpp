@@ -162,6 +162,7 @@ struct SnapshotSpec {
   bool at_taps = false;       ///< at each tap's measurement (tapping drives)
   bool vtp = true;            ///< formats: VTK XML PolyData (+ the .pvd collection)
   bool xyz = true;            ///< formats: extended XYZ
+  bool vtp_binary = true;     ///< .vtp arrays zlib-compressed binary (false: ASCII text)
   bool contacts = true;       ///< one CSV row per contact
   bool enabled() const { return every_time > 0.0 || !times.empty() || at_taps; }
 };
@@ -214,7 +215,9 @@ struct RenderSpec {
   int crf = 20;                   ///< x264 quality (0 best … 51 worst)
   std::string preset = "medium";  ///< x264 speed preset
   std::string renderer = "auto";  ///< "auto", "gl", "software"
-  int trajectory_every = 0;       ///< steps between DIR/trajectory.xyz frames (0 = off)
+  int trajectory_every = 0;       ///< steps between trajectory frames (0 = off)
+  bool trajectory_xyz = true;     ///< trajectory formats: DIR/trajectory.xyz (extended XYZ)
+  bool trajectory_h5md = false;   ///< trajectory formats: DIR/trajectory.h5md (H5MD on HDF5)
 };
 
 /// [rfm]: the Random Force Model measurements (docs/physics.md §5.3), taken by read-only observers

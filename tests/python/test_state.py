@@ -147,3 +147,42 @@ def test_missing_paths_are_file_not_found(gransim, tmp_path):
             call()
         assert "nope" in str(e.value)
     assert os.path.exists(conftest.SOURCE_DIR)
+
+
+def test_h5md_trajectory_written_from_python_and_read_lazily(gransim, tmp_path):
+    h5py = pytest.importorskip("h5py")
+    sim = gransim.Simulation(conftest.disk_pile(n_big=4, n_small=4))
+    want = []
+    with sim.trajectory(tmp_path / "traj.h5md") as tr:
+        assert isinstance(tr, gransim.H5mdTrajectoryWriter)
+        for _ in range(3):
+            tr.write(sim)
+            want.append((sim.t, sim.positions.copy(), sim.velocities.copy()))
+            sim.step(50)
+    assert tr.frames == 3
+    # append=True goes on after the frames already there
+    with sim.trajectory(tmp_path / "traj.h5md", append=True) as tr:
+        tr.write(sim)
+        want.append((sim.t, sim.positions.copy(), sim.velocities.copy()))
+    assert tr.frames == 4
+    with h5py.File(tmp_path / "traj.h5md", "r") as f:
+        assert f["particles/all/position/value"].shape == (4, 8, 3)
+    # read back through read_run's reader: the datasets are h5py's, read frame by frame
+    os.rename(tmp_path / "traj.h5md", tmp_path / "trajectory.h5md")
+    run = gransim.read_run(tmp_path)
+    assert "trajectory.h5md" in run and run.loaded() == []
+    traj = run["trajectory.h5md"]
+    assert isinstance(traj.positions, h5py.Dataset) and len(traj) == 4
+    for k, (t, pos, vel) in enumerate(want):
+        assert traj.time[k] == t
+        np.testing.assert_array_equal(traj.positions[k][:, :2], pos)
+        np.testing.assert_array_equal(traj.velocities[k][:, :2], vel)
+    frame = traj.frame(-1)
+    np.testing.assert_array_equal(frame[["x", "y"]].to_numpy(), want[-1][1])
+    assert set(frame.species) == {"big", "small"} and frame.attrs["box"] == (0.1, 0.3)
+    with pytest.raises(IndexError):
+        traj.frame(4)
+    traj.close()
+    # .h5 names H5MD as well; anything else is extended XYZ
+    assert isinstance(sim.trajectory(tmp_path / "t.h5"), gransim.H5mdTrajectoryWriter)
+    assert isinstance(sim.trajectory(tmp_path / "t.xyz"), gransim.TrajectoryWriter)

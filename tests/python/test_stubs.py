@@ -36,7 +36,8 @@ def test_api_reference_names_everything(gransim):
         headings = {line.split("`")[1].split("(")[0] for line in f if line.startswith("#")
                     and "`" in line}
     missing = {n for n in gransim.__all__ if n not in headings}
-    for cls in (gransim.Simulation, gransim.Scene, gransim.Renderer, gransim.TrajectoryWriter):
+    for cls in (gransim.Simulation, gransim.Scene, gransim.Renderer, gransim.TrajectoryWriter,
+                gransim.H5mdTrajectoryWriter, gransim.H5mdTrajectory):
         missing |= {f"{cls.__name__}.{n}" for n in dir(cls) if not n.startswith("_")
                     and f"{cls.__name__}.{n}" not in headings}
     assert not missing, f"not in docs/python-api.md (run tools/python_api_doc.py): {missing}"

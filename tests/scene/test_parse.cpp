@@ -126,8 +126,8 @@ TEST(SceneParse, ResolvedListsEveryKey) {
   EXPECT_EQ(r.at("drive.taps"), "300");
   // 7 keys per material, 8 per species (with mass) / 7 (without), and the fixed sections:
   // scene 3, model 5, box 6, preparation 5, integrator 4, drive 19, health 3, output 7,
-  // render 25
-  EXPECT_EQ(r.size(), 3u + 5 + 2 * 7 + 7 + 8 + 6 + 5 + 4 + 19 + 3 + 7 + 25);
+  // render 26
+  EXPECT_EQ(r.size(), 3u + 5 + 2 * 7 + 7 + 8 + 6 + 5 + 4 + 19 + 3 + 7 + 26);
   EXPECT_EQ(r.at("integrator.sort_every"), "-1");
   EXPECT_EQ(r.at("drive.quench"), "true");
 }

@@ -54,6 +54,7 @@ crf = 30
 preset = "veryfast"
 renderer = "software"
 trajectory_every = 50
+trajectory_formats = ["h5md"]
 )";
 
 void expect_same_render(const RenderSpec& a, const RenderSpec& b) {
@@ -83,6 +84,8 @@ void expect_same_render(const RenderSpec& a, const RenderSpec& b) {
   EXPECT_EQ(a.preset, b.preset);
   EXPECT_EQ(a.renderer, b.renderer);
   EXPECT_EQ(a.trajectory_every, b.trajectory_every);
+  EXPECT_EQ(a.trajectory_xyz, b.trajectory_xyz);
+  EXPECT_EQ(a.trajectory_h5md, b.trajectory_h5md);
 }
 
 TEST(SceneRender, EveryKeyIsRead) {
@@ -117,6 +120,8 @@ TEST(SceneRender, EveryKeyIsRead) {
   EXPECT_EQ(r.preset, "veryfast");
   EXPECT_EQ(r.renderer, "software");
   EXPECT_EQ(r.trajectory_every, 50);
+  EXPECT_FALSE(r.trajectory_xyz);
+  EXPECT_TRUE(r.trajectory_h5md);
 }
 
 TEST(SceneRender, RoundTripThroughTheWrittenScene) {
@@ -131,6 +136,7 @@ TEST(SceneRender, RoundTripThroughTheWrittenScene) {
   EXPECT_EQ(d.resolved.at("render.enabled"), "false");
   EXPECT_EQ(d.resolved.at("render.camera"), "\"fit\"");
   EXPECT_EQ(d.resolved.at("render.range"), "\"auto\"");
+  EXPECT_EQ(d.resolved.at("render.trajectory_formats"), "[\"xyz\"]");
   expect_same_render(d.render, parse_scene_string(scene_to_toml(d), "rt.toml").render);
 }
 
@@ -139,6 +145,8 @@ TEST(SceneRender, Defaults) {
   const RenderSpec none = parse_scene_string(kBase, "d.toml").render;
   EXPECT_FALSE(none.enabled);
   EXPECT_EQ(none.trajectory_every, 0);
+  EXPECT_TRUE(none.trajectory_xyz);
+  EXPECT_FALSE(none.trajectory_h5md);
   // an empty section records nothing either (a --set render.* creates one)
   EXPECT_FALSE(parse_scene_string(kBase + "[render]\n", "d.toml").render.enabled);
   // enabled: a 720p movie at 30 fps in real time, coloured by speed
@@ -195,6 +203,12 @@ TEST(SceneRender, ErrorsNameLineAndKey) {
             std::string::npos);
   EXPECT_NE(error_of(edit(text, "\"software\"", "\"vulkan\"")).find("\"gl\""), std::string::npos);
   EXPECT_NE(error_of(edit(text, "slowmo = 0.25", "slowmo = 0")).find("must be > 0"),
+            std::string::npos);
+  const std::string tf = error_of(edit(text, "[\"h5md\"]", "[\"h5\"]"));
+  EXPECT_NE(tf.find("key 'render.trajectory_formats'"), std::string::npos) << tf;
+  EXPECT_NE(tf.find("did you mean 'h5md'"), std::string::npos) << tf;
+  EXPECT_NE(error_of(edit(text, "[\"h5md\"]", "[]")).find("is empty"), std::string::npos);
+  EXPECT_NE(error_of(edit(text, "[\"h5md\"]", "[\"xyz\", \"xyz\"]")).find("twice"),
             std::string::npos);
   EXPECT_NE(error_of(edit(text, "trajectory_every = 50", "trajectory_evry = 50"))
                 .find("did you mean 'trajectory_every'"),

@@ -32,6 +32,7 @@ every_time = 0.25
 times = [0.1, 0.7, 2]
 at_taps = true
 formats = ["xyz"]
+vtp_encoding = "ascii"
 contacts = false
 )";
 
@@ -44,6 +45,7 @@ TEST(SceneSnapshots, EveryKeyIsRead) {
   EXPECT_TRUE(o.at_taps);
   EXPECT_FALSE(o.vtp);
   EXPECT_TRUE(o.xyz);
+  EXPECT_FALSE(o.vtp_binary);
   EXPECT_FALSE(o.contacts);
 }
 
@@ -57,14 +59,16 @@ TEST(SceneSnapshots, DefaultsAndTheWrittenForm) {
   // a table with only at_taps: both formats and the contacts
   const SceneSpec d = parse_scene_string(kBase + "[output.snapshots]\nat_taps = true\n", "d.toml");
   EXPECT_TRUE(d.output.snapshots.vtp && d.output.snapshots.xyz && d.output.snapshots.contacts);
+  EXPECT_TRUE(d.output.snapshots.vtp_binary);
   EXPECT_EQ(d.resolved.at("output.snapshots.formats"), "[\"vtp\", \"xyz\"]");
+  EXPECT_EQ(d.resolved.at("output.snapshots.vtp_encoding"), "\"binary\"");
   // written back, read again: the same
   const SceneSpec s = parse_scene_string(kBase + kSnap, "s.toml");
   const SnapshotSpec back = parse_scene_string(scene_to_toml(s), "rt.toml").output.snapshots;
   EXPECT_EQ(back.every_time, 0.25);
   EXPECT_EQ(back.times, s.output.snapshots.times);
   EXPECT_TRUE(back.at_taps && back.xyz && back.given);
-  EXPECT_FALSE(back.vtp || back.contacts);
+  EXPECT_FALSE(back.vtp || back.contacts || back.vtp_binary);
   // and from the command line
   const SceneSpec o = parse_scene_string(kBase, "o.toml", {"output.snapshots.every_time=0.5"});
   EXPECT_EQ(o.output.snapshots.every_time, 0.5);
@@ -91,6 +95,9 @@ TEST(SceneSnapshots, ErrorsNameLineAndKey) {
   EXPECT_NE(error_of(edit(text, "[\"xyz\"]", "[\"xyz\", \"xyz\"]")).find("twice"),
             std::string::npos);
   EXPECT_NE(error_of(edit(text, "[\"xyz\"]", "[]")).find("writes nothing"), std::string::npos);
+  const std::string e = error_of(edit(text, "\"ascii\"", "\"binry\""));
+  EXPECT_NE(e.find("key 'output.snapshots.vtp_encoding'"), std::string::npos) << e;
+  EXPECT_NE(e.find("did you mean 'binary'"), std::string::npos) << e;
   EXPECT_NE(
       error_of(edit(text, "contacts = false", "contact = false")).find("did you mean 'contacts'"),
       std::string::npos);

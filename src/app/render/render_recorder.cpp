@@ -1,4 +1,4 @@
-// the frame recorder and the trajectory writer: observers that sample on their own schedule
+// the frame recorder and the trajectory writers: observers that sample on their own schedule
 #include "app/render/render_recorder.hpp"
 
 #include <cmath>
@@ -9,6 +9,7 @@
 #include "core/error.hpp"
 #include "drive/schedule.hpp"
 #include "output/csv.hpp"
+#include "output/particles/h5md.hpp"
 #include "output/particles/trajectory.hpp"
 #include "output/png.hpp"
 #include "sim/simulation.hpp"
@@ -228,6 +229,51 @@ class TrajectoryWriter final : public Observer {
   std::ofstream out_;
 };
 
+// ---------------------------------------------------------------------------------------------
+// DIR/trajectory.h5md every N steps (and the initial state)
+
+class H5mdTrajectoryWriter final : public Observer {
+ public:
+  H5mdTrajectoryWriter(int every, const SceneSpec& scene)
+      : every_(every), view_(ViewSettings::from(scene)) {}
+  const char* name() const override { return "trajectory_h5md"; }
+  // an HDF5 file cannot be cut back to a byte size: the checkpoint keeps its frame count
+  void save(ByteWriter& out) const override { out.i64(h5_.frames()); }
+  // a file moved aside (damaged by a kill inside a write) is started afresh at the checkpoint
+  void resume(const Simulation& sim, const std::string& dir, ByteReader& in) override {
+    const std::int64_t frames = in.i64("trajectory_h5md: frames");
+    const std::string path = (fs::path(dir) / kH5mdTrajectoryFile).string();
+    std::error_code ec;
+    if (fs::exists(path, ec)) {
+      h5_.reopen(path, sim.world(), frames);
+      return;
+    }
+    std::fprintf(stderr, "gransim: %s is missing; a new one starts at the checkpoint (step %lld)\n",
+                 path.c_str(), static_cast<long long>(sim.world().s.step));
+    h5_.create(path, sim.world());
+  }
+  void start(const Simulation& sim, const std::string& dir) override {
+    h5_.create((fs::path(dir) / kH5mdTrajectoryFile).string(), sim.world());
+    write(sim);
+  }
+  void after_step(const Simulation& sim) override {
+    if (sim.world().s.step % every_ == 0) write(sim);
+  }
+  std::int64_t quiet_steps(const Simulation& sim) const override {
+    return every_ - 1 - sim.world().s.step % every_;
+  }
+  void finish(const Simulation&) override { h5_.close(); }
+
+ private:
+  void write(const Simulation& sim) {
+    const World& w = sim.world();
+    h5_.write(w, &sim.contacts(), sim.gravity(), frame_info(w, view_, sim.gravity()).tap);
+  }
+  int every_;
+  ViewSettings view_;
+  H5mdWriter h5_;
+};
+
 }  // namespace
 
 void add_render_observers(const SceneSpec& scene, Observers& observers) {
@@ -239,8 +285,10 @@ void add_render_observers(const SceneSpec& scene, Observers& observers) {
                        "render.frames = true, then `gransim movie` elsewhere");
     observers.push_back(std::make_unique<FrameRecorder>(scene));
   }
-  if (r.trajectory_every > 0)
+  if (r.trajectory_every > 0 && r.trajectory_xyz)
     observers.push_back(std::make_unique<TrajectoryWriter>(r.trajectory_every, scene));
+  if (r.trajectory_every > 0 && r.trajectory_h5md)
+    observers.push_back(std::make_unique<H5mdTrajectoryWriter>(r.trajectory_every, scene));
 }
 
 }  // namespace gs

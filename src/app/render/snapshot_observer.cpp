@@ -176,7 +176,8 @@ class SnapshotWriter final : public Observer {
     const std::optional<long> tap = at_tap_ ? std::optional<long>(e.tap) : running;
     const fs::path dir(dir_);
     if (spec_.vtp)
-      write_vtp((dir / snapshot_file("snap", k, "vtp")).string(), w, c, tap.value_or(-1));
+      write_vtp((dir / snapshot_file("snap", k, "vtp")).string(), w, c, tap.value_or(-1),
+                spec_.vtp_binary ? VtpEncoding::Binary : VtpEncoding::Ascii);
     if (spec_.xyz)
       write_file(dir / snapshot_file("snap", k, "xyz"), [&](std::ostream& out) {
         write_trajectory_frame(out, w, &c, sim.gravity(), tap);

@@ -22,12 +22,13 @@ bool is_checkpoint_name(const std::string& n) {
 
 // files that are not appended to: rewritten whole (run.json and every JSON sidecar, state.csv,
 // scene.toml, the final picture), the writer's lock (it holds the PID), checkpoints and
-// temporaries. Their sizes say nothing about lost rows, and a resume must neither check nor
-// truncate them.
+// temporaries, and HDF5 files (their writer keeps its frame count in the checkpoint). Their
+// sizes say nothing about lost rows, and a resume must neither check nor truncate them.
 bool not_appended(const std::string& n) {
   return is_checkpoint_name(n) || n == "run.json" || n == "state.csv" || n == "scene.toml" ||
          n == "final.png" || n == ".lock" ||
          (n.size() >= 5 && n.compare(n.size() - 5, 5, ".json") == 0) ||
+         (n.size() >= 5 && n.compare(n.size() - 5, 5, ".h5md") == 0) ||
          (n.size() >= 4 && n.compare(n.size() - 4, 4, ".tmp") == 0);
 }
 

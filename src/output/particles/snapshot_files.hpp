@@ -1,6 +1,7 @@
 // the files of one configuration snapshot (docs/rendering.md, "Snapshots"): VTK XML PolyData
-// with each grain's outline as a polygon cell, the ParaView collection (.pvd) that lists them
-// with their times, and one CSV row per contact with its point, normal and forces
+// (ASCII or compressed binary) with each grain's outline as a polygon cell, the ParaView
+// collection (.pvd) that lists them with their times, and one CSV row per contact with its
+// point, normal and forces
 #pragma once
 #include <cstdint>
 #include <fstream>
@@ -28,10 +29,15 @@ struct SnapshotEntry {
 /// DIR/snapshots file name of snapshot k: snap_000012.vtp, contacts_000012.csv
 std::string snapshot_file(const char* stem, long k, const char* ext);
 
-/// the grains as VTK XML PolyData (ASCII): one polygon cell per grain (its true outline; disks
-/// as kDiskOutlineVertices-gons) with cell data id, species, radius, sides, theta, velocity,
+/// how the arrays of a .vtp are stored: ASCII text (10 significant digits) or binary, zlib
+/// compressed and base64 encoded in the XML (vtkZLibDataCompressor: exact and smaller)
+enum class VtpEncoding : std::uint8_t { Ascii, Binary };
+
+/// the grains as VTK XML PolyData: one polygon cell per grain (its true outline; disks as
+/// kDiskOutlineVertices-gons) with cell data id, species, radius, sides, theta, velocity,
 /// omega, speed, contacts; centres wrapped into periodic boxes. Throws OutputError
-void write_vtp(const std::string& path, const World& w, const ContactSet& c, long tap);
+void write_vtp(const std::string& path, const World& w, const ContactSet& c, long tap,
+               VtpEncoding enc = VtpEncoding::Ascii);
 
 /// the contact CSV's header line (pandas.read_csv reads the file as is)
 std::vector<std::string> contact_columns();
