@@ -112,10 +112,30 @@ HEAD = ("The runs depart from what the source printed where the printed value ca
         "(φ̄ with it − φ̄ as run, ± one standard error)")
 
 
-def rows(study):
-    return TAPPING_ROWS if study == "tapping" else RFM_ROWS
+def rows(study, facts=None):
+    """the study's rows; facts (described.pile of the runs) put the runs' own box and time step
+    in the 'program runs' cells"""
+    if study != "tapping":
+        return RFM_ROWS
+    if not facts:
+        return TAPPING_ROWS
+    out = []
+    for r in TAPPING_ROWS:
+        if r[0] == "box width" and facts.get("box_width"):
+            r = (r[0], r[1], " or ".join(f"{w:g} m" for w in facts["box_width"])) + r[3:]
+        elif r[0] == "integrator" and facts.get("dt"):
+            r = (r[0], r[1], " or ".join(facts["integrator"]) + ", Δt = " +
+                 " or ".join(f"{d:.4g} s" for d in facts["dt"])) + r[3:]
+        out.append(r)
+    return out
 
 
-def head(study):
-    return HEAD + (":" if study == "tapping" else "; the thesis' claims are not about φ̄, so the "
+def head(study, facts=None):
+    text = HEAD + (":" if study == "tapping" else "; the thesis' claims are not about φ̄, so the "
                    "effect is on what the claims measure:")
+    if study == "tapping" and facts and facts.get("grains") and facts["grains"] != [1184]:
+        n = " or ".join(str(g) for g in facts["grains"])
+        text = (f"These runs tap a pile of {n} grains, not the paper's 1184: the effects below "
+                "were measured on the paper-scale scenes, and the 'program runs' cells give "
+                "these runs' own box and time step. " + text)
+    return text
