@@ -100,6 +100,27 @@ class ReportDescribesItsRuns(unittest.TestCase):
         self.assertFalse(described.plan_resolves({"purpose": "the paper's pile",
                                                   "resolves": False})[0])
 
+    def test_rfm_systems_from_the_runs(self):
+        """the RFM report names the systems its runs simulated, not the thesis' defaults"""
+        import rfm
+        tmp = tempfile.mkdtemp(prefix="gs-report-rfm-")
+        self.addCleanup(shutil.rmtree, tmp, ignore_errors=True)
+        with open(os.path.join(ROOT, "scenes", "rfm2d_reference.toml")) as f:
+            text = f.read().replace("count = 2000", "count = 500")
+        os.makedirs(os.path.join(tmp, "sweeps", "reference", "a"))
+        with open(os.path.join(tmp, "sweeps", "reference", "a", "scene.toml"), "w") as f:
+            f.write(text)
+        os.makedirs(os.path.join(tmp, "charts"))
+        with open(os.path.join(tmp, "plan.json"), "w") as f:
+            json.dump({"purpose": "proves the pipeline; resolves no claim", "resolves": False}, f)
+        title, intro, claims, notes, facts = reproduce_report.study_claims("rfm", tmp, "smoke")
+        self.assertIn("the 2D reference fluid (N = 500, L = 0.2 m, φ = 0.0884, ε = 0.6)", intro)
+        self.assertNotIn("N = 2000", intro)
+        self.assertNotIn("structure fluid (", intro)  # no run of it here
+        for c in claims:
+            self.assertEqual(c.verdict, UNRESOLVED, c.id)
+            self.assertIn("resolves no claim", c.reason, c.id)
+
     def test_no_scene_no_pile(self):
         """without the runs' scene.toml the report says so, and names no pile"""
         self.assertIsNone(described.pile(described.scenes(["/nonexistent"])))

@@ -10,6 +10,7 @@ import matplotlib
 matplotlib.use("Agg")
 import numpy as np  # noqa: E402
 
+import described  # noqa: E402
 from report import Claim, test_of  # noqa: E402
 from verdicts import (POWER, UNRESOLVED, Verdict, chi2_consistent, compare_value,  # noqa: E402
                       mean_err)
@@ -301,6 +302,39 @@ NOTES = [
 ]
 
 
+def _system(d, sweep):
+    """N, L, φ and ε of a sweep's runs, from their scene.toml ("" when the sweep has none)"""
+    import glob
+    found = described.scenes(sorted(os.path.dirname(p) for p in
+                                    glob.glob(os.path.join(d, "sweeps", sweep, "*", "scene.toml"))))
+    ns, ls, phis, eps = [], [], [], []
+    for s in found:
+        try:
+            sp = s["species"]
+            n = sum(int(x.get("count", 0)) for x in sp)
+            box = s["box"]
+            e = float(s["material"][0].get("eps_n", float("nan")))
+            if "reduced_length" in box:
+                size = f"L′ = {float(box['reduced_length']):g} m"
+                phi = None
+            else:
+                w, h = float(box["width"]), float(box.get("height", box["width"]))
+                size = f"L = {w:g} m"
+                phi = sum(int(x.get("count", 0)) * math.pi * float(x["radius"]) ** 2
+                          for x in sp) / (w * h)
+        except (KeyError, TypeError, ValueError, IndexError, ZeroDivisionError):
+            continue
+        for lst, v in ((ns, n), (ls, size), (phis, phi), (eps, e)):
+            if v is not None and v not in lst:
+                lst.append(v)
+    if not ns:
+        return ""
+    out = "N = " + ", ".join(str(n) for n in sorted(ns)) + ", " + " or ".join(ls)
+    if phis:
+        out += ", φ = " + " or ".join(f"{p:.3g}" for p in phis)
+    return out + ", ε = " + " or ".join(f"{e:g}" for e in eps)
+
+
 def claims(d, budget):
     out = []
     for cid, topic, source, where, fn, (need, why) in CLAIMS:
@@ -328,10 +362,13 @@ def claims(d, budget):
             purpose = json.load(f).get("purpose", "")
     except (OSError, ValueError):
         purpose = ""
+    systems = [(name, _system(d, sweep)) for name, sweep in
+               (("the 2D reference fluid", "reference"), ("the structure fluid", "structure"),
+                ("the 1D ring", "ring"))]
+    ran = "; ".join(f"{name} ({text})" for name, text in systems if text)
     intro = ("D. J. Bray's thesis (Nottingham 2009) studies soft disks driven by white noise, the "
-             "Random Force Model. gransim runs three of its systems: the 2D reference fluid (N = 2000, "
-             "L = 0.2 m, φ = 0.353, ε = 0.6) from square, hexagonal and uniform starts; the structure "
-             "fluid (N = 3000, L = 0.2 m, φ = 0.53, ε = 0.1); and the 1D ring at L′ = 1 m, ε = 0.1, "
-             "over several N. `gransim analyze` fits the thesis' quantities, and each claim below "
-             f"sets them against the thesis' own numbers. Budget {budget}: {purpose}.")
+             "Random Force Model. gransim's runs here, as their scene.toml files give them: "
+             + (ran or "none of the runs' scene.toml files is in this folder") +
+             ". `gransim analyze` fits the thesis' quantities, and each claim below sets them "
+             f"against the thesis' own numbers. Budget {budget}: {purpose}.")
     return "Random Force Model (Bray 2009): the thesis' claims against gransim", intro, out, NOTES
