@@ -175,10 +175,17 @@ TapAnalysisResult run_tap_analysis(const std::vector<TapRunInput>& runs,
   }
 
   // runs of one protocol at one control value, pairwise: same φ distribution?
+  // (each run sorted once: the tests need only its values, and the KS walk wants them sorted)
+  std::vector<std::vector<double>> sorted;
+  if (!pairs.empty())
+    for (const auto& phi : phis) {
+      sorted.push_back(phi);
+      std::sort(sorted.back().begin(), sorted.back().end());
+    }
   for (const auto& [i, j] : pairs) {
     r.pairs.push_back(
         {static_cast<int>(i), static_cast<int>(j),
-         two_sample_test(phis[i], r.runs[i].tau.tau_int, phis[j], r.runs[j].tau.tau_int)});
+         two_sample_test(sorted[i], r.runs[i].tau.tau_int, sorted[j], r.runs[j].tau.tau_int)});
     step();
   }
 

@@ -84,7 +84,9 @@ def pile(scene_list):
     width = values(lambda s: float(s["box"]["width"]))
     dt = values(lambda s: float(s["integrator"]["dt"]))
     integ = values(lambda s: str(s["integrator"]["kind"]).replace("_", " "))
-    t1 = values(lambda s: float(s["drive"]["t1"]))
+    t1 = values(lambda s: float(s["drive"]["t1"]) if s["drive"]["kind"] == "negative_g"
+                else None)
+    t1 = [t for t in t1 if t is not None]
     quench = values(lambda s: bool(s["drive"].get("quench", False)))
     early = values(lambda s: bool(s["drive"].get("early_rest", False)))
     parts = []
@@ -100,7 +102,7 @@ def pile(scene_list):
     if integ or dt:
         text += ", " + " or ".join(integ) + " at Δt = " + " or ".join(f"{d:.4g}" for d in dt) + " s"
     if t1:
-        text += ", pulses of t1 = " + " or ".join(_g(t) for t in t1) + " s"
+        text += ", negative-g pulses of t1 = " + " or ".join(_g(t) for t in t1) + " s"
     if True in early:
         text += ", early rest" + (" with the quench" if True in quench else "")
     return {"text": text, "grains": grains, "box_width": width, "dt": dt, "integrator": integ}
