@@ -270,12 +270,12 @@ JointFit joint_histogram_fit(const std::vector<std::vector<double>>& counts,
     }
     if (hess && U > 1) {
       // h_uv^(k) = Σ_j w_k,j (δ_uv p_uj − p_uj p_vj)
-      const Eigen::MatrixXd h0 = (pw * w0).asDiagonal().toDenseMatrix() -
-                                 pw * w0.asDiagonal() * pw.transpose();
-      const Eigen::MatrixXd h1 = (pw * w1).asDiagonal().toDenseMatrix() -
-                                 pw * w1.asDiagonal() * pw.transpose();
-      const Eigen::MatrixXd h2 = (pw * w2).asDiagonal().toDenseMatrix() -
-                                 pw * w2.asDiagonal() * pw.transpose();
+      const Eigen::MatrixXd h0 =
+          (pw * w0).asDiagonal().toDenseMatrix() - pw * w0.asDiagonal() * pw.transpose();
+      const Eigen::MatrixXd h1 =
+          (pw * w1).asDiagonal().toDenseMatrix() - pw * w1.asDiagonal() * pw.transpose();
+      const Eigen::MatrixXd h2 =
+          (pw * w2).asDiagonal().toDenseMatrix() - pw * w2.asDiagonal() * pw.transpose();
       for (int u = 1; u < U; ++u)
         for (int v = 1; v < U; ++v) {
           const int a = 2 * (u - 1), c = 2 * (v - 1);
