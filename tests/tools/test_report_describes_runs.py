@@ -109,7 +109,12 @@ class ReportDescribesItsRuns(unittest.TestCase):
             text = f.read().replace("count = 2000", "count = 500")
         os.makedirs(os.path.join(tmp, "sweeps", "reference", "a"))
         with open(os.path.join(tmp, "sweeps", "reference", "a", "scene.toml"), "w") as f:
-            f.write(text)
+            f.write(text.replace("discard_time = 1.0", "discard_time = 0.1"))
+        with open(os.path.join(ROOT, "scenes", "rfm1d_reference.toml")) as f:
+            ring = f.read().replace("count = 1000", "count = 200")
+        os.makedirs(os.path.join(tmp, "sweeps", "ring", "n"))
+        with open(os.path.join(tmp, "sweeps", "ring", "n", "scene.toml"), "w") as f:
+            f.write(ring)
         os.makedirs(os.path.join(tmp, "charts"))
         with open(os.path.join(tmp, "plan.json"), "w") as f:
             json.dump({"purpose": "proves the pipeline; resolves no claim", "resolves": False}, f)
@@ -120,6 +125,14 @@ class ReportDescribesItsRuns(unittest.TestCase):
         for c in claims:
             self.assertEqual(c.verdict, UNRESOLVED, c.id)
             self.assertIn("resolves no claim", c.reason, c.id)
+        self.assertIn("These runs discard 0.1 s.", " ".join(notes))
+        report.write_report(tmp, title, intro, [], claims, notes, "rfm", facts)
+        with open(os.path.join(tmp, "report.md")) as f:
+            md = f.read()
+        # the departures table: the ring these runs have, their step, not the plan of another budget
+        self.assertIn("the largest ring of these runs' size series (N = 200)", md)
+        self.assertNotIn("N = 4000 below the full budget", md)
+        self.assertIn("Δt = 1e-06 s (≈ 19 steps a contact)", md)
 
     def test_no_scene_no_pile(self):
         """without the runs' scene.toml the report says so, and names no pile"""

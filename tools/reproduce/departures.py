@@ -112,21 +112,35 @@ HEAD = ("The runs depart from what the source printed where the printed value ca
         "(φ̄ with it − φ̄ as run, ± one standard error)")
 
 
+def _or(values, fmt):
+    return " or ".join(fmt(v) for v in values)
+
+
 def rows(study, facts=None):
-    """the study's rows; facts (described.pile of the runs) put the runs' own box and time step
-    in the 'program runs' cells"""
-    if study != "tapping":
-        return RFM_ROWS
+    """the study's rows; facts (what the runs' scene.toml give: tapping.departure_facts,
+    rfm.departure_facts) put the runs' own values in the 'program runs' cells"""
+    base = TAPPING_ROWS if study == "tapping" else RFM_ROWS
     if not facts:
-        return TAPPING_ROWS
+        return base
+    if study == "tapping":
+        runs = {"box width": (facts.get("box_width"), lambda v: _or(v, lambda w: f"{w:g} m")),
+                "integrator": (facts.get("dt"), lambda v: " or ".join(facts["integrator"]) +
+                               ", Δt = " + _or(v, lambda d: f"{d:.4g} s")),
+                "pulse of negative g": (facts.get("t1"), lambda v: "g_p·g for t1 = " +
+                                        _or(v, lambda t: f"{t:g}") + " s (same g_p values)")}
+    else:
+        runs = {"time step": (facts.get("dt"), lambda v: "Δt = " + _or(v, lambda d: f"{d:g}") +
+                              " s" + (f" (≈ {facts['steps_per_contact']:.0f} steps a contact)"
+                                      if facts.get("steps_per_contact") else "")),
+                "box of the free-path dimension": (facts.get("free_path_box"), lambda v: "L = " +
+                                                   _or(v, lambda w: f"{w:g}") + " m (the box of "
+                                                   "the runs that measure it)"),
+                "ring of the gap distribution G₁": (facts.get("ring_n"), lambda v: "the largest "
+                                                    f"ring of these runs' size series (N = {max(v)})")}
     out = []
-    for r in TAPPING_ROWS:
-        if r[0] == "box width" and facts.get("box_width"):
-            r = (r[0], r[1], " or ".join(f"{w:g} m" for w in facts["box_width"])) + r[3:]
-        elif r[0] == "integrator" and facts.get("dt"):
-            r = (r[0], r[1], " or ".join(facts["integrator"]) + ", Δt = " +
-                 " or ".join(f"{d:.4g} s" for d in facts["dt"])) + r[3:]
-        out.append(r)
+    for r in base:
+        values, cell = runs.get(r[0], (None, None))
+        out.append((r[0], r[1], cell(values)) + r[3:] if values else r)
     return out
 
 

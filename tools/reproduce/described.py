@@ -105,4 +105,5 @@ def pile(scene_list):
         text += ", negative-g pulses of t1 = " + " or ".join(_g(t) for t in t1) + " s"
     if True in early:
         text += ", early rest" + (" with the quench" if True in quench else "")
-    return {"text": text, "grains": grains, "box_width": width, "dt": dt, "integrator": integ}
+    return {"text": text, "grains": grains, "box_width": width, "dt": dt, "integrator": integ,
+            "t1": t1}

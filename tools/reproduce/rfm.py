@@ -283,8 +283,8 @@ NOTES = [
     "§2.3.3 puts the reference fluid's steady temperature at \"approximately equal to $12m^2s^{-2}$\". "
     "The thesis' own eq. 5.2 and an energy balance give 0.1–0.3 m²/s²: 12 is an OCR or units error "
     "(a lost ×10⁻²?), not a target here; claim T-mean-field sets the run against eq. 5.2 at face value.",
-    "Steady-state claims stay unresolved while the runs discard less than the thesis' first second "
-    "(smoke discards 0.1 s); their reason then gives the verdict at face value.",
+    "Steady-state claims stay unresolved while the runs discard less than the thesis' first second; "
+    "their reason then gives the verdict at face value.",
     "α: the thesis' ± is the half-width of the accepted range (§5.1.1); both sides are read as 95 % "
     "intervals. The headline 1.163 ± 0.017 holds for φ ≳ 0.53, ε < 0.6, so it is drawn for the "
     "structure run only. Table 5.1's header ε = 0.01 is read as 0.1 (its φ = 0.353 entry is Table "
@@ -302,11 +302,43 @@ NOTES = [
 ]
 
 
+def _scenes(d, sweep):
+    import glob
+    return described.scenes(sorted(os.path.dirname(p) for p in
+                                   glob.glob(os.path.join(d, "sweeps", sweep, "*", "scene.toml"))))
+
+
+def departure_facts(d):
+    """the runs' own time step, free-path box, ring sizes and transient, from their scene.toml"""
+    ref, struct, ring = (_scenes(d, s) for s in ("reference", "structure", "ring"))
+    facts = {}
+
+    def collect(scenes, get):
+        out = []
+        for s in scenes:
+            try:
+                v = get(s)
+            except (KeyError, TypeError, ValueError, IndexError):
+                continue
+            if v not in out:
+                out.append(v)
+        return out
+
+    facts["dt"] = collect(ref + struct + ring, lambda s: float(s["integrator"]["dt"]))
+    facts["free_path_box"] = collect(struct, lambda s: float(s["box"]["width"]))
+    facts["ring_n"] = collect(ring, lambda s: sum(int(x["count"]) for x in s["species"]))
+    facts["discard"] = collect(ref, lambda s: float(s["rfm"]["discard_time"]))
+    # the contact time π√(m₁₂/k_s) of the reference fluid's beads, in steps
+    tc = collect(ref, lambda s: math.pi * math.sqrt(float(s["species"][0]["mass"]) / 2
+                                                    / float(s["material"][0]["ks"])))
+    if tc and len(facts["dt"]) == 1:
+        facts["steps_per_contact"] = tc[0] / facts["dt"][0]
+    return facts if any(facts.values()) else None
+
+
 def _system(d, sweep):
     """N, L, φ and ε of a sweep's runs, from their scene.toml ("" when the sweep has none)"""
-    import glob
-    found = described.scenes(sorted(os.path.dirname(p) for p in
-                                    glob.glob(os.path.join(d, "sweeps", sweep, "*", "scene.toml"))))
+    found = _scenes(d, sweep)
     ns, ls, phis, eps = [], [], [], []
     for s in found:
         try:
@@ -371,4 +403,9 @@ def claims(d, budget):
              + (ran or "none of the runs' scene.toml files is in this folder") +
              ". `gransim analyze` fits the thesis' quantities, and each claim below sets them "
              f"against the thesis' own numbers. Budget {budget}: {purpose}.")
-    return "Random Force Model (Bray 2009): the thesis' claims against gransim", intro, out, NOTES
+    facts = departure_facts(d) or {}
+    notes = list(NOTES)
+    if facts.get("discard"):
+        notes[1] += (" These runs discard " + " or ".join(f"{t:g} s" for t in facts["discard"])
+                     + ".")
+    return "Random Force Model (Bray 2009): the thesis' claims against gransim", intro, out, notes
