@@ -135,8 +135,9 @@ def rows(study, facts=None):
                 "box of the free-path dimension": (facts.get("free_path_box"), lambda v: "L = " +
                                                    _or(v, lambda w: f"{w:g}") + " m (the box of "
                                                    "the runs that measure it)"),
-                "ring of the gap distribution G₁": (facts.get("ring_n"), lambda v: "the largest "
-                                                    f"ring of these runs' size series (N = {max(v)})")}
+                "ring of the gap distribution G₁": (
+                    facts.get("ring_n"),
+                    lambda v: f"the largest ring of these runs' size series (N = {max(v)})")}
     out = []
     for r in base:
         values, cell = runs.get(r[0], (None, None))

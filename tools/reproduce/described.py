@@ -100,7 +100,8 @@ def pile(scene_list):
         parts.append("in a box " + " or ".join(f"{w:g} m" for w in width) + " wide")
     text = " ".join(parts)
     if integ or dt:
-        text += ", " + " or ".join(integ) + " at Δt = " + " or ".join(f"{d:.4g}" for d in dt) + " s"
+        steps = " or ".join(f"{d:.4g}" for d in dt)
+        text += ", " + " or ".join(integ) + " at Δt = " + steps + " s"
     if t1:
         text += ", negative-g pulses of t1 = " + " or ".join(_g(t) for t in t1) + " s"
     if True in early:
