@@ -58,6 +58,8 @@ fi
 # falls on every size alike; summary.py gives the ratio of the medians (and of the minima)
 pin_cmd="${pin[*]}" gb_extra="--benchmark_repetitions=5 --benchmark_enable_random_interleaving=true" \
   gbench gb_scaling.json 'FluidCostScaling|FluidMixedOrder|SortParticles' 1 "$mt_scan"
+echo "== the tapping analysis against its size (10⁴ … 10⁶ taps; the O(N) fit per split) =="
+gbench gb_analysis.json 'TapAnalysis' 1 "$mt"
 echo "== gransim vs LAMMPS =="
 bench/compare_lammps.sh
 echo "== seconds per tap; MPI sweep =="

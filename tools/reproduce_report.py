@@ -24,6 +24,7 @@ import matplotlib  # noqa: E402
 
 matplotlib.use("Agg")
 
+import described  # noqa: E402
 import report  # noqa: E402
 import series  # noqa: E402
 
@@ -44,6 +45,18 @@ def planned_runs(folder):
     return total
 
 
+def study_claims(study, folder, budget):
+    """the study's claims, and what its runs are: a plan that resolves nothing gives no verdict
+    (every claim not resolved, saying why); facts: the runs' own pile for the departures table"""
+    mod = study_module(study)
+    title, intro, claims, notes = mod.claims(folder, budget)
+    resolves, purpose = described.plan_resolves(described.plan(folder))
+    if not resolves:
+        described.without_verdicts(claims, budget, purpose)
+    facts = mod.departure_facts(folder) if hasattr(mod, "departure_facts") else None
+    return title, intro, claims, notes, facts
+
+
 def study_module(name):
     if name == "tapping":
         import tapping as study
@@ -62,9 +75,9 @@ def from_series(a):
         series.unpack(a.dir, info, tmp)
         os.makedirs(os.path.join(tmp, "charts"))
         os.chdir(tmp)
-        title, intro, claims, notes = study_module(a.study).claims(tmp, a.budget)
+        title, intro, claims, notes, facts = study_claims(a.study, tmp, a.budget)
         report.write_report(tmp, title, intro, [tuple(m) for m in info["meta"]], claims, notes,
-                            a.study)
+                            a.study, facts)
         os.chdir(here)
         os.makedirs(os.path.join(a.dir, "charts"), exist_ok=True)
         for f in ("report.md", "report.html", "claims.csv"):
@@ -95,7 +108,7 @@ def main():
         sys.exit(f"reproduce_report: {a.dir}/analysis: no analysis here (run gransim reproduce)")
     os.makedirs(os.path.join(a.dir, "charts"), exist_ok=True)
     reads = series.record_reads(a.dir)
-    title, intro, claims, notes = study_module(a.study).claims(a.dir, a.budget)
+    title, intro, claims, notes, facts = study_claims(a.study, a.dir, a.budget)
     inputs = set(reads)  # what the verdicts read; the header's bookkeeping below is not shipped
     hours = a.wall / 3600.0
     # the runs' own wall times (one thread each): the cost whatever the sittings were
@@ -144,7 +157,7 @@ def main():
         meta.append(("in progress", f"{runs - len(unfinished)} of {planned or '?'} planned runs "
                      "complete; this report covers the taps there are so far"
                      + (": " + "; ".join(unfinished) if unfinished else "")))
-    report.write_report(a.dir, title, intro, meta, claims, notes, a.study)
+    report.write_report(a.dir, title, intro, meta, claims, notes, a.study, facts)
     series.write(a.dir, a.study, a.budget, meta, inputs)
     print(f"reproduce_report: {len(claims)} claims → {a.dir}/report.md, report.html, claims.csv")
 

@@ -113,6 +113,28 @@ TapAnalysisResult run_tap_analysis(const std::vector<TapRunInput>& runs,
   if (opts.overlap.bins < 0) throw InputError("", "bins", "must be >= 0");
   TapAnalysisResult r;
 
+  // the pairs to test: runs of one protocol at one control value; series of unknown origin
+  // (no protocol) are compared with each other, whatever the control
+  std::vector<std::pair<std::size_t, std::size_t>> pairs;
+  for (std::size_t i = 0; i < runs.size(); ++i)
+    for (std::size_t j = i + 1; j < runs.size(); ++j) {
+      const TapRunInput &a = runs[i], &b = runs[j];
+      const bool unknown = a.protocol.empty() && b.protocol.empty();
+      if (a.protocol == b.protocol &&
+          (unknown || std::abs(a.control - b.control) <= 1e-9 * (1 + std::abs(a.control))))
+        pairs.emplace_back(i, j);
+    }
+  // the steps the progress counts, known before the first
+  const double n_runs = static_cast<double>(runs.size());
+  const bool with_beta = opts.test_area > 0.0;
+  const double total = 2.0 * n_runs + static_cast<double>(pairs.size()) +
+                       (with_beta ? 2.0 + (runs.size() > 1 ? 1.0 + opts.bootstrap : 0.0) : 0.0);
+  double done = 0.0;
+  auto step = [&] {
+    done += 1.0;
+    if (opts.progress) opts.progress(done, total);
+  };
+
   // per-run statistics after dropping the transient
   std::vector<std::vector<double>> phis;
   std::set<std::string> labels;
@@ -149,20 +171,23 @@ TapAnalysisResult run_tap_analysis(const std::vector<TapRunInput>& runs,
     if (!r.runs.back().tau.converged)
       r.notes.push_back("run '" + label + "': no autocorrelation window M ≥ 5τ below n/2; " +
                         "τ_int and the τ-corrected intervals are unreliable (series too short)");
+    step();
   }
 
   // runs of one protocol at one control value, pairwise: same φ distribution?
-  for (std::size_t i = 0; i < runs.size(); ++i)
-    for (std::size_t j = i + 1; j < runs.size(); ++j) {
-      const TapRunSummary &a = r.runs[i], &b = r.runs[j];
-      // series of unknown origin (no protocol) are compared with each other, whatever the control
-      const bool unknown = a.protocol.empty() && b.protocol.empty();
-      if (a.protocol != b.protocol ||
-          (!unknown && !(std::abs(a.control - b.control) <= 1e-9 * (1 + std::abs(a.control)))))
-        continue;
-      r.pairs.push_back({static_cast<int>(i), static_cast<int>(j),
-                         two_sample_test(phis[i], a.tau.tau_int, phis[j], b.tau.tau_int)});
+  // (each run sorted once: the tests need only its values, and the KS walk wants them sorted)
+  std::vector<std::vector<double>> sorted;
+  if (!pairs.empty())
+    for (const auto& phi : phis) {
+      sorted.push_back(phi);
+      std::sort(sorted.back().begin(), sorted.back().end());
     }
+  for (const auto& [i, j] : pairs) {
+    r.pairs.push_back(
+        {static_cast<int>(i), static_cast<int>(j),
+         two_sample_test(sorted[i], r.runs[i].tau.tau_int, sorted[j], r.runs[j].tau.tau_int)});
+    step();
+  }
 
   // KDEs (B1–B7): Silverman h for the normal kernel; the compact kernels on the same grid with
   // the equivalent (canonical) bandwidth, so that the three smooth alike (paper Fig. 13)
@@ -172,6 +197,7 @@ TapAnalysisResult run_tap_analysis(const std::vector<TapRunInput>& runs,
     r.kde_epanechnikov.push_back(kde(
         phi, c.x, equivalent_bandwidth(Kernel::Epanechnikov, c.bandwidth), Kernel::Epanechnikov));
     r.kde_box.push_back(kde(phi, c.x, equivalent_bandwidth(Kernel::Box, c.bandwidth), Kernel::Box));
+    step();
   }
 
   // the references: by label, else the paper's (negative g with g_p nearest 6), else the
@@ -207,11 +233,15 @@ TapAnalysisResult run_tap_analysis(const std::vector<TapRunInput>& runs,
         "need the area of the test region, m²");
     return r;
   }
-  if (r.ref2 < 0) r.notes.push_back("no second reference run: beta against two references skipped");
+  if (r.ref2 < 0) {
+    r.notes.push_back("no second reference run: beta against two references skipped");
+    step();  // the second reference's fits, counted in the total
+  }
 
   // overlapping histograms (P.39) with V_g = V_T φ̄_ref held constant
   r.v_g = opts.test_area * r.runs[r.ref].phi_mean;
   r.beta = betas_from_phi(phis[r.ref], phis, r.v_g, opts.overlap);
+  step();
   // consecutive taps are correlated: the counts' variance grows by ≈ τ_ref + τ_run
   auto correlate = [&](std::vector<BetaEstimate>& b, int refi) {
     for (std::size_t i = 0; i < b.size(); ++i)
@@ -227,6 +257,7 @@ TapAnalysisResult run_tap_analysis(const std::vector<TapRunInput>& runs,
                         r.beta[i].fit.note + ")");
   if (r.ref2 >= 0) {
     r.beta2 = betas_from_phi(phis[r.ref2], phis, r.v_g, opts.overlap);
+    step();
     correlate(r.beta2, r.ref2);
     r.beta2[r.ref2].dbeta = r.beta2[r.ref2].dbeta_err = 0.0;
     r.beta2[r.ref2].dlnz = r.beta2[r.ref2].dlnz_err = r.beta2[r.ref2].cov = 0.0;
@@ -257,6 +288,7 @@ TapAnalysisResult run_tap_analysis(const std::vector<TapRunInput>& runs,
     mo.overlap = opts.overlap;
     mo.bootstrap = opts.bootstrap;
     for (const auto& s : r.runs) mo.tau_int.push_back(s.tau.tau_int);
+    mo.step = step;
     r.multi = multi_histogram_beta(phis, r.ref, r.v_g, mo);
     for (const auto& n : r.multi.notes) r.notes.push_back("multiple histograms: " + n);
   }

@@ -3,6 +3,7 @@
 // quadron fit over all runs and per protocol, written as CSV and JSON files for the charts
 // (tools/charts_tapping.py).
 #pragma once
+#include <functional>
 #include <iosfwd>
 #include <map>
 #include <string>
@@ -68,6 +69,10 @@ struct TapAnalysisOptions {
   int kde_points = 200;       ///< grid points of each written KDE
   QuadronParams quadron;      ///< φ_rlp, φ_rcp of (P.26)
   int bootstrap = 100;        ///< bootstrap replicas of the multiple-histogram errors
+  /// told (done, total) as the steps of the analysis finish: each run's statistics, each pair
+  /// test, each run's KDEs, each β̂ fit against a reference, the joint fit and each bootstrap
+  /// replica; total is known from the start
+  std::function<void(double done, double total)> progress;
 };
 
 /// statistics of one run (after the transient)

@@ -9,8 +9,9 @@
 namespace gs {
 
 double ks_statistic(std::vector<double> a, std::vector<double> b) {
-  std::sort(a.begin(), a.end());
-  std::sort(b.begin(), b.end());
+  // samples compared many times are sorted once by the caller
+  if (!std::is_sorted(a.begin(), a.end())) std::sort(a.begin(), a.end());
+  if (!std::is_sorted(b.begin(), b.end())) std::sort(b.begin(), b.end());
   const double na = static_cast<double>(a.size()), nb = static_cast<double>(b.size());
   std::size_t i = 0, j = 0;
   double d = 0.0;

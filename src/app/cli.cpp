@@ -123,7 +123,7 @@ int run_cli(int argc, char** argv) {
   analyze->add_option("--reference2", ao.reference2, "second reference run label");
   analyze->add_flag(
       "--no-charts", [&](std::int64_t) { ao.charts = false; }, "write CSV/JSON only");
-  analyze->add_flag("-q,--quiet", ao.quiet, "no summary table");
+  analyze->add_flag("-q,--quiet", ao.quiet, "no summary table and no progress display");
 
   // study: speed against accuracy and the stability map (app/study/study.cpp)
   StudyOptions sto;

@@ -22,28 +22,37 @@ std::string format_duration(double s) {
   return buf;
 }
 
-Progress::Progress(std::string label, double total, std::string unit, bool quiet)
+Progress::Progress(std::string label, double total, std::string unit, bool quiet,
+                   ProgressSettings settings)
     : label_(std::move(label)),
       unit_(std::move(unit)),
       total_(total),
-      tty_(::isatty(2) != 0),
+      tty_(settings.tty < 0 ? ::isatty(2) != 0 : settings.tty != 0),
       quiet_(quiet),
-      start_(std::chrono::steady_clock::now()),
+      set_(std::move(settings)),
+      out_(set_.out ? set_.out : stderr),
+      start_(now()),
       last_(start_) {}
 
-double Progress::elapsed() const {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+double Progress::now() const {
+  if (set_.clock) return set_.clock();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
+
+double Progress::elapsed() const { return now() - start_; }
 
 void Progress::update(double done, const std::string& extra) {
   if (quiet_) return;
-  const auto now = std::chrono::steady_clock::now();
-  const double since = std::chrono::duration<double>(now - last_).count();
+  const double t = now();
+  if (t - start_ < set_.delay) return;
+  const double since = t - last_;
   const double frac = total_ > 0 ? done / total_ : 0.0;
-  // a TTY redraws a few times a second; a log gets a line every 10% or every 30 s
-  const bool due = tty_ ? since > 0.2 : (frac - last_fraction_ >= 0.1 || since > 30.0);
+  // a TTY redraws a few times a second; a log gets a line every log_fraction or log_every s
+  const bool due =
+      !drawn_ || (tty_ ? since > 0.2
+                       : (frac - last_fraction_ >= set_.log_fraction || since >= set_.log_every));
   if (!due) return;
-  last_ = now;
+  last_ = t;
   last_fraction_ = frac;
   draw(done, extra, false);
 }
@@ -59,16 +68,17 @@ void Progress::draw(double done, const std::string& extra, bool final_line) {
   if (tty_) {
     const int width = 24, fill = static_cast<int>(frac * width);
     std::string bar = "[" + std::string(fill, '#') + std::string(width - fill, '.') + "] ";
-    std::fprintf(stderr, "\r\033[K%s%s %s", bar.c_str(), head, extra.c_str());
-    if (final_line) std::fputc('\n', stderr);
+    std::fprintf(out_, "\r\033[K%s%s %s", bar.c_str(), head, extra.c_str());
+    if (final_line) std::fputc('\n', out_);
   } else {
-    std::fprintf(stderr, "%s %s\n", head, extra.c_str());
+    std::fprintf(out_, "%s %s\n", head, extra.c_str());
   }
-  std::fflush(stderr);
+  std::fflush(out_);
+  drawn_ = true;
 }
 
 void Progress::finish(const std::string& summary) {
-  if (quiet_) return;
+  if (quiet_ || (!drawn_ && elapsed() < set_.delay)) return;
   draw(total_, summary, true);
 }
 

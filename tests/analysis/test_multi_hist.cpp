@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <random>
 #include <vector>
 
 #include "analysis/multi_hist.hpp"
@@ -134,6 +135,36 @@ TEST(MultiHistogramBeta, AgreesWithTheDirectFitWhereItExists) {
     EXPECT_NEAR(r.joint[k].dbeta, d.dbeta, 3.0 * std::hypot(d.dbeta_err, r.joint[k].dbeta_err));
     EXPECT_NEAR(r.chain[k].dbeta, d.dbeta, 3.0 * std::hypot(d.dbeta_err, r.chain[k].dbeta_err));
   }
+}
+
+// the joint fit's work is set by the cells of x, not by the taps: ten times the taps (each
+// series as long, the same distributions) must not cost ten times the Newton terms, and
+// the cells must stay as many (each value its own cell made every Newton step O(taps))
+TEST(MultiHistogramBeta, JointFitWorkDoesNotGrowWithTheTaps) {
+  auto work = [](int n) {
+    std::mt19937_64 rng(7);
+    std::normal_distribution<double> noise(0.0, 0.002);
+    std::vector<std::vector<double>> phi(3);
+    for (int k = 0; k < 3; ++k)
+      for (int i = 0; i < n; ++i) phi[k].push_back(0.815 + 0.002 * k + noise(rng));
+    MultiHistOptions opts;
+    opts.bootstrap = 4;
+    int steps = 0;
+    opts.step = [&] { ++steps; };
+    const MultiHistResult r = multi_histogram_beta(phi, 1, 0.01, opts);
+    EXPECT_TRUE(r.joint_converged);
+    // the answer stays that of the direct fit of the pair, within their errors
+    const BetaEstimate d = beta_from_phi(phi[1], phi[0], 0.01);
+    EXPECT_NEAR(r.joint[0].dbeta, d.dbeta, 3.0 * std::hypot(d.dbeta_err, r.joint[0].dbeta_err));
+    EXPECT_EQ(steps, 1 + opts.bootstrap);  // the fit and each replica report their end
+    return r;
+  };
+  const MultiHistResult small = work(3000), large = work(30000);
+  std::printf("joint fit: %d cells, %lld terms at 3·3000 taps; %d cells, %lld terms at 3·30000\n",
+              small.values, static_cast<long long>(small.terms), large.values,
+              static_cast<long long>(large.terms));
+  EXPECT_LT(large.values, 1.5 * small.values);
+  EXPECT_LT(static_cast<double>(large.terms), 2.0 * static_cast<double>(small.terms));
 }
 
 TEST(MultiHistogramBeta, RefusesBadInput) {

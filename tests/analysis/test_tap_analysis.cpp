@@ -108,6 +108,26 @@ TEST(TapAnalysis, SyntheticStudyRecoversTheGas) {
 }
 
 // the files the charts read: present, with their headers and one row per run and reference
+// the progress the analysis reports: every step once, in order, to a total known from the start
+TEST(TapAnalysis, ReportsEveryStepToAKnownTotal) {
+  Study st;
+  std::vector<double> done, totals;
+  st.opts.progress = [&](double d, double t) {
+    done.push_back(d);
+    totals.push_back(t);
+  };
+  const TapAnalysisResult r = run_tap_analysis(st.runs, st.opts);
+  ASSERT_FALSE(done.empty());
+  // per run: statistics and KDEs; the pair tests; two reference fits; the joint fit and its
+  // bootstrap replicas
+  const double total = 2.0 * st.runs.size() + r.pairs.size() + 2.0 + 1.0 + st.opts.bootstrap;
+  for (std::size_t i = 0; i < done.size(); ++i) {
+    EXPECT_EQ(done[i], static_cast<double>(i + 1));
+    EXPECT_EQ(totals[i], total);
+  }
+  EXPECT_EQ(done.back(), total);
+}
+
 TEST(TapAnalysis, WritesTheOutputFiles) {
   const Study st;
   const fs::path out = fs::temp_directory_path() / "gs_test_tap_analysis";

@@ -112,10 +112,45 @@ HEAD = ("The runs depart from what the source printed where the printed value ca
         "(φ̄ with it − φ̄ as run, ± one standard error)")
 
 
-def rows(study):
-    return TAPPING_ROWS if study == "tapping" else RFM_ROWS
+def _or(values, fmt):
+    return " or ".join(fmt(v) for v in values)
 
 
-def head(study):
-    return HEAD + (":" if study == "tapping" else "; the thesis' claims are not about φ̄, so the "
+def rows(study, facts=None):
+    """the study's rows; facts (what the runs' scene.toml give: tapping.departure_facts,
+    rfm.departure_facts) put the runs' own values in the 'program runs' cells"""
+    base = TAPPING_ROWS if study == "tapping" else RFM_ROWS
+    if not facts:
+        return base
+    if study == "tapping":
+        runs = {"box width": (facts.get("box_width"), lambda v: _or(v, lambda w: f"{w:g} m")),
+                "integrator": (facts.get("dt"), lambda v: " or ".join(facts["integrator"]) +
+                               ", Δt = " + _or(v, lambda d: f"{d:.4g} s")),
+                "pulse of negative g": (facts.get("t1"), lambda v: "g_p·g for t1 = " +
+                                        _or(v, lambda t: f"{t:g}") + " s (same g_p values)")}
+    else:
+        runs = {"time step": (facts.get("dt"), lambda v: "Δt = " + _or(v, lambda d: f"{d:g}") +
+                              " s" + (f" (≈ {facts['steps_per_contact']:.0f} steps a contact)"
+                                      if facts.get("steps_per_contact") else "")),
+                "box of the free-path dimension": (facts.get("free_path_box"), lambda v: "L = " +
+                                                   _or(v, lambda w: f"{w:g}") + " m (the box of "
+                                                   "the runs that measure it)"),
+                "ring of the gap distribution G₁": (
+                    facts.get("ring_n"),
+                    lambda v: f"the largest ring of these runs' size series (N = {max(v)})")}
+    out = []
+    for r in base:
+        values, cell = runs.get(r[0], (None, None))
+        out.append((r[0], r[1], cell(values)) + r[3:] if values else r)
+    return out
+
+
+def head(study, facts=None):
+    text = HEAD + (":" if study == "tapping" else "; the thesis' claims are not about φ̄, so the "
                    "effect is on what the claims measure:")
+    if study == "tapping" and facts and facts.get("grains") and facts["grains"] != [1184]:
+        n = " or ".join(str(g) for g in facts["grains"])
+        text = (f"These runs tap a pile of {n} grains, not the paper's 1184: the effects below "
+                "were measured on the paper-scale scenes, and the 'program runs' cells give "
+                "these runs' own box and time step. " + text)
+    return text

@@ -84,23 +84,23 @@ def _cell(t):
     return t.replace("|", "\\|").replace("\n", " ")
 
 
-def departures_markdown(study):
+def departures_markdown(study, facts=None):
     """the departures table of a report's header, in Markdown"""
-    lines = ["## Departures from the source", "", departures.head(study), "",
+    lines = ["## Departures from the source", "", departures.head(study, facts), "",
              "| departure | source printed | program runs | why | effect measured |",
              "|---|---|---|---|---|"]
-    for what, printed, runs, why, (text, link), effect in departures.rows(study):
+    for what, printed, runs, why, (text, link), effect in departures.rows(study, facts):
         lines.append(f"| {_cell(what)} | {_cell(printed)} | {_cell(runs)} | {_cell(why)} "
                      f"([{text}]({link})) | {_cell(effect)} |")
     return lines
 
 
-def write_markdown(path, title, intro, meta, claims, notes, study=""):
+def write_markdown(path, title, intro, meta, claims, notes, study="", facts=None):
     n = _counts(claims)
     lines = [f"# {title}", "", intro, ""]
     lines += [f"- **{k}**: {v}" for k, v in meta]
     if study:
-        lines += [""] + departures_markdown(study)
+        lines += [""] + departures_markdown(study, facts)
     lines += ["", "## Verdicts", "",
               f"**Verdicts**: {n[AGREES]} agree, {n[DISAGREES]} disagree, "
               f"{n[UNRESOLVED]} not resolved at this budget.", "",
@@ -141,19 +141,19 @@ def _img(folder, rel):
     return f'<img alt="{html.escape(rel)}" src="data:image/png;base64,{data}">'
 
 
-def departures_html(study):
+def departures_html(study, facts=None):
     """the departures table of a report's header, in HTML"""
     e = html.escape
-    out = ["<h2>Departures from the source</h2>", f"<p>{e(departures.head(study))}</p>",
+    out = ["<h2>Departures from the source</h2>", f"<p>{e(departures.head(study, facts))}</p>",
            "<table><tr><th>departure</th><th>source printed</th><th>program runs</th>"
            "<th>why</th><th>effect measured</th></tr>"]
-    for what, printed, runs, why, (text, link), effect in departures.rows(study):
+    for what, printed, runs, why, (text, link), effect in departures.rows(study, facts):
         out.append(f"<tr><td>{e(what)}</td><td>{e(printed)}</td><td>{e(runs)}</td>"
                    f'<td>{e(why)} (<a href="{e(link)}">{e(text)}</a>)</td><td>{e(effect)}</td></tr>')
     return out + ["</table>"]
 
 
-def write_html(path, title, intro, meta, claims, notes, study=""):
+def write_html(path, title, intro, meta, claims, notes, study="", facts=None):
     folder = os.path.dirname(os.path.abspath(path))
     e = html.escape
     n = _counts(claims)
@@ -173,7 +173,7 @@ def write_html(path, title, intro, meta, claims, notes, study=""):
     out += [f"<li><b>{e(k)}</b>: {e(str(v))}</li>" for k, v in meta]
     out.append("</ul>")
     if study:
-        out += departures_html(study)
+        out += departures_html(study, facts)
     out += ["<h2>Verdicts</h2>", f"<p><b>Verdicts</b>: {n[AGREES]} agree, {n[DISAGREES]} "
             f"disagree, {n[UNRESOLVED]} not resolved at this budget.</p>",
             "<table><tr><th>claim</th><th>source says</th><th>program measured</th>"
@@ -210,8 +210,9 @@ def write_html(path, title, intro, meta, claims, notes, study=""):
         f.write("\n".join(out) + "\n")
 
 
-def write_report(folder, title, intro, meta, claims, notes=(), study=""):
-    """study ("tapping", "rfm") puts its departures table in the header"""
+def write_report(folder, title, intro, meta, claims, notes=(), study="", facts=None):
+    """study ("tapping", "rfm") puts its departures table in the header; facts (the runs' own
+    pile, described.pile) fill its cells with what these runs ran"""
     ids = [c.id for c in claims]
     if len(ids) != len(set(ids)):
         raise ValueError("claim ids repeat: " + ", ".join(ids))
@@ -219,7 +220,7 @@ def write_report(folder, title, intro, meta, claims, notes=(), study=""):
         if c.verdict not in BADGE:
             raise ValueError(f"claim {c.id}: verdict {c.verdict!r}")
     write_markdown(os.path.join(folder, "report.md"), title, intro, meta, claims, list(notes),
-                   study)
+                   study, facts)
     write_html(os.path.join(folder, "report.html"), title, intro, meta, claims, list(notes),
-               study)
+               study, facts)
     write_csv(os.path.join(folder, "claims.csv"), claims)

@@ -10,6 +10,7 @@ import matplotlib
 matplotlib.use("Agg")
 import numpy as np  # noqa: E402
 
+import described  # noqa: E402
 from report import Claim, test_of  # noqa: E402
 from verdicts import (POWER, UNRESOLVED, Verdict, chi2_consistent, compare_value,  # noqa: E402
                       mean_err)
@@ -282,8 +283,8 @@ NOTES = [
     "§2.3.3 puts the reference fluid's steady temperature at \"approximately equal to $12m^2s^{-2}$\". "
     "The thesis' own eq. 5.2 and an energy balance give 0.1–0.3 m²/s²: 12 is an OCR or units error "
     "(a lost ×10⁻²?), not a target here; claim T-mean-field sets the run against eq. 5.2 at face value.",
-    "Steady-state claims stay unresolved while the runs discard less than the thesis' first second "
-    "(smoke discards 0.1 s); their reason then gives the verdict at face value.",
+    "Steady-state claims stay unresolved while the runs discard less than the thesis' first second; "
+    "their reason then gives the verdict at face value.",
     "α: the thesis' ± is the half-width of the accepted range (§5.1.1); both sides are read as 95 % "
     "intervals. The headline 1.163 ± 0.017 holds for φ ≳ 0.53, ε < 0.6, so it is drawn for the "
     "structure run only. Table 5.1's header ε = 0.01 is read as 0.1 (its φ = 0.353 entry is Table "
@@ -299,6 +300,71 @@ NOTES = [
     "Not claimed here: ζ_m (Table 3.1; analysis/ring/exponents.csv, quantity 1), Tables 4.2–4.3, "
     "5.3–5.4 and A.1: they need other ε, φ or L than the shipped scenes.",
 ]
+
+
+def _scenes(d, sweep):
+    import glob
+    return described.scenes(sorted(os.path.dirname(p) for p in
+                                   glob.glob(os.path.join(d, "sweeps", sweep, "*", "scene.toml"))))
+
+
+def departure_facts(d):
+    """the runs' own time step, free-path box, ring sizes and transient, from their scene.toml"""
+    ref, struct, ring = (_scenes(d, s) for s in ("reference", "structure", "ring"))
+    facts = {}
+
+    def collect(scenes, get):
+        out = []
+        for s in scenes:
+            try:
+                v = get(s)
+            except (KeyError, TypeError, ValueError, IndexError):
+                continue
+            if v not in out:
+                out.append(v)
+        return out
+
+    facts["dt"] = collect(ref + struct + ring, lambda s: float(s["integrator"]["dt"]))
+    facts["free_path_box"] = collect(struct, lambda s: float(s["box"]["width"]))
+    facts["ring_n"] = collect(ring, lambda s: sum(int(x["count"]) for x in s["species"]))
+    facts["discard"] = collect(ref, lambda s: float(s["rfm"]["discard_time"]))
+    # the contact time π√(m₁₂/k_s) of the reference fluid's beads, in steps
+    tc = collect(ref, lambda s: math.pi * math.sqrt(float(s["species"][0]["mass"]) / 2
+                                                    / float(s["material"][0]["ks"])))
+    if tc and len(facts["dt"]) == 1:
+        facts["steps_per_contact"] = tc[0] / facts["dt"][0]
+    return facts if any(facts.values()) else None
+
+
+def _system(d, sweep):
+    """N, L, φ and ε of a sweep's runs, from their scene.toml ("" when the sweep has none)"""
+    found = _scenes(d, sweep)
+    ns, ls, phis, eps = [], [], [], []
+    for s in found:
+        try:
+            sp = s["species"]
+            n = sum(int(x.get("count", 0)) for x in sp)
+            box = s["box"]
+            e = float(s["material"][0].get("eps_n", float("nan")))
+            if "reduced_length" in box:
+                size = f"L′ = {float(box['reduced_length']):g} m"
+                phi = None
+            else:
+                w, h = float(box["width"]), float(box.get("height", box["width"]))
+                size = f"L = {w:g} m"
+                phi = sum(int(x.get("count", 0)) * math.pi * float(x["radius"]) ** 2
+                          for x in sp) / (w * h)
+        except (KeyError, TypeError, ValueError, IndexError, ZeroDivisionError):
+            continue
+        for lst, v in ((ns, n), (ls, size), (phis, phi), (eps, e)):
+            if v is not None and v not in lst:
+                lst.append(v)
+    if not ns:
+        return ""
+    out = "N = " + ", ".join(str(n) for n in sorted(ns)) + ", " + " or ".join(ls)
+    if phis:
+        out += ", φ = " + " or ".join(f"{p:.3g}" for p in phis)
+    return out + ", ε = " + " or ".join(f"{e:g}" for e in eps)
 
 
 def claims(d, budget):
@@ -328,10 +394,18 @@ def claims(d, budget):
             purpose = json.load(f).get("purpose", "")
     except (OSError, ValueError):
         purpose = ""
+    systems = [(name, _system(d, sweep)) for name, sweep in
+               (("the 2D reference fluid", "reference"), ("the structure fluid", "structure"),
+                ("the 1D ring", "ring"))]
+    ran = "; ".join(f"{name} ({text})" for name, text in systems if text)
     intro = ("D. J. Bray's thesis (Nottingham 2009) studies soft disks driven by white noise, the "
-             "Random Force Model. gransim runs three of its systems: the 2D reference fluid (N = 2000, "
-             "L = 0.2 m, φ = 0.353, ε = 0.6) from square, hexagonal and uniform starts; the structure "
-             "fluid (N = 3000, L = 0.2 m, φ = 0.53, ε = 0.1); and the 1D ring at L′ = 1 m, ε = 0.1, "
-             "over several N. `gransim analyze` fits the thesis' quantities, and each claim below "
-             f"sets them against the thesis' own numbers. Budget {budget}: {purpose}.")
-    return "Random Force Model (Bray 2009): the thesis' claims against gransim", intro, out, NOTES
+             "Random Force Model. gransim's runs here, as their scene.toml files give them: "
+             + (ran or "none of the runs' scene.toml files is in this folder") +
+             ". `gransim analyze` fits the thesis' quantities, and each claim below sets them "
+             f"against the thesis' own numbers. Budget {budget}: {purpose}.")
+    facts = departure_facts(d) or {}
+    notes = list(NOTES)
+    if facts.get("discard"):
+        notes[1] += (" These runs discard " + " or ".join(f"{t:g} s" for t in facts["discard"])
+                     + ".")
+    return "Random Force Model (Bray 2009): the thesis' claims against gransim", intro, out, notes

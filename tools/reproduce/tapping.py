@@ -5,6 +5,7 @@ import math
 import numpy as np
 
 from report import Claim, test_of
+import described
 from tapping_data import (NEG, ROT, Study, _fig, _finish, _pm, _save, block_bootstrap, column,
                           sigma_err, steady_window)
 from tapping_protocols import protocol_claims
@@ -379,6 +380,28 @@ def segregation(st, budget):
                  chart, **test_of(v))
 
 
+PAPER_PILE = "the paper's pile is 1184 bidisperse decagons"
+
+
+def pile_of(st):
+    """the pile the study's runs tapped, from their scene.toml (None without one)"""
+    return described.pile(described.scenes(sorted(set(st.run_dir.values()))))
+
+
+def pile_text(st):
+    p = pile_of(st)
+    if p is None:
+        return "their scene.toml files are not in this folder, so the pile is not described"
+    same = p["grains"] == [1184]
+    return (p["text"] + " (from the runs' scene.toml" +
+            ("" if same else f"; not the paper's pile: {PAPER_PILE}, docs/tapping.md") + ")")
+
+
+def departure_facts(folder):
+    """the runs' own pile for the departures table"""
+    return pile_of(Study(folder))
+
+
 def claims(folder, budget):
     st = Study(folder)
     if not st.summary:
@@ -412,8 +435,7 @@ def claims(folder, budget):
              "those the paper states, quoted where used. docs/reproduction/power.md tabulates "
              "each claim's power by series length."]
     intro = ("The tapping paper (V. Becker and K. Kassner, Protocol-independent granular "
-             "temperature supported by numerical simulations, 2015) against gransim's runs of the "
-             "same pile: 1184 bidisperse decagons, the paper's force law and protocols, velocity "
-             "Verlet at Δt = 1/7500 s with early rest (docs/tapping.md). The pulse is read as g_p·g "
-             "for t1 = 0.01 s (docs/physics.md). Every verdict is computed from the data.")
+             "temperature supported by numerical simulations, 2015) against gransim's runs: "
+             + pile_text(st) + ". The pulse is read as g_p·g for t1 (docs/physics.md). Every "
+             "verdict is computed from the data.")
     return "Reproduction of the tapping study", intro, out, notes

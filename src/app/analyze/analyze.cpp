@@ -9,12 +9,14 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 
 #include "analysis/tap_analysis.hpp"
 #include "app/analyze/rfm_analyze.hpp"
 #include "app/locations.hpp"
+#include "app/progress.hpp"
 #include "app/run/run_info.hpp"
 #include "app/subprocess.hpp"
 #include "core/error.hpp"
@@ -97,8 +99,21 @@ std::vector<FoundTapRun> find_tap_runs(const std::string& dir) {
 int finish_analysis(const std::vector<TapRunInput>& runs, const std::vector<RunSource>& src,
                     const TapAnalysisOptions& ao, const AnalyzeOptions& opt,
                     const std::string& out) {
-  // the statistics and their files
-  const TapAnalysisResult res = run_tap_analysis(runs, ao);
+  // the statistics (with progress when they take a while) and their files
+  TapAnalysisOptions with_progress = ao;
+  double total_taps = 0.0;
+  for (const auto& r : runs) total_taps += static_cast<double>(r.series.phi.size());
+  std::optional<Progress> progress;  // made at the first step, which knows the total
+  with_progress.progress = [&](double done, double total) {
+    if (!progress) progress.emplace("analyze", total, "steps", opt.quiet, opt.progress);
+    progress->update(done);
+  };
+  const TapAnalysisResult res = run_tap_analysis(runs, with_progress);
+  if (progress) {
+    char summary[96];
+    std::snprintf(summary, sizeof summary, "%zu runs, %.0f taps", runs.size(), total_taps);
+    progress->finish(summary);
+  }
   write_tap_analysis(res, runs, ao, out);
   {
     // runs.csv: where each run came from, for the per-run charts

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "app/progress.hpp"
+
 namespace gs {
 
 struct AnalyzeOptions {
@@ -18,7 +20,10 @@ struct AnalyzeOptions {
   std::string reference;      ///< reference run label (default: the library's choice)
   std::string reference2;     ///< second reference label
   bool charts = true;         ///< run the chart scripts
-  bool quiet = false;         ///< no summary table
+  bool quiet = false;         ///< no summary table and no progress display
+  /// the progress display of an analysis that takes more than a couple of seconds: one line
+  /// redrawn on a terminal, a plain line every 5 s otherwise (tests give it a clock)
+  ProgressSettings progress{{}, -1, nullptr, 2.0, 5.0, 2.0};
   // plain φ series from anywhere (experiments, other simulators): no run directory needed
   std::vector<std::string> series;  ///< "PROTOCOL:CONTROL:FILE" (a CSV with a phi column)
   std::string manifest;             ///< a CSV: file,protocol,control[,label][,test_area]

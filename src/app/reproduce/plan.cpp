@@ -101,6 +101,7 @@ ReproducePlan tapping_plan(Budget b) {
       p.sweeps.push_back(tapping_sweep("rotating_g", "tap_small_rotating_g.toml", "drive.f", {1, 2},
                                        21, 1.5, 250, dt, fast));
       p.purpose = "proves the pipeline on the 250-grain teaching pile; resolves no claim";
+      p.resolves = false;
       break;
     }
     case Budget::Quick:
@@ -146,6 +147,7 @@ ReproducePlan rfm_plan(Budget b) {
     case Budget::Smoke:
       t_ref = 0.25, t_sk = 0.2, t_ring = 1.0, discard = 0.1, sizes = {100, 200};
       p.purpose = "proves the pipeline with runs of a fraction of a second; resolves no claim";
+      p.resolves = false;
       break;
     case Budget::Quick:
       p.purpose =

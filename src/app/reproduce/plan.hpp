@@ -30,6 +30,8 @@ struct ReproducePlan {
   Budget budget = Budget::Quick;
   std::vector<PlannedSweep> sweeps;
   std::string purpose;               ///< what this budget resolves, one sentence
+  bool resolves = true;              ///< false: its runs prove the pipeline only, and its
+                                     ///< report gives no verdict
   double core_hours() const;         ///< projected core-hours of every sweep
   double longest_run_hours() const;  ///< projected hours of the longest run (one core)
   int widest_sweep() const;          ///< runs in the largest sweep: ranks that can be busy

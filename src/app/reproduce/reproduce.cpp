@@ -103,6 +103,7 @@ void write_plan_json(const ReproducePlan& p, const fs::path& out, const std::str
   j["study"] = p.study;
   j["budget"] = budget_name(p.budget);
   j["purpose"] = p.purpose;
+  j["resolves"] = p.resolves;  // false: the report gives no verdict
   j["command"] = command;
   j["projected_core_hours"] = p.core_hours();
   j["sweeps"] = json::array();

@@ -128,6 +128,9 @@ def make_more():
     case("hang_snapshots_every_time_below_dt.toml", BASE + "\n[output.snapshots]\nevery_time = 5e-7\n", "integrator.dt", 2, "4-hang")
     command("4-hang", 2, "--dt", "model walk --dt 1e-300 --walks 10 --radius 0.001 --out {out} --no-charts -q --no-heating")
     command("4-hang", 2, "--dt", "model interval --dt 1e-300 --walks 10 --out {out} --no-charts -q")
+    # a length no walk can cross: refused, never a null result with exit 0
+    command("5-data", 2, "--length",
+            "model interval --length 1e308 --walks 10 --out {out} --no-charts -q")
 
     # ---- class 5: bad data (exit 2 naming file, line, column) and unwritable outputs (exit 5)
     case("series_phi_nan.csv", "tap,phi\n1,0.8\n2,nan\n3,0.81\n", ":3", 2, "5-data", SERIES)
