@@ -165,6 +165,27 @@ std::vector<int> resample(int n, int block, std::mt19937_64& rng) {
   return out;
 }
 
+// the covariance of the replicas' columns, each pair over the replicas that reached both
+// (n − 1 in the denominator, as stddev); NaN where fewer than `need` did
+std::vector<std::vector<double>> replica_covariance(const std::vector<std::vector<double>>& rows,
+                                                    std::size_t need) {
+  const std::size_t Q = rows.empty() ? 0 : rows.front().size();
+  std::vector<std::vector<double>> c(Q, std::vector<double>(Q, kNaN));
+  for (std::size_t a = 0; a < Q; ++a)
+    for (std::size_t b = a; b < Q; ++b) {
+      double n = 0.0, ma = 0.0, mb = 0.0;
+      for (const auto& w : rows)
+        if (std::isfinite(w[a]) && std::isfinite(w[b])) n += 1.0, ma += w[a], mb += w[b];
+      if (n < static_cast<double>(need) || n < 2.0) continue;
+      ma /= n, mb /= n;
+      double s = 0.0;
+      for (const auto& w : rows)
+        if (std::isfinite(w[a]) && std::isfinite(w[b])) s += (w[a] - ma) * (w[b] - mb);
+      c[a][b] = c[b][a] = s / (n - 1.0);
+    }
+  return c;
+}
+
 }  // namespace
 
 JointFit joint_histogram_fit(const std::vector<std::vector<double>>& counts,
@@ -394,6 +415,11 @@ MultiHistResult multi_histogram_beta(const std::vector<std::vector<double>>& phi
     for (int k = 0; k < K; ++k)
       for (double v : xs[k]) place[k].push_back(pooled.cell(v));
     std::vector<std::vector<double>> counts(K, std::vector<double>(pooled.x.size(), 0.0));
+    // every replica's β̂ of each block (joint, then direct per reference), for the covariance
+    const int D = static_cast<int>(opts.direct_refs.size());
+    for (int d : opts.direct_refs)
+      if (d < 0 || d >= K) throw InputError("", "direct_refs", "no such run");
+    std::vector<std::vector<double>> rows;
     for (int rep = 0; rep < opts.bootstrap; ++rep) {
       for (int k = 0; k < K; ++k) {
         const double tau =
@@ -412,14 +438,26 @@ MultiHistResult multi_histogram_beta(const std::vector<std::vector<double>>& phi
       const auto chain = sum_chain(r.order, links, ref);
       for (int k = 0; k < K; ++k)
         if (chain[k].valid) cb[k].push_back(chain[k].dbeta), cz[k].push_back(chain[k].dlnz);
+      std::vector<double> row(static_cast<std::size_t>((1 + D) * K), kNaN);
       {
         const JointFit f = joint_histogram_fit(counts, pooled.x, ref, jf.b, opts.max_iterations,
                                                opts.tolerance, linked, jf.dlnz);
         r.terms += f.terms;
         if (f.converged)
           for (int k = 0; k < K; ++k)
-            if (f.connected[k]) jb[k].push_back(f.b[k] / v_g), jz[k].push_back(f.dlnz[k]);
+            if (f.connected[k]) {
+              jb[k].push_back(f.b[k] / v_g), jz[k].push_back(f.dlnz[k]);
+              row[static_cast<std::size_t>(k)] = f.b[k] / v_g;
+            }
       }
+      for (int i = 0; i < D; ++i) {
+        const int d = opts.direct_refs[static_cast<std::size_t>(i)];
+        const auto direct = betas_from_phi(sample[d], sample, v_g, opts.overlap);
+        for (int k = 0; k < K; ++k)
+          if (k == d || direct[k].valid)
+            row[static_cast<std::size_t>((1 + i) * K + k)] = k == d ? 0.0 : direct[k].dbeta;
+      }
+      rows.push_back(std::move(row));
       if (opts.step) opts.step();
     }
     // a run's error needs most replicas to have reached it
@@ -430,6 +468,7 @@ MultiHistResult multi_histogram_beta(const std::vector<std::vector<double>>& phi
       if (jb[k].size() >= need)
         r.joint[k].dbeta_err = stddev(jb[k]), r.joint[k].dlnz_err = stddev(jz[k]);
     }
+    r.cov = replica_covariance(rows, need);
     r.chain[ref].dbeta_err = r.chain[ref].dlnz_err = 0.0;
     r.joint[ref].dbeta_err = r.joint[ref].dlnz_err = 0.0;
     r.replicas = opts.bootstrap;

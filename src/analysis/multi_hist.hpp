@@ -35,6 +35,9 @@ struct MultiHistOptions {
   double tolerance = 1e-10;       ///< joint fit: largest change of b_k (1/(units of x)) to stop
   OverlapOptions overlap;         ///< the pairwise fits of the chain
   std::function<void()> step;     ///< called after the fit and after each bootstrap replica
+  /// runs whose direct β̂ of every run (overlapping histograms against that run alone) the
+  /// bootstrap refits too, for their covariance with the joint fit's
+  std::vector<int> direct_refs;
 };
 
 /// one run's estimate relative to the reference
@@ -59,7 +62,12 @@ struct MultiHistResult {
   std::int64_t terms = 0;           ///< work of the joint fits, bootstrap included: Σ over
                                     ///< objective evaluations of cells × runs
   int replicas = 0;                 ///< bootstrap replicas that were used
-  std::vector<std::string> notes;   ///< runs left out and why
+  /// bootstrap covariance of the β̂ (1/m⁴) from the same replicas as the errors: index
+  /// b·K + k is run k's β̂ of block b, block 0 the joint fit, block 1 + i the direct β̂ against
+  /// direct_refs[i]; NaN where fewer than half the replicas reached both runs; a reference's
+  /// own β̂ is 0 (row and column 0). Its joint diagonal is joint[k].dbeta_err².
+  std::vector<std::vector<double>> cov;
+  std::vector<std::string> notes;  ///< runs left out and why
 };
 
 /// both estimates of β − β_ref and ln Z − ln Z_ref for every run; phi[k] are run k's taps

@@ -289,6 +289,9 @@ TapAnalysisResult run_tap_analysis(const std::vector<TapRunInput>& runs,
     mo.bootstrap = opts.bootstrap;
     for (const auto& s : r.runs) mo.tau_int.push_back(s.tau.tau_int);
     mo.step = step;
+    // the direct β̂ too, for the covariance of the two references' β̂ (beta_cov.csv)
+    mo.direct_refs = {r.ref};
+    if (r.ref2 >= 0) mo.direct_refs.push_back(r.ref2);
     r.multi = multi_histogram_beta(phis, r.ref, r.v_g, mo);
     for (const auto& n : r.multi.notes) r.notes.push_back("multiple histograms: " + n);
   }

@@ -409,6 +409,29 @@ void write_tap_analysis(const TapAnalysisResult& r, const std::vector<TapRunInpu
     f.close();
   }
 
+  // beta_cov.csv: the bootstrap covariance of the β̂ across runs, a square matrix whose rows and
+  // columns are named joint:<label> (joint fit) and direct:<reference>:<label> (direct β̂)
+  if (!r.multi.cov.empty()) {
+    OutFile f(dir / "beta_cov.csv");
+    const std::size_t K = r.runs.size();
+    std::vector<std::string> names;
+    for (std::size_t q = 0; q < r.multi.cov.size(); ++q) {
+      const std::size_t b = q / K;
+      const int refb = b == 0 ? -1 : (b == 1 ? r.ref : r.ref2);
+      names.push_back((b == 0 ? std::string("joint:") : "direct:" + r.runs[refb].label + ":") +
+                      r.runs[q % K].label);
+    }
+    f << "quantity";
+    for (const auto& n : names) f << ',' << n;
+    f << '\n';
+    for (std::size_t a = 0; a < names.size(); ++a) {
+      f << names[a];
+      for (double c : r.multi.cov[a]) f << ',' << num(c);
+      f << '\n';
+    }
+    f.close();
+  }
+
   // quadron.json: the fits with their curves
   if (has_beta) {
     OutFile f(dir / "quadron.json");
@@ -437,6 +460,7 @@ void write_tap_analysis(const TapAnalysisResult& r, const std::vector<TapRunInpu
       << ",\n  \"min_fraction\": " << jnum(opts.overlap.min_fraction)
       << ",\n  \"reference\": " << jstr(ref.label)
       << ",\n  \"reference2\": " << (r.ref2 >= 0 ? jstr(r.runs[r.ref2].label) : "null")
+      << ",\n  \"bootstrap_replicas\": " << r.multi.replicas
       << ",\n  \"reference_offset\": {\"dbeta\": " << jnum(r.ref_offset)
       << ", \"err\": " << jnum(r.ref_offset_err) << ", \"chi2\": " << jnum(r.ref_offset_chi2)
       << ", \"dof\": " << r.ref_offset_dof << "},\n  \"runs\": [";
@@ -458,7 +482,8 @@ void write_tap_analysis(const TapAnalysisResult& r, const std::vector<TapRunInpu
     f << "\n  ],\n  \"files\": [\"summary.csv\", \"series.csv\", \"kde.csv\""
       << (r.pairs.empty() ? "" : ", \"pairs.csv\"")
       << (has_beta ? ", \"q_lines.csv\", \"beta.csv\", \"quadron.json\"" : "")
-      << (r.multi.chain.empty() ? "" : ", \"beta_multi.csv\"") << "],\n  \"notes\": [";
+      << (r.multi.chain.empty() ? "" : ", \"beta_multi.csv\"")
+      << (r.multi.cov.empty() ? "" : ", \"beta_cov.csv\"") << "],\n  \"notes\": [";
     for (std::size_t i = 0; i < r.notes.size(); ++i) f << (i ? ", " : "") << jstr(r.notes[i]);
     f << "]\n}\n";
     f.close();

@@ -137,6 +137,76 @@ TEST(MultiHistogramBeta, AgreesWithTheDirectFitWhereItExists) {
   }
 }
 
+// the bootstrap covariance across runs against the covariance over independent realizations:
+// runs on the same side of a reference share the noise of its tail, so their β̂ are positively
+// correlated, and a run's β̂ against two references shares that run's noise; each element must match
+// within the errors of both estimates (var ĉ_ab = (c_ab² + c_aa c_bb)/(R − 1) for R draws), the
+// bootstrap's averaged over B realizations (one realization's own scatter, O(n^−½), would
+// otherwise dominate), and the joint diagonal must be the marginal errors squared
+TEST(MultiHistogramBeta, BootstrapCovarianceMatchesTheSpreadOverRealizations) {
+  QuadronGasSpec gas;
+  gas.start_fill = -2.0;  // equilibrium, independent taps (refresh 1): blocks of one tap
+  const double scale = quadron_gas_a(gas) / gas.limits.delta_inv();
+  const std::vector<double> xs = {1.0, 1.15, 1.3, 1.45};
+  const int ref = 0, n = 400, M = 300, R = 150, B = 4;
+  auto draw = [&](std::uint64_t seed) {
+    std::vector<std::vector<double>> phi;
+    for (std::size_t k = 0; k < xs.size(); ++k)
+      phi.push_back(quadron_gas_phi(xs[k] * scale, n, gas, seed, k));
+    return phi;
+  };
+  MultiHistOptions opts;
+  opts.direct_refs = {ref, 1};
+  // quantities: joint β̂ of runs 1–3, direct β̂ of runs 1–3 against run 0, of runs 0, 2, 3
+  // against run 1 (index b·K + k)
+  const std::vector<int> q = {1, 2, 3, 5, 6, 7, 8, 10, 11};
+  std::vector<std::vector<double>> mc(q.size());
+  opts.bootstrap = 0;
+  for (int m = 0; m < M; ++m) {
+    const auto phi = draw(1000 + m);
+    const MultiHistResult r = multi_histogram_beta(phi, ref, gas.v_g, opts);
+    ASSERT_TRUE(r.joint_converged);
+    std::vector<double> v = {r.joint[1].dbeta, r.joint[2].dbeta, r.joint[3].dbeta};
+    for (int k : {1, 2, 3}) v.push_back(beta_from_phi(phi[0], phi[k], gas.v_g).dbeta);
+    for (int k : {0, 2, 3}) v.push_back(beta_from_phi(phi[1], phi[k], gas.v_g).dbeta);
+    for (std::size_t i = 0; i < q.size(); ++i) mc[i].push_back(v[i]);
+  }
+  opts.bootstrap = R;
+  std::vector<std::vector<double>> boot(12, std::vector<double>(12, 0.0));
+  for (int i = 0; i < B; ++i) {
+    const MultiHistResult b = multi_histogram_beta(draw(7 + i), ref, gas.v_g, opts);
+    ASSERT_EQ(b.cov.size(), 12u);
+    for (int k : {1, 2, 3})
+      EXPECT_NEAR(b.cov[k][k], b.joint[k].dbeta_err * b.joint[k].dbeta_err, 1e-9 * b.cov[k][k]);
+    EXPECT_EQ(b.cov[ref][ref], 0.0);  // the reference's own β̂ is 0 in every replica
+    for (int x = 0; x < 12; ++x)
+      for (int y = 0; y < 12; ++y) boot[x][y] += b.cov[x][y] / B;
+  }
+  auto cov = [](const std::vector<double>& x, const std::vector<double>& y) {
+    const double mx = mean(x), my = mean(y);
+    double s = 0.0;
+    for (std::size_t i = 0; i < x.size(); ++i) s += (x[i] - mx) * (y[i] - my);
+    return s / static_cast<double>(x.size() - 1);
+  };
+  for (std::size_t i = 0; i < q.size(); ++i)
+    for (std::size_t j = i; j < q.size(); ++j) {
+      const double t = cov(mc[i], mc[j]), ti = cov(mc[i], mc[i]), tj = cov(mc[j], mc[j]);
+      const double c = boot[q[i]][q[j]];
+      const double err = std::sqrt((t * t + ti * tj) * (1.0 / (B * (R - 1)) + 1.0 / (M - 1)));
+      EXPECT_NEAR(c, t, 4.0 * err) << q[i] << ' ' << q[j];
+      std::printf("cov %d %d: bootstrap %.4g, realizations %.4g ± %.2g (ρ %.2f) pull %.1f\n", q[i],
+                  q[j], c, t, err, t / std::sqrt(ti * tj), (c - t) / err);
+    }
+  // the premise: the correlations tested are far from zero (positive, and a test of a wrong
+  // sign or of independence would fail)
+  auto rho = [&](int i, int j) {
+    return cov(mc[i], mc[j]) / std::sqrt(cov(mc[i], mc[i]) * cov(mc[j], mc[j]));
+  };
+  const double rho_joint = rho(1, 2), rho_refs = rho(4, 7);  // runs 2, 3; run 2 against 0, 1
+  EXPECT_GT(rho_joint, 0.2);
+  EXPECT_GT(rho_refs, 0.2);
+}
+
 // the joint fit's work is set by the cells of x, not by the taps: ten times the taps (each
 // series as long, the same distributions) must not cost ten times the Newton terms, and
 // the cells must stay as many (each value its own cell made every Newton step O(taps))

@@ -106,6 +106,20 @@ TEST(TapPlainAnalysis, NoTestAreaGivesThePhiStatisticsOnly) {
   EXPECT_EQ(b.beta.size(), 2u);
   EXPECT_TRUE(b.beta[1].valid);
   for (const auto& n : b.notes) EXPECT_EQ(n.find("no test area"), std::string::npos) << n;
+  // beta_cov.csv: a square matrix named by estimate and run, its joint diagonal the errors²
+  write_tap_analysis(b, runs, o, dir.string());
+  std::ifstream cf(dir / "beta_cov.csv");
+  std::string header, line;
+  std::getline(cf, header);
+  EXPECT_EQ(header,
+            "quantity,joint:dry,joint:wet,direct:dry:dry,direct:dry:wet,direct:wet:dry,"
+            "direct:wet:wet");
+  std::getline(cf, line);
+  std::getline(cf, line);  // joint:wet
+  ASSERT_EQ(line.rfind("joint:wet,", 0), 0u) << line;
+  const double c = std::stod(line.substr(line.find(',', line.find(',') + 1) + 1));
+  EXPECT_NEAR(c, b.multi.joint[1].dbeta_err * b.multi.joint[1].dbeta_err, 1e-9 * c);
+  fs::remove_all(dir);
   o.test_area = std::nan("");
   EXPECT_THROW(run_tap_analysis(runs, o), InputError);
 }
