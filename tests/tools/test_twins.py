@@ -17,10 +17,12 @@ ROOT = os.path.join(HERE, "..", "..")
 sys.path.insert(0, os.path.join(ROOT, "tools", "reproduce"))
 
 from verdicts import (AGREES, DISAGREES, below_bound, chi2_consistent,  # noqa: E402
-                      compare_value, extremum, feature_test, chi2_sf, t_sf2)
+                      compare_value, cov_inverse, extremum, feature_test, chi2_sf, t_sf2,
+                      without_covariance)
 from tapping_data import quadron_phi  # noqa: E402
 from tapping_edwards import (conditional_err, gauss_curvature, gauss_dbeta,  # noqa: E402
-                             gauss_dlnz_excess, one_curve_test, quadron_sigma)
+                             gauss_dlnz_excess, one_curve_test, quadron_sigma,
+                             two_refs_verdict)
 
 REPS = 200
 V_G, A = 0.1336, 556.51
@@ -128,6 +130,79 @@ class OneCurve(Twin):
                 lambda r: one_curve_test(grp, alts["rot"] + r.normal(0, e), e, jac, alts),
                 one_curve_test(grp, np.zeros(12), e, jac, alts),
                 one_curve_test(grp, alts["rot"], e, jac, alts))
+
+
+def correlated(n, e, rho=0.9, length=4.0):
+    """a covariance of n estimates with error e whose neighbours are strongly correlated (as β̂
+    sharing references and the chain are): e²((1 − ρ)I + ρ e^{−|i−j|/length})"""
+    i = np.arange(n)
+    return e * e * ((1 - rho) * np.eye(n) + rho * np.exp(-np.abs(i[:, None] - i[None, :]) / length))
+
+
+def bootstrap_inverse(cov, r, replicas=100):
+    """the guarded inverse of the covariance a bootstrap of `replicas` draws would estimate
+    (r: None for the exact covariance)"""
+    if r is None:
+        return cov_inverse(cov, 10 ** 9)[0]
+    x = r.multivariate_normal(np.zeros(len(cov)), cov, size=replicas)
+    return cov_inverse(np.cov(x, rowvar=False), replicas)[0]
+
+
+class CovariancePath(Twin):
+    """one-curve, quadron and two-references with the bootstrap covariance of correlated β̂: the
+    noise drawn with the true covariance, the test made with one estimated from 100 replicas
+    (as the analysis ships it); and without a covariance no agreement"""
+
+    def test_one_curve_with_correlated_residuals(self):
+        b0 = 1.9e4
+        bh = np.linspace(-6e3, 6e3, 12)
+        grp = ["left"] * 4 + ["right"] * 4 + ["rot"] * 4
+        phi = np.array([quadron_phi(b + b0, A) for b in bh])
+        jac = np.array([[(quadron_phi(b + b0, A * 1.001) - quadron_phi(b + b0, A * 0.999)) / (0.002 * A),
+                         (quadron_phi(b + b0 + 10, A) - quadron_phi(b + b0 - 10, A)) / 20] for b in bh])
+        off = np.array([quadron_phi(b + b0, A * 1.02) for b in bh]) - phi
+        alts = {g: np.where(np.array(grp) == g, off, 0.0) for g in ("left", "right", "rot")}
+        for n in (200, 1e4, 1e6):
+            e = np.full(12, 0.003 / np.sqrt(n))
+            cov = correlated(12, e[0])
+
+            def claim(y, r=None):
+                noise = 0.0 if r is None else r.multivariate_normal(np.zeros(12), cov)
+                return one_curve_test(grp, y + noise, e, jac, alts, bootstrap_inverse(cov, r))
+            self.assert_rules(lambda r: claim(np.zeros(12), r), lambda r: claim(alts["rot"], r),
+                              claim(np.zeros(12)), claim(alts["rot"]))
+            # without the covariance no agreement, whatever the data
+            v = without_covariance(one_curve_test(grp, np.zeros(12), e, jac, alts))
+            self.assertNotEqual(v.verdict, AGREES, v.reason)
+
+    def test_two_references_with_correlated_differences(self):
+        n_runs = 8
+        ramp = np.linspace(-1.0, 1.0, n_runs)  # a difference that is not constant (App. A, A4)
+        for n in (50, 500, 5000, 5e4):
+            e = 300.0 / np.sqrt(n)
+            cov = correlated(n_runs, e, rho=0.95)
+            alt = 20.0 * ramp
+
+            def claim(d, r=None):
+                noise = 0.0 if r is None else r.multivariate_normal(np.zeros(n_runs), cov)
+                return two_refs_verdict(d + noise, alt, bootstrap_inverse(cov, r), "twin")
+            self.assert_rules(lambda r: claim(np.full(n_runs, 5.0), r),
+                              lambda r: claim(5.0 + alt, r), claim(np.full(n_runs, 5.0)),
+                              claim(5.0 + alt))
+            # the errors taken as independent: never agrees, even where the claim holds
+            v = without_covariance(two_refs_verdict(np.full(n_runs, 5.0), alt,
+                                                    np.eye(n_runs) / e ** 2, "independent"))
+            self.assertNotEqual(v.verdict, AGREES, v.reason)
+
+    def test_guard_floors_an_unresolved_direction(self):
+        # two estimates correlated at 0.9999: 100 replicas cannot resolve the small direction,
+        # so its eigenvalue is floored at n/R and the χ² along it stays finite and modest
+        c = np.array([[1.0, 0.9999], [0.9999, 1.0]])
+        inv, low = cov_inverse(c, 100)
+        self.assertEqual(low, 1)
+        r = np.array([1.0, -1.0]) * 0.1
+        self.assertLess(float(r @ inv @ r), 0.02 / (2 / 100) + 1e-9)
+        self.assertIsNone(cov_inverse(c, 3)[0])  # R ≤ n + 2: no usable covariance
 
 
 class ProtocolClaims(Twin):

@@ -53,6 +53,8 @@ class Study:
         self.quadron = read_json(os.path.join(a, "quadron.json"))
         self.info = read_json(os.path.join(a, "analysis.json"))
         self.discard = int(self.info.get("discard", 10))
+        self._cov = read_csv(os.path.join(a, "beta_cov.csv"))
+        self.replicas = int(self.info.get("bootstrap_replicas") or 0)
         runs = read_csv(os.path.join(a, "runs.csv"))
         self.run_dir = {r["label"]: str(r.get("dir", r.get("run_dir", ""))) for r in runs}
         self._taps = {}
@@ -83,6 +85,15 @@ class Study:
     def segregation(self, label):
         d = self.run_dir.get(label, "")
         return read_csv(os.path.join(d, "segregation.csv")) if d else []
+
+    def beta_cov(self, names):
+        """the bootstrap covariance (1/m⁴) of the named β̂ (joint:<label>,
+        direct:<reference>:<label>) from beta_cov.csv; None where it is absent or incomplete"""
+        rows = {r["quantity"]: r for r in self._cov}
+        if not names or not self.replicas or any(n not in rows for n in names):
+            return None
+        c = np.array([[rows[a].get(b, float("nan")) for b in names] for a in names], float)
+        return c if np.all(np.isfinite(c)) else None
 
     def primary_beta(self):
         ref = self.info.get("reference")

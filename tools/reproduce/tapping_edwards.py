@@ -7,7 +7,8 @@ import numpy as np
 from report import Claim, test_of
 from tapping_data import NEG, NEXT, ROT, _fig, _finish, column, quadron_phi, sigma_err
 from verdicts import (AGREES, DISAGREES, UNRESOLVED, Verdict, below_bound, chi2_consistent,
-                      chi2_power, chi2_sf, compare_value, decide, offset_test)
+                      chi2_power, chi2_sf, compare_value, cov_inverse, decide, offset_test,
+                      without_covariance)
 
 # "The relative deviation of the obtained fitting parameters is smaller than 2%" (section V):
 # the precision the paper gives its fit, and so the smallest protocol dependence it would see
@@ -179,6 +180,31 @@ def reference_overlap(st, budget):
                  power_at=(lambda k: min(x[2].power_at(k) for x in rows)) if rows else None)
 
 
+def constant_test(d, alt, inv):
+    """χ² of d about its best constant (generalised least squares, inverse covariance inv), its
+    degrees of freedom, and the noncentrality of alt about its own best constant"""
+    one = np.ones(len(d))
+
+    def chi(v):
+        v = np.asarray(v, float)
+        r = v - (one @ inv @ v) / (one @ inv @ one)
+        return float(r @ inv @ r)
+    return chi(d), len(d) - 1, chi(alt)
+
+
+def two_refs_verdict(d, alt, inv, how):
+    """the two-references rule: β̂(r1) − β̂(r2) of every common run is one constant; alt the
+    differences the Gaussian pairs of App. A would give"""
+    chi2, dof, lam = constant_test(d, alt, inv)
+
+    def at(k):
+        return chi2_power(lam * k, dof)
+    return decide(chi2_sf(chi2, dof), at(1.0), "β̂ from the two references differ by a constant",
+                  f"Gaussian pairs with the measured φ̄, σ_φ (App. A, A3–A4; noncentrality "
+                  f"{lam:.3g})", f"χ² = {chi2:.3g} for {dof} degrees of freedom around a "
+                  f"constant offset ({how})", float("nan"), power_at=at)
+
+
 def two_references(st, budget):
     """Fig. 7c: β̂ from two references differ by a constant"""
     off = st.info.get("reference_offset", {})
@@ -188,29 +214,33 @@ def two_references(st, budget):
     common = [lab for (ref, lab) in by if ref == r1 and (r2, lab) in by]
     v_g = st.quadron.get("v_g", st.info.get("v_g"))
     rows = {r["label"]: r for r in st.summary}
-    if chi2 is None or not dof or dof < 1 or not v_g or r1 not in rows or r2 not in rows:
+    if len(common) < 2 or not v_g or r1 not in rows or r2 not in rows:
         v = Verdict(UNRESOLVED, "fewer than 2 runs overlap both references")
         p = float("nan")
     else:
-        p = chi2_sf(chi2, dof)
         # the Gaussian pair of App. A: β̂ from (A3) are not additive, so their difference between
-        # the references varies from run to run (A4's contradiction); its spread about the best
-        # constant, in the measured errors, is the noncentrality against that alternative
-        d, w = [], []
-        for lab in common:
-            g = [gauss_dbeta(rows[lab]["phi_mean"], rows[lab]["sigma"], rows[r]["phi_mean"],
-                             rows[r]["sigma"], v_g) for r in (r1, r2)]
-            d.append(g[0] - g[1])
-            w.append(1 / (by[(r1, lab)]["dbeta_err"] ** 2 + by[(r2, lab)]["dbeta_err"] ** 2))
-        d, w = np.array(d), np.array(w)
-        lam = float(np.sum(w * (d - np.sum(w * d) / np.sum(w)) ** 2)) if len(d) else 0.0
-        def at(k):
-            return chi2_power(lam * k, dof)
-        pw, k = at(1.0), float("nan")
-        v = decide(p, pw, "β̂ from the two references differ by a constant",
-                   f"Gaussian pairs with the measured φ̄, σ_φ (App. A, A3–A4; noncentrality "
-                   f"{lam:.3g})", f"χ² = {chi2:.3g} for {dof} degrees of freedom around a "
-                   "constant offset", k, power_at=at)
+        # the references varies from run to run (A4's contradiction)
+        d = np.array([by[(r1, lab)]["dbeta"] - by[(r2, lab)]["dbeta"] for lab in common])
+        alt = np.array([gauss_dbeta(rows[lab]["phi_mean"], rows[lab]["sigma"],
+                                    rows[r1]["phi_mean"], rows[r1]["sigma"], v_g)
+                        - gauss_dbeta(rows[lab]["phi_mean"], rows[lab]["sigma"],
+                                      rows[r2]["phi_mean"], rows[r2]["sigma"], v_g)
+                        for lab in common])
+        n1 = [f"direct:{r1}:{lab}" for lab in common]
+        n2 = [f"direct:{r2}:{lab}" for lab in common]
+        c = st.beta_cov(n1 + n2)
+        inv, why = (None, "no beta_cov.csv") if c is None else cov_inverse(
+            c[:len(common), :len(common)] + c[len(common):, len(common):]
+            - c[:len(common), len(common):] - c[len(common):, :len(common)], st.replicas)
+        if inv is not None:
+            v = two_refs_verdict(d, alt, inv, f"with the bootstrap covariance of the {2 * len(common)} "
+                                 f"β̂, {st.replicas} replicas; {why} eigenvalues floored")
+        else:
+            e2 = np.array([by[(r1, lab)]["dbeta_err"] ** 2 + by[(r2, lab)]["dbeta_err"] ** 2
+                           for lab in common])
+            v = without_covariance(two_refs_verdict(d, alt, np.diag(1 / e2), "errors independent"),
+                                   f"β̂ of a run against the two references ({why})")
+        p = chi2_sf(*constant_test(d, alt, inv if inv is not None else np.diag(1 / e2))[:2])
     fig, ax = _fig()
     for ref, mk in ((r1, "s"), (r2, "o")):
         rr = [r for r in st.beta if r.get("reference") == ref and r.get("valid") == 1]
@@ -223,7 +253,7 @@ def two_references(st, budget):
                  "different samples as reference distribution may only differ by an additive "
                  "constant", "Fig. 7c, eq. (39)",
                  (f"offset {off.get('dbeta'):.4g} ± {1.96 * off.get('err'):.2g} 1/m², χ² {chi2:.3g} "
-                  f"for {dof} d.o.f." if math.isfinite(p) else
+                  f"for {dof} d.o.f. (errors independent)" if math.isfinite(p) else
                   "no second reference with ≥ 2 common runs"), v.verdict, v.reason,
                  _need(v, _n_med(st)), chart, {"p": p}, **test_of(v))
 
@@ -282,7 +312,8 @@ def quadron_claims(st, budget):
         except (ZeroDivisionError, ValueError, OverflowError):
             continue
         e = math.hypot(r["phi_err"], dp * (be if math.isfinite(be) else 0.0))
-        groups.setdefault(grp[r["label"]], []).append((r["phi_mean"] - pf, e, alt, (da, db)))
+        groups.setdefault(grp[r["label"]], []).append((r["phi_mean"] - pf, e, alt, (da, db),
+                                                       r["label"], r["phi_err"], dp))
         resid.append((r["phi_mean"], bh + b0, r["protocol"]))
         bh_of[r["label"]] = (bh, be)
     gm, ge, names = [], [], []
@@ -297,12 +328,24 @@ def quadron_claims(st, budget):
     y = np.array([x[0] for vals in groups.values() for x in vals])
     e = np.array([x[1] for vals in groups.values() for x in vals])
     jac = np.array([x[3] for vals in groups.values() for x in vals])
+    # the residuals' covariance: φ̄'s own error beside the β̂ covariance carried through the curve
+    # (φ_quadron moves by dp per unit of β̂), where the analysis shipped it
+    pts = [x for vals in groups.values() for x in vals]
+    ref = st.info.get("reference")
+    cb = st.beta_cov([f"joint:{x[4]}" if use_joint else f"direct:{ref}:{x[4]}" for x in pts])
+    inv, why = (None, "no beta_cov.csv") if cb is None else cov_inverse(
+        np.diag([x[5] ** 2 for x in pts]) + np.outer([x[6] for x in pts], [x[6] for x in pts]) * cb,
+        st.replicas)
+    how = (f"with the bootstrap covariance of the β̂ ({st.replicas} replicas; {why} eigenvalues "
+           "floored)" if inv is not None else None)
     v = Verdict(UNRESOLVED, "fewer than 2 protocols or branches with β̂, or too few runs to "
                 "refit the curve with an offset per group")
     if len(names) >= 2 and len(y) > len(names) + 2:
         alts = {g: np.array([x[2] if gi == g else 0.0 for gi, vals in groups.items() for x in vals])
                 for g in names}
-        v = one_curve_test(labs, y, e, jac, alts)
+        v = one_curve_test(labs, y, e, jac, alts, inv)
+        if inv is None:
+            v = without_covariance(v, f"β̂ of different runs ({why})")
     decoy = _decoy_note(st, bh_of, v_g)
     fig, ax = _fig()
     for proto, mk in ((NEG, "s"), (ROT, "D")):
@@ -320,19 +363,28 @@ def quadron_claims(st, budget):
                      "Fig. 9, section V", "mean residual φ̄ − φ_quadron(β̂ + β₀) per group: " +
                      "; ".join(f"{n} {m:+.4f} ± {1.96 * e:.4f}" for n, m, e in zip(names, gm, ge)),
                      v.verdict, v.reason + f" (β̂ from the {'joint multiple-histogram' if use_joint else 'direct'} "
-                     "fit; their errors are taken as independent, as the shipped tables carry no "
-                     "covariance between runs)" + decoy, _need(v, _n_med(st)), chart, **test_of(v)))
+                     f"fit{'; ' + how if how else ''})" + decoy, _need(v, _n_med(st)), chart,
+                     **test_of(v)))
 
-    # N z̄/V_g of the fit over every run
-    c = compare_value(a, fit.get("a_err", float("nan")), A_PAPER, alternative=A_PREC * A_PAPER,
-                      fmt="{:.4g}")
+    # N z̄/V_g of the fit over every run; with the β̂ covariance, one generalised least-squares
+    # step from the fit (its residuals y, Jacobian jac) gives the estimate and its error
+    a_fit, a_err = a, fit.get("a_err", float("nan"))
+    if inv is not None and len(y) > 2:
+        cov_p = np.linalg.inv(jac.T @ inv @ jac)
+        a_fit = a + float((cov_p @ jac.T @ inv @ y)[0])
+        a_err = float(math.sqrt(cov_p[0, 0]))
+    c = compare_value(a_fit, a_err, A_PAPER, alternative=A_PREC * A_PAPER, fmt="{:.4g}")
     c.alternative = f"a {100 * A_PREC:.0f} % difference (the paper's precision of its fit, section V)"
+    if inv is None:
+        c = without_covariance(c, f"β̂ of different runs the fit is made from ({why})")
+    else:
+        c.reason += f" (generalised least squares {how})"
     out.append(Claim("quadron-a", "Edwards statistics", "we find as fitting value N z̄/V_g = "
                      "556.51 m⁻²", "Fig. 9, eq. (26), section V",
-                     f"N z̄/V_g = {a:.4g} ± {1.96 * fit.get('a_err', float('nan')):.3g} m⁻², "
+                     f"N z̄/V_g = {a_fit:.4g} ± {1.96 * a_err:.3g} m⁻², "
                      f"β₀ = {b0:.4g} 1/m² ({name} fit, φ_rlp = {lim[0]}, φ_rcp = {lim[1]})",
                      c.verdict, c.reason, _need(c, _n_med(st)), chart,
-                     {"a": a, "a_err": fit.get("a_err"), "beta0": b0}, **test_of(c)))
+                     {"a": a_fit, "a_err": a_err, "beta0": b0}, **test_of(c)))
 
     # fits to one protocol alone
     fits = st.quadron.get("fits", {})
@@ -357,12 +409,13 @@ def quadron_claims(st, budget):
     return out
 
 
-def one_curve_test(groups, resid, err, jac, alts):
+def one_curve_test(groups, resid, err, jac, alts, inv=None):
     """the one-curve rule: residuals from a fit (nuisance Jacobian jac, n × 2) refitted with and
     without an offset per group; alts {group: the residuals if that group lay on a curve 2 % off},
-    the worst-seen group being the alternative"""
-    lam, g = min((offset_test(jac, groups, resid, err, alts[g])[2], g) for g in alts)
-    dchi, dof, _ = offset_test(jac, groups, resid, err)
+    the worst-seen group being the alternative; inv the residuals' inverse covariance (None:
+    independent errors err)"""
+    lam, g = min((offset_test(jac, groups, resid, err, alts[g], inv)[2], g) for g in alts)
+    dchi, dof, _ = offset_test(jac, groups, resid, err, inv=inv)
 
     def at(k):
         return chi2_power(lam * k, dof)

@@ -16,6 +16,17 @@ One rule for every claim:
 - anything else is *not resolved*, with the length factor (more taps, seconds) that would give
   the test 80 % power.
 A tolerance enters only where the source states a precision; the caller quotes it.
+
+Correlated estimates (the β̂ of different runs share references and neighbours): where the
+analysis ships their bootstrap covariance (analysis/beta_cov.csv) the tests are generalised
+least squares, χ² = rᵀC⁻¹r, with C guarded by cov_inverse: the eigenvalues of its correlation
+matrix are floored at n/R (n estimates, R bootstrap replicas: the scale of the noise in the
+spectrum of a covariance estimated from R draws, below which a direction is not resolved), and
+C⁻¹ is scaled by (R − n − 2)/(R − 1), the mean bias of the inverse of a covariance estimated
+from R draws (Wishart); with R ≤ n + 2 there is no usable covariance. Where no covariance is
+shipped the errors are taken as independent and the claim says so; it may then disagree but
+not agree (without_covariance), because positive correlations between the estimates make an
+independent χ² of their differences lenient.
 """
 from dataclasses import dataclass
 import functools
@@ -363,20 +374,53 @@ def chi2_cov(residuals, cov, label="residuals", alternative=None, alt_text=""):
                   power_at=at), p
 
 
-def offset_test(base, groups, y, e, alt=None):
+def cov_inverse(cov, replicas):
+    """the guarded inverse of a bootstrap covariance (module docstring); (C⁻¹, the number of
+    floored eigenvalues), or (None, why) when it is not usable"""
+    c = np.asarray(cov, float)
+    n = len(c)
+    if n < 1 or not np.all(np.isfinite(c)):
+        return None, "the covariance has missing entries"
+    if not replicas or replicas <= n + 2:
+        return None, f"{replicas} bootstrap replicas do not resolve a covariance of {n} estimates"
+    d = np.sqrt(np.diag(c))
+    if not np.all(d > 0):
+        return None, "an estimate without variance"
+    w, v = np.linalg.eigh(c / np.outer(d, d))
+    floor = n / replicas
+    low = int(np.sum(w < floor))
+    w = np.maximum(w, floor)
+    inv = (v / w) @ v.T / np.outer(d, d)
+    return inv * (replicas - n - 2) / (replicas - 1), low
+
+
+def without_covariance(v, what="β̂ of different runs"):
+    """a verdict from errors taken as independent where the estimates are correlated: an
+    agreement becomes not resolved (module docstring)"""
+    note = (f" (the {what} are correlated and no covariance was shipped: their errors are "
+            "taken as independent, which can make the test lenient, so it cannot agree)")
+    if v.verdict == AGREES:
+        v.verdict = UNRESOLVED
+    v.reason += note
+    return v
+
+
+def offset_test(base, groups, y, e, alt=None, inv=None):
     """Does a constant offset per group (all but the first) lower χ² beyond the nuisance terms
     of `base` (an n × p design: a smooth curve, or a fit's linearized parameters)? Returns
     (Δχ², dof, λ): Δχ² ~ χ²_dof when the groups share one curve; λ the noncentrality of the
-    noiseless `alt` (None: nan)."""
+    noiseless `alt` (None: nan). inv: the inverse covariance of y (generalised least squares;
+    None: independent errors e)."""
     base = np.asarray(base, float).reshape(len(y), -1)
     names = list(dict.fromkeys(groups))
     g = np.array([[1.0 if gi == n else 0.0 for n in names[1:]] for gi in groups]).reshape(len(y), -1)
     full = np.hstack([base, g])
-    w = 1.0 / np.asarray(e, float)
+    # whitening: ‖W v‖² = vᵀC⁻¹v
+    W = np.diag(1.0 / np.asarray(e, float)) if inv is None else np.linalg.cholesky(inv).T
 
     def chi(design, v):
-        c, *_ = np.linalg.lstsq(design * w[:, None], v * w, rcond=None)
-        return float(np.sum(((v - design @ c) * w) ** 2))
+        c, *_ = np.linalg.lstsq(W @ design, W @ v, rcond=None)
+        return float(np.sum((W @ (v - design @ c)) ** 2))
     y = np.asarray(y, float)
     d = chi(base, y) - chi(full, y)
     lam = float("nan") if alt is None else chi(base, np.asarray(alt, float)) - chi(full, np.asarray(alt, float))
