@@ -21,8 +21,8 @@ from verdicts import (AGREES, DISAGREES, below_bound, chi2_consistent,  # noqa: 
                       without_covariance)
 from tapping_data import quadron_phi  # noqa: E402
 from tapping_edwards import (conditional_err, gauss_curvature, gauss_dbeta,  # noqa: E402
-                             gauss_dlnz_excess, one_curve_test, quadron_sigma,
-                             two_refs_verdict)
+                             gauss_dlnz_excess, gls_a, one_curve_test, quadron_sigma,
+                             two_refs_verdict, A_PREC)
 
 REPS = 200
 V_G, A = 0.1336, 556.51
@@ -174,6 +174,23 @@ class CovariancePath(Twin):
             # without the covariance no agreement, whatever the data
             v = without_covariance(one_curve_test(grp, np.zeros(12), e, jac, alts))
             self.assertNotEqual(v.verdict, AGREES, v.reason)
+
+    def test_quadron_a_with_correlated_residuals(self):
+        b0 = 1.9e4
+        bh = np.linspace(-6e3, 6e3, 12)
+        phi = np.array([quadron_phi(b + b0, A) for b in bh])
+        jac = np.array([[(quadron_phi(b + b0, A * 1.001) - quadron_phi(b + b0, A * 0.999)) / (0.002 * A),
+                         (quadron_phi(b + b0 + 10, A) - quadron_phi(b + b0 - 10, A)) / 20] for b in bh])
+        off = np.array([quadron_phi(b + b0, A * (1 + A_PREC)) for b in bh]) - phi
+        for n in (200, 1e4, 1e6):
+            cov = correlated(12, 0.003 / np.sqrt(n))
+
+            def claim(y, r=None):
+                noise = 0.0 if r is None else r.multivariate_normal(np.zeros(12), cov)
+                a, err = gls_a(A, y + noise, jac, bootstrap_inverse(cov, r))
+                return compare_value(a, err, A, alternative=A_PREC * A)
+            self.assert_rules(lambda r: claim(np.zeros(12), r), lambda r: claim(off, r),
+                              claim(np.zeros(12)), claim(off))
 
     def test_two_references_with_correlated_differences(self):
         n_runs = 8

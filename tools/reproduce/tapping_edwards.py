@@ -370,9 +370,7 @@ def quadron_claims(st, budget):
     # step from the fit (its residuals y, Jacobian jac) gives the estimate and its error
     a_fit, a_err = a, fit.get("a_err", float("nan"))
     if inv is not None and len(y) > 2:
-        cov_p = np.linalg.inv(jac.T @ inv @ jac)
-        a_fit = a + float((cov_p @ jac.T @ inv @ y)[0])
-        a_err = float(math.sqrt(cov_p[0, 0]))
+        a_fit, a_err = gls_a(a, y, jac, inv)
     c = compare_value(a_fit, a_err, A_PAPER, alternative=A_PREC * A_PAPER, fmt="{:.4g}")
     c.alternative = f"a {100 * A_PREC:.0f} % difference (the paper's precision of its fit, section V)"
     if inv is None:
@@ -407,6 +405,13 @@ def quadron_claims(st, budget):
     out.append(_lnz(st, budget))
     out.append(_sigma_phi(st, budget))
     return out
+
+
+def gls_a(a, resid, jac, inv):
+    """N z̄/V_g and its error after one generalised least-squares step from a fit whose
+    residuals φ̄ − φ_quadron are resid (Jacobian jac in (a, β₀), inverse covariance inv)"""
+    cov_p = np.linalg.inv(jac.T @ inv @ jac)
+    return a + float((cov_p @ jac.T @ inv @ resid)[0]), float(math.sqrt(cov_p[0, 0]))
 
 
 def one_curve_test(groups, resid, err, jac, alts, inv=None):
