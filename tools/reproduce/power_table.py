@@ -39,7 +39,10 @@ def table(folder, budget="standard", lengths=LENGTHS):
              "probability that the claim's test detects the alternative its source names or shows "
              "(the *alternative* column, at the 5 % level); a claim *agrees* only where it is at "
              "least 0.80. `–`: the source sizes no alternative, or the shipped tables lack the "
-             "series the test needs (per-tap series).",
+             "series the test needs (per-tap series). one-curve, quadron-a and two-references use "
+             "the bootstrap covariance of the β̂ across runs (analysis/beta_cov.csv) where it is "
+             "shipped; without it their errors are taken as independent, the power shown is that "
+             "of the independent test, and the claim cannot agree (tools/reproduce/verdicts.py).",
              "",
              "| claim | alternative | " + " | ".join(f"{n} taps" for n in lengths) + " |",
              "|---|---|" + "---|" * len(lengths)]
