@@ -14,7 +14,8 @@ import shutil
 import sys
 
 SUMMARIES = ["summary.csv", "beta.csv", "beta_multi.csv", "beta_cov.csv", "pairs.csv",
-             "quadron.json", "analysis.json", "runs.csv", "rfm_summary.json", "exponents.csv", "moments_vs_N.csv"]
+             "quadron.json", "analysis.json", "runs.csv", "rfm_summary.json", "exponents.csv",
+             "moments_vs_N.csv"]
 
 
 def main():
