@@ -110,19 +110,25 @@ class EdwardsClaims(Twin):
                 chi2_consistent(alt, e, alternative=alt)[0])
 
 
+def one_curve_fixture():
+    """twelve runs in three groups on the ideal quadron: the groups, the fit's Jacobian (N z̄/V_g,
+    β₀) and each group's alternative (its runs on a curve with N z̄/V_g 2 % off)"""
+    b0 = 1.9e4
+    bh = np.linspace(-6e3, 6e3, 12)
+    grp = ["left"] * 4 + ["right"] * 4 + ["rot"] * 4
+    phi = np.array([quadron_phi(b + b0, A) for b in bh])
+    jac = np.array([[(quadron_phi(b + b0, A * 1.001) - quadron_phi(b + b0, A * 0.999)) / (0.002 * A),
+                     (quadron_phi(b + b0 + 10, A) - quadron_phi(b + b0 - 10, A)) / 20] for b in bh])
+    off = np.array([quadron_phi(b + b0, A * 1.02) for b in bh]) - phi
+    return grp, jac, {g: np.where(np.array(grp) == g, off, 0.0) for g in ("left", "right", "rot")}
+
+
 class OneCurve(Twin):
     """one-curve: β̂ of three groups on the ideal quadron (true), or one group on a curve with
     N z̄/V_g 2 % off (false), refitted about the shared fit"""
 
     def test_at_every_length(self):
-        b0 = 1.9e4
-        bh = np.linspace(-6e3, 6e3, 12)
-        grp = ["left"] * 4 + ["right"] * 4 + ["rot"] * 4
-        phi = np.array([quadron_phi(b + b0, A) for b in bh])
-        jac = np.array([[(quadron_phi(b + b0, A * 1.001) - quadron_phi(b + b0, A * 0.999)) / (0.002 * A),
-                         (quadron_phi(b + b0 + 10, A) - quadron_phi(b + b0 - 10, A)) / 20] for b in bh])
-        off = np.array([quadron_phi(b + b0, A * 1.02) for b in bh]) - phi
-        alts = {g: np.where(np.array(grp) == g, off, 0.0) for g in ("left", "right", "rot")}
+        grp, jac, alts = one_curve_fixture()
         for n in (200, 1e4, 1e6, 1e8):
             e = np.full(12, 0.003 / np.sqrt(n))
             self.assert_rules(
@@ -154,14 +160,7 @@ class CovariancePath(Twin):
     (as the analysis ships it); and without a covariance no agreement"""
 
     def test_one_curve_with_correlated_residuals(self):
-        b0 = 1.9e4
-        bh = np.linspace(-6e3, 6e3, 12)
-        grp = ["left"] * 4 + ["right"] * 4 + ["rot"] * 4
-        phi = np.array([quadron_phi(b + b0, A) for b in bh])
-        jac = np.array([[(quadron_phi(b + b0, A * 1.001) - quadron_phi(b + b0, A * 0.999)) / (0.002 * A),
-                         (quadron_phi(b + b0 + 10, A) - quadron_phi(b + b0 - 10, A)) / 20] for b in bh])
-        off = np.array([quadron_phi(b + b0, A * 1.02) for b in bh]) - phi
-        alts = {g: np.where(np.array(grp) == g, off, 0.0) for g in ("left", "right", "rot")}
+        grp, jac, alts = one_curve_fixture()
         for n in (200, 1e4, 1e6):
             e = np.full(12, 0.003 / np.sqrt(n))
             cov = correlated(12, e[0])
