@@ -9,12 +9,11 @@
 
 #include "analysis/stats.hpp"
 #include "core/error.hpp"
+#include "core/numbers.hpp"
 
 namespace gs {
 
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // the pooled values of x in cells, and each run's count in each cell. A cell spans at most a
 // hundredth of the narrowest run's standard deviation (and a 20000th of the pooled range), and

@@ -9,12 +9,11 @@
 #include <stdexcept>
 
 #include "analysis/stats.hpp"
+#include "core/numbers.hpp"
 
 namespace gs {
 
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 double binomial(int n, int k) {
   double r = 1.0;

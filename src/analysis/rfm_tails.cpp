@@ -9,12 +9,11 @@
 #include "analysis/rfm_csv.hpp"
 #include "analysis/rfm_fit.hpp"
 #include "core/error.hpp"
+#include "core/numbers.hpp"
 
 namespace gs::rfm {
 
-namespace {
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-}  // namespace
+namespace {}  // namespace
 
 Histogram velocity_histogram(double v_max, int n_bins) {
   if (!(v_max > 0.0)) throw InputError("velocity_histogram", "v_max", "must be positive");

@@ -5,13 +5,14 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
-#include <sstream>
+#include <nlohmann/json.hpp>
 #include <stdexcept>
 
 #include "analysis/rfm_csv.hpp"
 #include "analysis/rfm_freepath.hpp"
 #include "analysis/rfm_tails.hpp"
 #include "core/error.hpp"
+#include "core/numbers.hpp"
 #include "core/permute.hpp"
 #include "measure/rfm_io.hpp"
 #include "sim/simulation.hpp"
@@ -19,8 +20,6 @@
 namespace gs {
 
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // moments with errors from the scatter of `blocks` consecutive block means (snapshots a few
 // collision times apart are correlated; blocks of many snapshots are nearly independent)
@@ -52,12 +51,9 @@ std::vector<Vec2> com_velocities(const World& w, Vec2& mean) {
   return v;
 }
 
-std::string json_number(double v) {
-  if (!std::isfinite(v)) return "null";
-  std::ostringstream s;
-  s.precision(17);
-  s << v;
-  return s.str();
+// a measured number for rfm.json: null when not finite (no measurement)
+nlohmann::ordered_json json_number(double v) {
+  return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr);
 }
 
 }  // namespace
@@ -399,43 +395,41 @@ void RfmObserver::write_json(const Simulation& sim) const {
   const double area = dim_ == 2 ? box_ * box_y_ : 0.0;
   const double phi = dim_ == 2 ? static_cast<double>(n_) * M_PI * diameter_ * diameter_ / 4.0 / area
                                : static_cast<double>(n_) * diameter_ / box_;
-  std::vector<std::pair<std::string, double>> f = {
-      {"dimension", dim_},
-      {"particles", static_cast<double>(n_)},
-      {"box", box_},
-      {"box_height", box_y_},
-      {"reduced_length", dim_ == 1 ? l_reduced_ : kNaN},
-      {"diameter", diameter_},
-      {"mass", w.mass.empty() ? kNaN : w.mass[0]},
-      {"phi", phi},
-      {"eps_n", mat.eps_n},
-      {"eps_t", mat.eps_t},
-      {"ks", mat.ks},
-      {"D", set_.D},
-      {"dt", sim.dt()},
-      {"sample_every", set_.rfm.sample_every},
-      {"discard_time", set_.rfm.discard_time},
-      {"t_steady", steady_ ? t_steady_ : kNaN},
-      {"t_end", w.s.t},
-      {"samples", static_cast<double>(temps_.size())},
-      {"T_mean", t_mean},
-      {"T_err", t_err},
-      {"v_max", v_max_},
-      {"velocity_samples", vel_.total()},
-      {"leave_events", static_cast<double>(leaves_)},
-      {"free_paths", paths_.total()},
-      {"sk_nmax", sk_nmax_},
-      {"structure_snapshots", sk_ ? static_cast<double>(sk_->snapshots()) : 0.0},
-      {"structure", structure_ ? 1.0 : 0.0},
-  };
-  std::ostringstream js;
-  std::string name;
-  for (char c : set_.scene_name)
-    if (c != '"' && c != '\\' && static_cast<unsigned char>(c) >= 0x20) name += c;
-  js << "{\n  \"model\": \"rfm\",\n  \"scene\": \"" << name << "\"";
-  for (const auto& [k, v] : f) js << ",\n  \"" << k << "\": " << json_number(v);
-  js << "\n}\n";
-  records_->document(dir_ + "/rfm.json", js.str());
+  const auto count = [](double v) { return static_cast<std::int64_t>(v); };
+  nlohmann::ordered_json j;
+  j["model"] = "rfm";
+  j["scene"] = set_.scene_name;
+  j["dimension"] = dim_;
+  j["particles"] = n_;
+  j["box"] = box_;
+  j["box_height"] = box_y_;
+  j["reduced_length"] = json_number(dim_ == 1 ? l_reduced_ : kNaN);
+  j["diameter"] = diameter_;
+  j["mass"] = json_number(w.mass.empty() ? kNaN : w.mass[0]);
+  j["phi"] = phi;
+  j["eps_n"] = mat.eps_n;
+  j["eps_t"] = mat.eps_t;
+  j["ks"] = mat.ks;
+  j["D"] = set_.D;
+  j["dt"] = sim.dt();
+  j["sample_every"] = set_.rfm.sample_every;
+  j["discard_time"] = set_.rfm.discard_time;
+  j["t_steady"] = json_number(steady_ ? t_steady_ : kNaN);
+  j["t_end"] = w.s.t;
+  j["samples"] = temps_.size();
+  j["T_mean"] = json_number(t_mean);
+  j["T_err"] = json_number(t_err);
+  j["v_max"] = json_number(v_max_);
+  j["velocity_samples"] = count(vel_.total());
+  j["leave_events"] = leaves_;
+  j["free_paths"] = count(paths_.total());
+  j["sk_nmax"] = sk_nmax_;
+  j["structure_snapshots"] = sk_ ? sk_->snapshots() : 0;
+  j["structure"] = structure_ ? 1 : 0;
+  // one top-level field per line; a name that is not UTF-8 is written with U+FFFD
+  records_->document(
+      dir_ + "/rfm.json",
+      j.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + "\n");
 }
 
 std::unique_ptr<Observer> make_rfm_observer(const SceneSpec& scene, const RecordSink& records) {

@@ -32,8 +32,6 @@
 namespace gs {
 
 namespace fs = std::filesystem;
-
-using rfm_detail::kNaN;
 using rfm_detail::RfmRun;
 using rfm_detail::run_dirs;
 using rfm_detail::RunResult;

@@ -55,7 +55,7 @@ struct CascadeOpt {
   double fit_lo = 4.0, fit_hi = 32.0;  ///< D_f fit window in |n| = kL/2π
 };
 
-std::string num(double v) {
+std::string as_text(double v) {
   std::ostringstream s;
   s.precision(10);
   s << v;
@@ -139,16 +139,17 @@ void check_walk_step(const char* command, const char* size_flag, const models::W
   const double ts = models::walk_time_scale(p, l), vs = models::walk_velocity_scale(p, l);
   if (!(ts > 0.0) || !std::isfinite(ts) || !(vs > 0.0) || !std::isfinite(vs))
     throw InputError(command, size_flag,
-                     num(l) + " m with --mass " + num(p.mass) + " and --noise " + num(p.noise) +
-                         " gives the walk no finite time scale (M²l²/D)^(1/3) = " + num(ts) +
-                         " s or velocity scale (Dl/M²)^(1/3) = " + num(vs) +
+                     as_text(l) + " m with --mass " + as_text(p.mass) + " and --noise " +
+                         as_text(p.noise) +
+                         " gives the walk no finite time scale (M²l²/D)^(1/3) = " + as_text(ts) +
+                         " s or velocity scale (Dl/M²)^(1/3) = " + as_text(vs) +
                          " m/s: choose sizes and parameters nearer each other's scale");
   if (p.dt > 0.0 && p.dt < 1e-6 * ts)
     throw InputError(command, "--dt",
-                     num(p.dt) + " s is finer than a millionth of the walk's time scale " +
-                         num(ts) + " s (size " + num(l) +
+                     as_text(p.dt) + " s is finer than a millionth of the walk's time scale " +
+                         as_text(ts) + " s (size " + as_text(l) +
                          " m): each walk would take over 10^6 steps; give --dt >= " +
-                         num(1e-6 * ts) + " s, or 0 for the time scale/1000");
+                         as_text(1e-6 * ts) + " s, or 0 for the time scale/1000");
 }
 
 // Q(v, l) of the single-particle walk in discs of fixed radius, optionally with l drawn
@@ -189,7 +190,7 @@ void run_walk(const Common& c, WalkOpt o) {
     std::ostringstream name;
     name << "walk_l" << l << ".csv";
     models::write_walk_csv(out / name.str(), r, p, l);
-    const std::string k = "l_" + num(l);
+    const std::string k = "l_" + as_text(l);
     double tail_c = 0.0;
     try {
       tail_c = models::gaussian_tail_coefficient(r, p, l);
@@ -265,8 +266,8 @@ void run_interval(const Common& c, IntervalOpt o) {
   // a result is written only when it is a number
   if (!std::isfinite(r.mean_exit_time) || !std::isfinite(theory))
     throw InputError("gransim model interval", "--length",
-                     num(o.length) + " m gives no finite mean exit time (walks " +
-                         num(r.mean_exit_time) + " s, appendix B " + num(theory) +
+                     as_text(o.length) + " m gives no finite mean exit time (walks " +
+                         as_text(r.mean_exit_time) + " s, appendix B " + as_text(theory) +
                          " s): choose a length nearer the scale of --noise and --mass");
   models::write_interval_csv(out / "interval.csv", r, o.p, o.length);
   write_model_json(out, "interval",
@@ -296,7 +297,7 @@ void run_cascade(const Common& c, CascadeOpt o) {
       !std::isfinite(o.fit_hi))
     throw InputError("gransim model cascade", "--fit-hi",
                      "the D_f fit window needs 0 < --fit-lo < --fit-hi, finite (got " +
-                         num(o.fit_lo) + " and " + num(o.fit_hi) + ")");
+                         as_text(o.fit_lo) + " and " + as_text(o.fit_hi) + ")");
   const auto lock = open_out(c);
   std::vector<std::pair<std::string, double>> f;
   for (const std::string& k : kinds) {
@@ -314,8 +315,8 @@ void run_cascade(const Common& c, CascadeOpt o) {
           rfm::fit_df(r.shells, two_pi_l * o.fit_lo * (1 - 1e-9), two_pi_l * o.fit_hi * (1 + 1e-9));
     } catch (const InputError&) {
       throw InputError("gransim model cascade", "--fit-hi",
-                       "fewer than two shells with S(k) > 0 in |n| from --fit-lo " + num(o.fit_lo) +
-                           " to --fit-hi " + num(o.fit_hi) + " (" + k +
+                       "fewer than two shells with S(k) > 0 in |n| from --fit-lo " +
+                           as_text(o.fit_lo) + " to --fit-hi " + as_text(o.fit_hi) + " (" + k +
                            ", the grid reaches |n| = " + std::to_string(nmax) +
                            "): widen the window or raise --levels");
     }

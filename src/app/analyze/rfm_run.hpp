@@ -12,10 +12,9 @@
 #include "analysis/rfm_freepath.hpp"
 #include "analysis/rfm_sk.hpp"
 #include "analysis/rfm_tails.hpp"
+#include "core/numbers.hpp"
 
 namespace gs::rfm_detail {
-
-inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // one RFM run directory and what its rfm.json says
 struct RfmRun {
