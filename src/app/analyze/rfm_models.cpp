@@ -130,7 +130,7 @@ void run_bisection(const Common& c, BisectionOpt o) {
 // of size l: each walk of the default 1000 steps per time scale would otherwise take millions
 void check_walk_step(const char* command, const char* size_flag, const models::WalkParams& p,
                      double l) {
-  const auto num = [](double v) {
+  const auto brief = [](double v) {  // six digits: a message, not a result
     std::ostringstream s;
     s.precision(6);
     s << v;
@@ -139,17 +139,16 @@ void check_walk_step(const char* command, const char* size_flag, const models::W
   const double ts = models::walk_time_scale(p, l), vs = models::walk_velocity_scale(p, l);
   if (!(ts > 0.0) || !std::isfinite(ts) || !(vs > 0.0) || !std::isfinite(vs))
     throw InputError(command, size_flag,
-                     as_text(l) + " m with --mass " + as_text(p.mass) + " and --noise " +
-                         as_text(p.noise) +
-                         " gives the walk no finite time scale (M²l²/D)^(1/3) = " + as_text(ts) +
-                         " s or velocity scale (Dl/M²)^(1/3) = " + as_text(vs) +
+                     brief(l) + " m with --mass " + brief(p.mass) + " and --noise " +
+                         brief(p.noise) + " gives the walk no finite time scale (M²l²/D)^(1/3) = " +
+                         brief(ts) + " s or velocity scale (Dl/M²)^(1/3) = " + brief(vs) +
                          " m/s: choose sizes and parameters nearer each other's scale");
   if (p.dt > 0.0 && p.dt < 1e-6 * ts)
     throw InputError(command, "--dt",
-                     as_text(p.dt) + " s is finer than a millionth of the walk's time scale " +
-                         as_text(ts) + " s (size " + as_text(l) +
+                     brief(p.dt) + " s is finer than a millionth of the walk's time scale " +
+                         brief(ts) + " s (size " + brief(l) +
                          " m): each walk would take over 10^6 steps; give --dt >= " +
-                         as_text(1e-6 * ts) + " s, or 0 for the time scale/1000");
+                         brief(1e-6 * ts) + " s, or 0 for the time scale/1000");
 }
 
 // Q(v, l) of the single-particle walk in discs of fixed radius, optionally with l drawn
