@@ -1,6 +1,6 @@
-// the raw files of the Random Force Model observers that the analysis reads back: histograms
-// with their binning and every sample count (so fits can be redone on the counts), in the
-// "# key=value" CSV format of analysis/rfm_csv.hpp
+// the raw tables of the Random Force Model observers that the analysis reads back: histograms
+// with their binning and every sample count (so fits can be redone on the counts), the binning
+// and totals as the table's metadata (read back by analysis/rfm_csv.hpp)
 #pragma once
 #include <filesystem>
 
