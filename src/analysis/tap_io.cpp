@@ -1,6 +1,7 @@
 // the tapping analysis' files: reading taps.csv, writing the CSV and JSON results
 #include <cctype>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -73,9 +74,12 @@ std::string num(double v) {
   return buf;
 }
 
-// a number for JSON: null where JSON has no number (no measurement)
+// a number for JSON: null where JSON has no number (no measurement); a whole value as an
+// integer, as the readers have always seen it (a control value 6, not 6.0)
 nlohmann::ordered_json jnum(double v) {
-  return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr);
+  if (!std::isfinite(v)) return nullptr;
+  if (v == std::trunc(v) && std::abs(v) < 9007199254740992.0) return static_cast<std::int64_t>(v);
+  return v;
 }
 
 nlohmann::ordered_json jarr(const std::vector<double>& v) {
