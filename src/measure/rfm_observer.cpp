@@ -424,7 +424,7 @@ void RfmObserver::write_json(const Simulation& sim) const {
   j["sk_nmax"] = sk_nmax_;
   j["structure_snapshots"] = sk_ ? sk_->snapshots() : 0;
   j["structure"] = structure_ ? 1 : 0;
-  // one top-level field per line; a name that is not UTF-8 is written with U+FFFD
+  // a scene name that is not UTF-8 is written with U+FFFD
   records_->document(
       dir_ + "/rfm.json",
       j.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + "\n");
