@@ -1,30 +1,19 @@
-// CSV writer and reader for the RFM analysis outputs
+// reader of the RFM tables and their metadata sidecars
 #include "analysis/rfm_csv.hpp"
 
-#include <cerrno>
-#include <charconv>
-#include <cmath>
-#include <cstdint>
-#include <cstdio>
 #include <cstdlib>
-#include <cstring>
+#include <fstream>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "core/error.hpp"
 #include "core/input_file.hpp"
+#include "core/records.hpp"
 
 namespace gs::rfm {
 
 namespace {
-
-// shortest text that reads back to the same double
-std::string number(double v) {
-  char buf[32];
-  const auto r = std::to_chars(buf, buf + sizeof buf, v);
-  return std::string(buf, r.ptr);
-}
 
 // split one line at commas, trimming spaces
 std::vector<std::string> split(const std::string& line) {
@@ -49,65 +38,6 @@ double parse_number(const std::string& s, const std::string& where, const std::s
 }
 
 }  // namespace
-
-std::filesystem::path meta_path(const std::filesystem::path& csv) {
-  std::filesystem::path p = csv;
-  p.replace_extension(".json");
-  return p;
-}
-
-CsvWriter::CsvWriter(const std::filesystem::path& path, const std::vector<std::string>& columns,
-                     const CsvMeta& meta)
-    : path_(path), out_(path, std::ios::binary), columns_(columns.size()) {
-  if (!out_)
-    throw OutputError(path.string() +
-                      ": cannot open the file for writing: " + std::strerror(errno));
-  // metadata in the sidecar, in the order given
-  if (!meta.empty()) {
-    nlohmann::ordered_json j = nlohmann::ordered_json::object();
-    for (const auto& [k, v] : meta) {
-      // whole numbers (the counts n, total, underflow, …) as JSON integers
-      if (std::isfinite(v) && v == std::trunc(v) && std::abs(v) < 9007199254740992.0)
-        j[k] = static_cast<std::int64_t>(v);
-      else if (std::isfinite(v))
-        j[k] = v;
-      else
-        j[k] = nullptr;
-    }
-    const std::filesystem::path side = meta_path(path);
-    std::ofstream js(side);
-    js << j.dump(2) << '\n';
-    if (!js) throw OutputError(side.string() + ": cannot write the metadata file");
-  }
-  std::string head;
-  for (std::size_t i = 0; i < columns.size(); ++i) head += (i ? "," : "") + columns[i];
-  put(head + '\n');
-}
-
-void CsvWriter::put(const std::string& line) {
-  errno = 0;
-  out_.write(line.data(), static_cast<std::streamsize>(line.size()));
-  out_.flush();
-  if (!out_) {
-    const int e = errno;
-    // a partial line would read back as a short or wrong row: keep whole rows only
-    std::error_code ec;
-    std::filesystem::resize_file(path_, complete_, ec);
-    throw OutputError(path_.string() + ": write failed: " +
-                      (e ? std::strerror(e) : "unknown error") + " (every complete row is kept)");
-  }
-  complete_ += line.size();
-}
-
-void CsvWriter::row(const std::vector<double>& values) {
-  if (values.size() != columns_)
-    throw InputError(path_.string(), "",
-                     "row has " + std::to_string(values.size()) + " values, header has " +
-                         std::to_string(columns_));
-  std::string line;
-  for (std::size_t i = 0; i < values.size(); ++i) line += (i ? "," : "") + number(values[i]);
-  put(line + '\n');
-}
 
 const std::vector<double>& CsvTable::col(const std::string& name) const {
   const auto it = column.find(name);
@@ -169,7 +99,7 @@ CsvTable parse_csv(std::istream& in, const std::string& name) {
   }
   if (t.names.empty()) throw InputError(path.string(), "", "no header line");
   // the sidecar of the newer form
-  const std::filesystem::path side = meta_path(path);
+  const std::filesystem::path side = table_meta_path(path);
   if (std::ifstream js(side); js) {
     const nlohmann::json j = nlohmann::json::parse(js, nullptr, false);
     if (j.is_discarded() || !j.is_object())

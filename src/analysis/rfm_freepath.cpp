@@ -6,7 +6,6 @@
 #include <string>
 #include <vector>
 
-#include "analysis/rfm_csv.hpp"
 #include "analysis/rfm_fit.hpp"
 #include "core/error.hpp"
 
@@ -81,19 +80,19 @@ FreePathFit fit_free_paths(const Histogram& h, double l_fit_min, double min_coun
   return f;
 }
 
-void write_freepath_csv(const std::filesystem::path& path, const Histogram& h,
-                        const FreePathFit* fit) {
-  CsvMeta meta;
+void write_freepath_csv(const RecordSink& sink, const std::filesystem::path& path,
+                        const Histogram& h, const FreePathFit* fit) {
+  RecordMeta meta;
   if (fit) {
     meta = {{"D_f", fit->d_f},      {"D_f_err", fit->d_f_err}, {"C", fit->c},
             {"C_err", fit->c_err},  {"A0", fit->a0},           {"A0_err", fit->a0_err},
             {"chi2_r", fit->chi2_r}};
   }
-  CsvWriter w(path, {"l", "count", "P", "P_err", "P_fit"}, meta);
+  const auto w = sink.create(path.string(), {"l", "count", "P", "P_err", "P_fit"}, meta);
   for (const HistBin& b : h.bins()) {
     const double pf = fit ? free_path_density(b.x, fit->a0, fit->c, fit->d_f)
                           : std::numeric_limits<double>::quiet_NaN();
-    w.row({b.x, b.count, b.p, b.p_err, pf});
+    w->row({b.x, b.count, b.p, b.p_err, pf});
   }
 }
 

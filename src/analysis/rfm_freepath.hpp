@@ -9,6 +9,7 @@
 #include <span>
 
 #include "analysis/rfm_hist.hpp"
+#include "core/records.hpp"
 
 namespace gs::rfm {
 
@@ -33,7 +34,7 @@ struct FreePathFit {
 FreePathFit fit_free_paths(const Histogram& h, double l_fit_min = 0.0, double min_count = 10.0);
 
 /// columns l, count, P, P_err, P_fit (NaN without a fit); metadata D_f, C, A0 and errors
-void write_freepath_csv(const std::filesystem::path& path, const Histogram& h,
-                        const FreePathFit* fit = nullptr);
+void write_freepath_csv(const RecordSink& sink, const std::filesystem::path& path,
+                        const Histogram& h, const FreePathFit* fit = nullptr);
 
 }  // namespace gs::rfm

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <string>
 
-#include "analysis/rfm_csv.hpp"
 #include "core/error.hpp"
 
 namespace gs::rfm {
@@ -60,7 +59,8 @@ void GapStatistics::add_snapshot(std::span<const double> reduced, double l_reduc
   moments_.add_snapshot(neighbour_gaps(reduced, l_reduced, 1));
 }
 
-void write_gh_csv(const std::filesystem::path& path, const GapStatistics& g) {
+void write_gh_csv(const RecordSink& sink, const std::filesystem::path& path,
+                  const GapStatistics& g) {
   std::vector<std::string> cols = {"R"};
   for (int h : g.orders()) {
     cols.push_back("G" + std::to_string(h));
@@ -68,14 +68,14 @@ void write_gh_csv(const std::filesystem::path& path, const GapStatistics& g) {
   }
   std::vector<std::vector<HistBin>> bins;
   for (std::size_t k = 0; k < g.orders().size(); ++k) bins.push_back(g.g(k));
-  CsvWriter w(path, cols);
+  const auto w = sink.create(path.string(), cols);
   for (int i = 0; i < g.binning().n; ++i) {
     std::vector<double> row = {g.binning().centre(i)};
     for (const auto& b : bins) {
       row.push_back(b[static_cast<std::size_t>(i)].p);
       row.push_back(b[static_cast<std::size_t>(i)].p_err);
     }
-    w.row(row);
+    w->row(row);
   }
 }
 

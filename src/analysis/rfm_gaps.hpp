@@ -13,6 +13,7 @@
 
 #include "analysis/rfm_hist.hpp"
 #include "analysis/rfm_moments.hpp"
+#include "core/records.hpp"
 
 namespace gs::rfm {
 
@@ -57,6 +58,7 @@ class GapStatistics {
 };
 
 /// columns R, then G<h>, G<h>_err for every order
-void write_gh_csv(const std::filesystem::path& path, const GapStatistics& g);
+void write_gh_csv(const RecordSink& sink, const std::filesystem::path& path,
+                  const GapStatistics& g);
 
 }  // namespace gs::rfm

@@ -6,7 +6,6 @@
 #include <numbers>
 #include <string>
 
-#include "analysis/rfm_csv.hpp"
 #include "core/error.hpp"
 
 namespace gs::rfm {
@@ -96,9 +95,10 @@ std::vector<GrBin> PairCorrelation2D::bins() const {
   return out;
 }
 
-void write_gr_csv(const std::filesystem::path& path, std::span<const GrBin> bins) {
-  CsvWriter w(path, {"R", "g", "g_err", "pairs"});
-  for (const GrBin& b : bins) w.row({b.r, b.g, b.g_err, b.pairs});
+void write_gr_csv(const RecordSink& sink, const std::filesystem::path& path,
+                  std::span<const GrBin> bins) {
+  const auto w = sink.create(path.string(), {"R", "g", "g_err", "pairs"});
+  for (const GrBin& b : bins) w->row({b.r, b.g, b.g_err, b.pairs});
 }
 
 }  // namespace gs::rfm

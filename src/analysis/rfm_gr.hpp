@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/bytes.hpp"
+#include "core/records.hpp"
 #include "core/vec.hpp"
 
 namespace gs::rfm {
@@ -57,6 +58,7 @@ class PairCorrelation2D {
 };
 
 /// columns R, g, g_err, pairs
-void write_gr_csv(const std::filesystem::path& path, std::span<const GrBin> bins);
+void write_gr_csv(const RecordSink& sink, const std::filesystem::path& path,
+                  std::span<const GrBin> bins);
 
 }  // namespace gs::rfm

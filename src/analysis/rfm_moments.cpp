@@ -7,7 +7,6 @@
 #include <limits>
 #include <string>
 
-#include "analysis/rfm_csv.hpp"
 #include "analysis/rfm_fit.hpp"
 #include "core/error.hpp"
 
@@ -171,34 +170,35 @@ BlockAverage block_average(std::span<const double> series, std::size_t block_len
   return b;
 }
 
-void write_temperature_csv(const std::filesystem::path& path, std::span<const double> t,
-                           std::span<const double> temp, const BlockAverage* blocks) {
+void write_temperature_csv(const RecordSink& sink, const std::filesystem::path& path,
+                           std::span<const double> t, std::span<const double> temp,
+                           const BlockAverage* blocks) {
   if (t.size() != temp.size())
     throw InputError(path.string(), "", "time and temperature series differ in length");
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  CsvMeta meta;
+  RecordMeta meta;
   if (blocks)
     meta = {{"T_mean", blocks->mean},
             {"T_err", blocks->error},
             {"block_len", static_cast<double>(blocks->block_len)}};
   std::vector<std::string> cols = {"t", "T"};
   if (blocks) cols.push_back("T_block");
-  CsvWriter w(path, cols, meta);
+  const auto w = sink.create(path.string(), cols, meta);
   for (std::size_t i = 0; i < t.size(); ++i) {
     if (!blocks) {
-      w.row({t[i], temp[i]});
+      w->row({t[i], temp[i]});
       continue;
     }
     const std::size_t b = i / blocks->block_len;
-    w.row({t[i], temp[i], b < blocks->block_means.size() ? blocks->block_means[b] : nan});
+    w->row({t[i], temp[i], b < blocks->block_means.size() ? blocks->block_means[b] : nan});
   }
 }
 
-void write_moments_csv(const std::filesystem::path& path, std::span<const double> mean,
-                       std::span<const double> err) {
-  CsvWriter w(path, {"m", "moment", "error"});
+void write_moments_csv(const RecordSink& sink, const std::filesystem::path& path,
+                       std::span<const double> mean, std::span<const double> err) {
+  const auto w = sink.create(path.string(), {"m", "moment", "error"});
   for (std::size_t k = 0; k < mean.size(); ++k)
-    w.row({static_cast<double>(k + 1), mean[k], k < err.size() ? err[k] : 0.0});
+    w->row({static_cast<double>(k + 1), mean[k], k < err.size() ? err[k] : 0.0});
 }
 
 void MomentSeries::save(ByteWriter& out) const {

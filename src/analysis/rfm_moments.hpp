@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/bytes.hpp"
+#include "core/records.hpp"
 #include "core/vec.hpp"
 
 namespace gs::rfm {
@@ -82,10 +83,11 @@ BlockAverage block_average(std::span<const double> series, std::size_t block_len
 
 /// columns t, T and, with blocks, T_block (the mean of the block holding each sample, NaN in
 /// a dropped partial block); metadata T_mean and T_err from the blocks
-void write_temperature_csv(const std::filesystem::path& path, std::span<const double> t,
-                           std::span<const double> temp, const BlockAverage* blocks = nullptr);
+void write_temperature_csv(const RecordSink& sink, const std::filesystem::path& path,
+                           std::span<const double> t, std::span<const double> temp,
+                           const BlockAverage* blocks = nullptr);
 /// columns m, moment, error
-void write_moments_csv(const std::filesystem::path& path, std::span<const double> mean,
-                       std::span<const double> err);
+void write_moments_csv(const RecordSink& sink, const std::filesystem::path& path,
+                       std::span<const double> mean, std::span<const double> err);
 
 }  // namespace gs::rfm

@@ -6,7 +6,6 @@
 #include <numbers>
 #include <string>
 
-#include "analysis/rfm_csv.hpp"
 #include "analysis/rfm_fit.hpp"
 #include "core/error.hpp"
 
@@ -234,16 +233,16 @@ DfFit fit_df_rfm(std::span<const SkShell> shells, const RfmSystem& sys) {
   return f;
 }
 
-void write_sk_csv(const std::filesystem::path& path, std::span<const SkShell> shells,
-                  const DfFit* fit) {
-  CsvMeta meta;
+void write_sk_csv(const RecordSink& sink, const std::filesystem::path& path,
+                  std::span<const SkShell> shells, const DfFit* fit) {
+  RecordMeta meta;
   if (fit) {
     meta = {{"D_f", fit->d_f},     {"D_f_err", fit->d_f_err}, {"A", fit->amplitude},
             {"k_lo", fit->k_lo},   {"k_hi", fit->k_hi},       {"k_D", fit->k_d},
             {"L_eff", fit->l_eff}, {"chi2_r", fit->chi2_r}};
   }
-  CsvWriter w(path, {"k", "n", "S", "S_err", "modes"}, meta);
-  for (const SkShell& s : shells) w.row({s.k, s.n, s.s, s.s_err, static_cast<double>(s.modes)});
+  const auto w = sink.create(path.string(), {"k", "n", "S", "S_err", "modes"}, meta);
+  for (const SkShell& s : shells) w->row({s.k, s.n, s.s, s.s_err, static_cast<double>(s.modes)});
 }
 
 void ShellAccumulator::save(ByteWriter& out) const {

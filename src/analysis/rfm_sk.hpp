@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "core/bytes.hpp"
+#include "core/records.hpp"
 #include "core/vec.hpp"
 
 namespace gs::rfm {
@@ -134,7 +135,7 @@ DfFit fit_df_rfm(std::span<const SkShell> shells, const RfmSystem& sys);
 
 /// columns k, n, S, S_err, modes; metadata D_f, D_f_err, A, k_lo, k_hi, k_D, L_eff when a fit
 /// is given (tools/charts_rfm.py draws the fit line and marks k_D)
-void write_sk_csv(const std::filesystem::path& path, std::span<const SkShell> shells,
-                  const DfFit* fit = nullptr);
+void write_sk_csv(const RecordSink& sink, const std::filesystem::path& path,
+                  std::span<const SkShell> shells, const DfFit* fit = nullptr);
 
 }  // namespace gs::rfm

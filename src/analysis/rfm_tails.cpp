@@ -6,7 +6,6 @@
 #include <limits>
 #include <string>
 
-#include "analysis/rfm_csv.hpp"
 #include "analysis/rfm_fit.hpp"
 #include "core/error.hpp"
 #include "core/numbers.hpp"
@@ -165,9 +164,9 @@ std::vector<LnLnPoint> lnln_tail(const Histogram& h, double amplitude, double v_
 
 // ---- CSV ---------------------------------------------------------------------------------
 
-void write_velocity_csv(const std::filesystem::path& path, const Histogram& h, const TailFit* tail,
-                        const CrossoverFit* cross) {
-  CsvMeta meta;
+void write_velocity_csv(const RecordSink& sink, const std::filesystem::path& path,
+                        const Histogram& h, const TailFit* tail, const CrossoverFit* cross) {
+  RecordMeta meta;
   if (tail) {
     meta.insert(meta.end(), {{"alpha_best", tail->best.alpha},
                              {"tail_A", tail->best.a},
@@ -185,29 +184,32 @@ void write_velocity_csv(const std::filesystem::path& path, const Histogram& h, c
                              {"cross_alpha", cross->alpha},
                              {"cross_chi2_r", cross->chi2_r}});
   }
-  CsvWriter w(path, {"v", "count", "P", "P_err", "P_tail", "P_cross"}, meta);
+  const auto w =
+      sink.create(path.string(), {"v", "count", "P", "P_err", "P_tail", "P_cross"}, meta);
   for (const HistBin& b : h.bins()) {
     const bool in_window = tail && std::abs(b.x) >= tail->v_lo && std::abs(b.x) <= tail->v_hi;
     const double pt =
         in_window ? stretched_exponential(b.x, tail->best.a, tail->best.b, tail->best.alpha) : kNaN;
     const double pc =
         cross ? crossover_density(b.x, cross->d, cross->v_r, cross->v_c, cross->alpha) : kNaN;
-    w.row({b.x, b.count, b.p, b.p_err, pt, pc});
+    w->row({b.x, b.count, b.p, b.p_err, pt, pc});
   }
 }
 
-void write_tail_scan_csv(const std::filesystem::path& path, const TailFit& fit) {
-  CsvWriter w(path, {"alpha", "chi2_r", "A", "B"},
-              {{"alpha_best", fit.best.alpha},
-               {"alpha_lo", fit.any_accepted ? fit.alpha_lo : kNaN},
-               {"alpha_hi", fit.any_accepted ? fit.alpha_hi : kNaN}});
-  for (const TailTrial& t : fit.trials) w.row({t.alpha, t.chi2_r, t.a, t.b});
+void write_tail_scan_csv(const RecordSink& sink, const std::filesystem::path& path,
+                         const TailFit& fit) {
+  const auto w = sink.create(path.string(), {"alpha", "chi2_r", "A", "B"},
+                             {{"alpha_best", fit.best.alpha},
+                              {"alpha_lo", fit.any_accepted ? fit.alpha_lo : kNaN},
+                              {"alpha_hi", fit.any_accepted ? fit.alpha_hi : kNaN}});
+  for (const TailTrial& t : fit.trials) w->row({t.alpha, t.chi2_r, t.a, t.b});
 }
 
-void write_lnln_csv(const std::filesystem::path& path, std::span<const LnLnPoint> pts,
-                    double amplitude, double v_scale) {
-  CsvWriter w(path, {"ln_v", "y", "y_err"}, {{"A", amplitude}, {"v_scale", v_scale}});
-  for (const LnLnPoint& p : pts) w.row({p.ln_v, p.y, p.y_err});
+void write_lnln_csv(const RecordSink& sink, const std::filesystem::path& path,
+                    std::span<const LnLnPoint> pts, double amplitude, double v_scale) {
+  const auto w =
+      sink.create(path.string(), {"ln_v", "y", "y_err"}, {{"A", amplitude}, {"v_scale", v_scale}});
+  for (const LnLnPoint& p : pts) w->row({p.ln_v, p.y, p.y_err});
 }
 
 }  // namespace gs::rfm

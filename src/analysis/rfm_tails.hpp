@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "analysis/rfm_hist.hpp"
+#include "core/records.hpp"
 #include "core/vec.hpp"
 
 namespace gs::rfm {
@@ -92,12 +93,14 @@ std::vector<LnLnPoint> lnln_tail(const Histogram& h, double amplitude, double v_
 
 /// columns v, count, P, P_err, P_tail (inside the tail window only), P_cross (NaN when absent);
 /// metadata with the fit parameters
-void write_velocity_csv(const std::filesystem::path& path, const Histogram& h,
-                        const TailFit* tail = nullptr, const CrossoverFit* cross = nullptr);
+void write_velocity_csv(const RecordSink& sink, const std::filesystem::path& path,
+                        const Histogram& h, const TailFit* tail = nullptr,
+                        const CrossoverFit* cross = nullptr);
 /// columns alpha, chi2_r, A, B of the scan; metadata alpha_best, alpha_lo, alpha_hi
-void write_tail_scan_csv(const std::filesystem::path& path, const TailFit& fit);
+void write_tail_scan_csv(const RecordSink& sink, const std::filesystem::path& path,
+                         const TailFit& fit);
 /// columns ln_v, y, y_err; metadata A and v_scale
-void write_lnln_csv(const std::filesystem::path& path, std::span<const LnLnPoint> pts,
-                    double amplitude, double v_scale);
+void write_lnln_csv(const RecordSink& sink, const std::filesystem::path& path,
+                    std::span<const LnLnPoint> pts, double amplitude, double v_scale);
 
 }  // namespace gs::rfm

@@ -1,9 +1,11 @@
 // the tapping analysis' files: reading taps.csv, writing the CSV and JSON results
 #include <cctype>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "analysis/tap_analysis.hpp"
@@ -72,30 +74,23 @@ std::string num(double v) {
   return buf;
 }
 
-// a number for JSON: null where JSON has no number
-std::string jnum(double v) { return std::isfinite(v) ? num(v) : "null"; }
-
-std::string jstr(const std::string& s) {
-  std::string o = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') {
-      o += '\\';
-      o += c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      char buf[8];
-      std::snprintf(buf, sizeof buf, "\\u%04x", c);
-      o += buf;
-    } else {
-      o += c;
-    }
-  }
-  return o + "\"";
+// a number for JSON: null where JSON has no number (no measurement); a whole value as an
+// integer, as the readers have always seen it (a control value 6, not 6.0)
+nlohmann::ordered_json jnum(double v) {
+  if (!std::isfinite(v)) return nullptr;
+  if (v == std::trunc(v) && std::abs(v) < 9007199254740992.0) return static_cast<std::int64_t>(v);
+  return v;
 }
 
-std::string jarr(const std::vector<double>& v) {
-  std::string o = "[";
-  for (std::size_t i = 0; i < v.size(); ++i) o += (i ? "," : "") + jnum(v[i]);
-  return o + "]";
+nlohmann::ordered_json jarr(const std::vector<double>& v) {
+  nlohmann::ordered_json a = nlohmann::ordered_json::array();
+  for (double x : v) a.push_back(jnum(x));
+  return a;
+}
+
+// a JSON document's text: two-space indents; a label that is not UTF-8 is written with U+FFFD
+std::string json_document(const nlohmann::ordered_json& j) {
+  return j.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + "\n";
 }
 
 // an output file built in memory and written whole by close() (write_file_atomic): a full disk
@@ -116,15 +111,21 @@ class OutFile {
 };
 
 // one quadron fit as a JSON object, with the curve φ̄(β), σ_φ(β), Δln Z(β) over the data range
-std::string quadron_json(const QuadronFit& f, const TapAnalysisResult& r,
-                         const TapAnalysisOptions& opts) {
-  std::ostringstream o;
-  o << "{\"converged\": " << (f.converged ? "true" : "false") << ", \"note\": " << jstr(f.note)
-    << ", \"points\": " << f.points << ", \"iterations\": " << f.iterations
-    << ", \"a\": " << jnum(f.a) << ", \"a_err\": " << jnum(f.a_err)
-    << ", \"beta0\": " << jnum(f.beta0) << ", \"beta0_err\": " << jnum(f.beta0_err)
-    << ", \"cov_a_beta0\": " << jnum(f.cov_a_beta0) << ", \"chi2\": " << jnum(f.chi2)
-    << ", \"dof\": " << f.dof << ", \"errors_scaled\": " << (f.errors_scaled ? "true" : "false");
+nlohmann::ordered_json quadron_json(const QuadronFit& f, const TapAnalysisResult& r,
+                                    const TapAnalysisOptions& opts) {
+  nlohmann::ordered_json o;
+  o["converged"] = f.converged;
+  o["note"] = f.note;
+  o["points"] = f.points;
+  o["iterations"] = f.iterations;
+  o["a"] = jnum(f.a);
+  o["a_err"] = jnum(f.a_err);
+  o["beta0"] = jnum(f.beta0);
+  o["beta0_err"] = jnum(f.beta0_err);
+  o["cov_a_beta0"] = jnum(f.cov_a_beta0);
+  o["chi2"] = jnum(f.chi2);
+  o["dof"] = f.dof;
+  o["errors_scaled"] = f.errors_scaled;
   if (f.converged && f.a > 0.0) {
     // the curve over the measured β̂ range, widened by a quarter on each side
     double lo = 0.0, hi = 0.0;
@@ -140,11 +141,10 @@ std::string quadron_json(const QuadronFit& f, const TapAnalysisResult& r,
       sg.push_back(quadron_sigma_phi(b + f.beta0, f.a, r.v_g, opts.quadron));
       lz.push_back(quadron_lnz(b + f.beta0, f.a, r.v_g, opts.quadron) - lz0);
     }
-    o << ", \"curve\": {\"beta_hat\": " << jarr(bh) << ", \"phi\": " << jarr(ph)
-      << ", \"sigma_phi\": " << jarr(sg) << ", \"dlnz\": " << jarr(lz) << "}";
+    o["curve"] = {
+        {"beta_hat", jarr(bh)}, {"phi", jarr(ph)}, {"sigma_phi", jarr(sg)}, {"dlnz", jarr(lz)}};
   }
-  o << "}";
-  return o.str();
+  return o;
 }
 
 }  // namespace
@@ -434,59 +434,66 @@ void write_tap_analysis(const TapAnalysisResult& r, const std::vector<TapRunInpu
 
   // quadron.json: the fits with their curves
   if (has_beta) {
-    OutFile f(dir / "quadron.json");
-    f << "{\n  \"phi_rlp\": " << jnum(opts.quadron.phi_rlp)
-      << ",\n  \"phi_rcp\": " << jnum(opts.quadron.phi_rcp) << ",\n  \"v_g\": " << jnum(r.v_g)
-      << ",\n  \"reference\": " << jstr(ref.label) << ",\n  \"fits\": {";
-    bool first = true;
-    for (const auto& [name, fit] : r.quadron) {
-      f << (first ? "\n    " : ",\n    ") << jstr(name) << ": " << quadron_json(fit, r, opts);
-      first = false;
-    }
-    f << "\n  }\n}\n";
-    f.close();
+    nlohmann::ordered_json j;
+    j["phi_rlp"] = jnum(opts.quadron.phi_rlp);
+    j["phi_rcp"] = jnum(opts.quadron.phi_rcp);
+    j["v_g"] = jnum(r.v_g);
+    j["reference"] = ref.label;
+    j["fits"] = nlohmann::ordered_json::object();
+    for (const auto& [name, fit] : r.quadron) j["fits"][name] = quadron_json(fit, r, opts);
+    write_file_atomic((dir / "quadron.json").string(), json_document(j));
   }
 
   // analysis.json: options, references, per-run digest, the two-reference check, notes
   {
-    OutFile f(dir / "analysis.json");
-    f << "{\n  \"discard\": " << opts.discard
-      << ",\n  \"discard_auto\": " << (opts.discard_auto ? "true" : "false")
-      << ",\n  \"level\": " << jnum(opts.level) << ",\n  \"alpha\": " << jnum(opts.alpha)
-      << ",\n  \"test_area\": " << jnum(has_beta ? opts.test_area : std::nan(""))
-      << ",\n  \"v_g\": " << jnum(has_beta ? r.v_g : std::nan("")) << ",\n  \"density_method\": "
-      << jstr(opts.overlap.method == DensityMethod::Histogram ? "histogram" : "kde")
-      << ",\n  \"kernel\": " << jstr(kernel_name(opts.overlap.kernel))
-      << ",\n  \"min_fraction\": " << jnum(opts.overlap.min_fraction)
-      << ",\n  \"reference\": " << jstr(ref.label)
-      << ",\n  \"reference2\": " << (r.ref2 >= 0 ? jstr(r.runs[r.ref2].label) : "null")
-      << ",\n  \"bootstrap_replicas\": " << r.multi.replicas
-      << ",\n  \"reference_offset\": {\"dbeta\": " << jnum(r.ref_offset)
-      << ", \"err\": " << jnum(r.ref_offset_err) << ", \"chi2\": " << jnum(r.ref_offset_chi2)
-      << ", \"dof\": " << r.ref_offset_dof << "},\n  \"runs\": [";
+    const double nan = std::nan("");
+    nlohmann::ordered_json j;
+    j["discard"] = opts.discard;
+    j["discard_auto"] = opts.discard_auto;
+    j["level"] = jnum(opts.level);
+    j["alpha"] = jnum(opts.alpha);
+    j["test_area"] = jnum(has_beta ? opts.test_area : nan);
+    j["v_g"] = jnum(has_beta ? r.v_g : nan);
+    j["density_method"] = opts.overlap.method == DensityMethod::Histogram ? "histogram" : "kde";
+    j["kernel"] = kernel_name(opts.overlap.kernel);
+    j["min_fraction"] = jnum(opts.overlap.min_fraction);
+    j["reference"] = ref.label;
+    j["reference2"] = r.ref2 >= 0 ? nlohmann::ordered_json(r.runs[r.ref2].label) : nullptr;
+    j["bootstrap_replicas"] = r.multi.replicas;
+    j["reference_offset"] = {{"dbeta", jnum(r.ref_offset)},
+                             {"err", jnum(r.ref_offset_err)},
+                             {"chi2", jnum(r.ref_offset_chi2)},
+                             {"dof", r.ref_offset_dof}};
+    j["runs"] = nlohmann::ordered_json::array();
     for (std::size_t i = 0; i < r.runs.size(); ++i) {
       const auto& s = r.runs[i];
-      f << (i ? ",\n    " : "\n    ") << "{\"label\": " << jstr(s.label)
-        << ", \"protocol\": " << jstr(s.protocol) << ", \"control\": " << jnum(s.control)
-        << ", \"n_used\": " << s.n_used << ", \"discard\": " << s.discard
-        << ", \"steady\": " << (s.steady ? "true" : "false")
-        << ", \"phi_mean\": " << jnum(s.phi_mean) << ", \"sigma\": " << jnum(s.sigma)
-        << ", \"tau_int\": " << jnum(s.tau.tau_int)
-        << ", \"normal\": " << (s.normality.normal ? "true" : "false")
-        << ", \"chi2_p\": " << jnum(s.normality.p_value) << ", \"sigma_ratio_halves\": "
-        << jnum(s.has_halves ? 0.5 * (s.sigma_left + s.sigma_right) / s.sigma : std::nan(""))
-        << ", \"dbeta\": " << jnum(has_beta && r.beta[i].valid ? r.beta[i].dbeta : std::nan(""))
-        << ", \"dbeta_err\": "
-        << jnum(has_beta && r.beta[i].valid ? r.beta[i].dbeta_err : std::nan("")) << "}";
+      const bool beta_ok = has_beta && r.beta[i].valid;
+      const nlohmann::ordered_json run = {
+          {"label", s.label},
+          {"protocol", s.protocol},
+          {"control", jnum(s.control)},
+          {"n_used", s.n_used},
+          {"discard", s.discard},
+          {"steady", s.steady},
+          {"phi_mean", jnum(s.phi_mean)},
+          {"sigma", jnum(s.sigma)},
+          {"tau_int", jnum(s.tau.tau_int)},
+          {"normal", s.normality.normal},
+          {"chi2_p", jnum(s.normality.p_value)},
+          {"sigma_ratio_halves",
+           jnum(s.has_halves ? 0.5 * (s.sigma_left + s.sigma_right) / s.sigma : nan)},
+          {"dbeta", jnum(beta_ok ? r.beta[i].dbeta : nan)},
+          {"dbeta_err", jnum(beta_ok ? r.beta[i].dbeta_err : nan)}};
+      j["runs"].push_back(run);
     }
-    f << "\n  ],\n  \"files\": [\"summary.csv\", \"series.csv\", \"kde.csv\""
-      << (r.pairs.empty() ? "" : ", \"pairs.csv\"")
-      << (has_beta ? ", \"q_lines.csv\", \"beta.csv\", \"quadron.json\"" : "")
-      << (r.multi.chain.empty() ? "" : ", \"beta_multi.csv\"")
-      << (r.multi.cov.empty() ? "" : ", \"beta_cov.csv\"") << "],\n  \"notes\": [";
-    for (std::size_t i = 0; i < r.notes.size(); ++i) f << (i ? ", " : "") << jstr(r.notes[i]);
-    f << "]\n}\n";
-    f.close();
+    std::vector<std::string> files = {"summary.csv", "series.csv", "kde.csv"};
+    if (!r.pairs.empty()) files.push_back("pairs.csv");
+    if (has_beta) files.insert(files.end(), {"q_lines.csv", "beta.csv", "quadron.json"});
+    if (!r.multi.chain.empty()) files.push_back("beta_multi.csv");
+    if (!r.multi.cov.empty()) files.push_back("beta_cov.csv");
+    j["files"] = files;
+    j["notes"] = r.notes;
+    write_file_atomic((dir / "analysis.json").string(), json_document(j));
   }
 }
 

@@ -14,9 +14,10 @@
 
 namespace gs {
 
-/// items of ~100 ns (polygon pairs) worth a parallel region
+/// items as costly as a polygon pair (a clip and an area) worth a parallel region
 inline constexpr std::size_t kParallelMin = 1000;
-/// items of a few ns (disk pairs, elementwise particle loops) worth a parallel region
+/// items as cheap as a disk pair or an elementwise particle loop worth a parallel region: the
+/// region's start and barrier must be shared by many of them
 inline constexpr std::size_t kParallelMinCheap = 8192;
 
 /// the block length of deterministic blocked sums and scans: results depend on it, never on

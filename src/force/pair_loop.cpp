@@ -31,7 +31,7 @@ void finish_overlaps(ForceStats& st, bool one_radius, double rc) {
 
 }  // namespace
 
-// cheap pairs (disks: a few ns) take a parallel region of their own from kParallelMinCheap
+// cheap pairs (disks) take a parallel region of their own from kParallelMinCheap
 // pairs. But where the particle loops run in parallel anyway (n ≥ kParallelMinCheap: the
 // accelerations come in the same region), the pairs join it from kParallelMin, so that the
 // first thread does not evaluate them alone while the team waits, reading the others' positions
@@ -117,7 +117,7 @@ ForceStats PairLoop::serial(const Ev& ev, const World& w, const std::vector<Pair
   };
   auto all = [&](std::size_t q) { return cand[q]; };
   if constexpr (Ev::kCheap) {
-    // where few candidates touched last step (a gas, the 1D ring: 6 %), a branch-free pass
+    // where few candidates touched last step (a gas, the 1D ring), a branch-free pass
     // first keeps the pairs that may touch, so that the loop no longer mispredicts at each
     // contact; in a packing, where almost all touch, that pass would only add work. Either way
     // the same pairs are evaluated. Block by block: the selected pairs are evaluated while the

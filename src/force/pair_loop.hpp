@@ -21,7 +21,7 @@ struct ForceBuffer {
   std::vector<double> fx, fy, tq;
   /// set by the serial evaluation where few particles touch (a gas, a large sparse fluid):
   /// the buffer is zero but for these particles' entries, so the next evaluation clears just
-  /// them instead of all N (≈ 3% of a 10⁶-disk fluid step). Anything
+  /// them instead of all N (a pass over memory that a sparse step need not pay). Anything
   /// that writes fx, fy or tq other than ContactModel::evaluate must clear `sparse`.
   std::vector<std::uint32_t> touched;
   bool sparse = false;

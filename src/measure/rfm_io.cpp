@@ -9,17 +9,18 @@
 
 namespace gs::rfm {
 
-void write_histogram_raw(const std::filesystem::path& path, const Histogram& h) {
+void write_histogram_raw(const RecordSink& sink, const std::filesystem::path& path,
+                         const Histogram& h) {
   const Binning& b = h.binning();
-  CsvWriter w(path, {"lo", "hi", "x", "count", "P", "P_err"},
-              {{"scale", b.scale == Binning::Scale::log ? 1.0 : 0.0},
-               {"lo", b.lo},
-               {"hi", b.hi},
-               {"n", static_cast<double>(b.n)},
-               {"total", h.total()},
-               {"underflow", h.underflow()},
-               {"overflow", h.overflow()}});
-  for (const HistBin& x : h.bins()) w.row({x.lo, x.hi, x.x, x.count, x.p, x.p_err});
+  const auto w = sink.create(path.string(), {"lo", "hi", "x", "count", "P", "P_err"},
+                             {{"scale", b.scale == Binning::Scale::log ? 1.0 : 0.0},
+                              {"lo", b.lo},
+                              {"hi", b.hi},
+                              {"n", static_cast<double>(b.n)},
+                              {"total", h.total()},
+                              {"underflow", h.underflow()},
+                              {"overflow", h.overflow()}});
+  for (const HistBin& x : h.bins()) w->row({x.lo, x.hi, x.x, x.count, x.p, x.p_err});
 }
 
 Histogram read_histogram_raw(const std::filesystem::path& path) {
@@ -29,7 +30,7 @@ Histogram read_histogram_raw(const std::filesystem::path& path) {
     auto it = t.meta.find(k);
     if (it == t.meta.end())
       throw InputError(where, k,
-                       "missing from the metadata (" + meta_path(path).filename().string() +
+                       "missing from the metadata (" + table_meta_path(path).filename().string() +
                            " beside it): not a raw histogram");
     return it->second;
   };

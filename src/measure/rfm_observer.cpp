@@ -3,12 +3,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
+#include <filesystem>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
-#include "analysis/rfm_csv.hpp"
 #include "analysis/rfm_freepath.hpp"
 #include "analysis/rfm_tails.hpp"
 #include "core/error.hpp"
@@ -341,40 +340,39 @@ void RfmObserver::sample(const Simulation& sim) {
 
 void RfmObserver::finish(const Simulation& sim) {
   series_.reset();  // flushed row by row; close
-  namespace fs = std::filesystem;
-  const fs::path d(dir_);
+  const std::filesystem::path d(dir_);
+  const RecordSink& out = *records_;
   // T(t) with block means (T.2.20)
   if (!temps_.empty()) {
     const std::size_t len =
         std::max<std::size_t>(1, temps_.size() / static_cast<std::size_t>(set_.rfm.blocks));
     const rfm::BlockAverage b = rfm::block_average(temps_, len);
-    rfm::write_temperature_csv(d / "temperature.csv", times_, temps_, &b);
+    rfm::write_temperature_csv(out, d / "temperature.csv", times_, temps_, &b);
   } else {
-    rfm::write_temperature_csv(d / "temperature.csv", times_, temps_);
+    rfm::write_temperature_csv(out, d / "temperature.csv", times_, temps_);
   }
   // velocity moments m = 1…12 with block errors
-  rfm::write_moments_csv(d / "moments.csv", moments_.mean(),
+  rfm::write_moments_csv(out, d / "moments.csv", moments_.mean(),
                          block_errors(moments_, set_.rfm.blocks));
   if (dim_ == 2)
-    rfm::write_moments_csv(d / "moments_components.csv", comp_moments_.mean(),
+    rfm::write_moments_csv(out, d / "moments_components.csv", comp_moments_.mean(),
                            block_errors(comp_moments_, set_.rfm.blocks));
   // histograms: raw counts for the analysis, and chart-ready densities
   if (steady_) {
-    rfm::write_histogram_raw(d / "hist_velocity.csv", vel_);
-    rfm::write_histogram_raw(d / "hist_postcollision.csv", post_);
-    rfm::write_velocity_csv(d / "velocity.csv", vel_);
+    rfm::write_histogram_raw(out, d / "hist_velocity.csv", vel_);
+    rfm::write_histogram_raw(out, d / "hist_postcollision.csv", post_);
+    rfm::write_velocity_csv(out, d / "velocity.csv", vel_);
   }
-  rfm::write_histogram_raw(d / "hist_freepath.csv", paths_);
-  rfm::write_freepath_csv(d / "freepath.csv", paths_);
+  rfm::write_histogram_raw(out, d / "hist_freepath.csv", paths_);
+  rfm::write_freepath_csv(out, d / "freepath.csv", paths_);
   // structure
   if (structure_ && sk_->snapshots() > 0) {
-    const auto shells = sk_->shells();
-    rfm::write_sk_csv(d / "sk.csv", shells);
-    rfm::write_gr_csv(d / "gr.csv", gr_->bins());
+    rfm::write_sk_csv(out, d / "sk.csv", sk_->shells());
+    rfm::write_gr_csv(out, d / "gr.csv", gr_->bins());
   }
   if (gaps_ && gaps_->moments().snapshots() > 0) {
-    rfm::write_gh_csv(d / "gh.csv", *gaps_);
-    rfm::write_moments_csv(d / "gap_moments.csv", gaps_->moments().mean(),
+    rfm::write_gh_csv(out, d / "gh.csv", *gaps_);
+    rfm::write_moments_csv(out, d / "gap_moments.csv", gaps_->moments().mean(),
                            block_errors(gaps_->moments(), set_.rfm.blocks));
   }
   write_json(sim);
@@ -426,7 +424,7 @@ void RfmObserver::write_json(const Simulation& sim) const {
   j["sk_nmax"] = sk_nmax_;
   j["structure_snapshots"] = sk_ ? sk_->snapshots() : 0;
   j["structure"] = structure_ ? 1 : 0;
-  // one top-level field per line; a name that is not UTF-8 is written with U+FFFD
+  // a scene name that is not UTF-8 is written with U+FFFD
   records_->document(
       dir_ + "/rfm.json",
       j.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + "\n");

@@ -1,6 +1,7 @@
 // the Random Force Model observer (docs/physics.md §5.3): read-only measurements of a 2D periodic
 // disk fluid or a 1D ring, sampled every rfm.sample_every steps once rfm.discard_time is over, and
-// written into the run directory when the run ends (files listed in docs/rfm.md):
+// handed as tables (with their metadata) to the run's RecordSink, the series as it is sampled and
+// the rest when the run ends (files listed in docs/rfm.md):
 //   every sample (transient included): rfm_series.csv   t, T (T.2.19), T_x, T_y, mean velocity
 //   steady state: temperature.csv (T.2.19 with block means T.2.20), moments.csv (⟨|v|^m⟩,
 //     m = 1…12, T.3.11; 2D also moments_components.csv), hist_velocity.csv (one Cartesian

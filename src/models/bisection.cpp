@@ -5,7 +5,6 @@
 #include <cmath>
 #include <string>
 
-#include "analysis/rfm_csv.hpp"
 #include "core/error.hpp"
 
 namespace gs::models {
@@ -147,11 +146,13 @@ BisectionResult run_bisection(const BisectionParams& p) {
   return out;
 }
 
-void write_bisection_csv(const std::filesystem::path& path, const BisectionResult& r) {
-  rfm::CsvWriter w(path, {"x", "x_lo", "x_hi", "P", "P_err", "P_exact", "G1", "G2", "P_exact_prev"},
-                   {{"levels", static_cast<double>(r.levels)}});
+void write_bisection_csv(const RecordSink& sink, const std::filesystem::path& path,
+                         const BisectionResult& r) {
+  const auto w = sink.create(
+      path.string(), {"x", "x_lo", "x_hi", "P", "P_err", "P_exact", "G1", "G2", "P_exact_prev"},
+      {{"levels", static_cast<double>(r.levels)}});
   for (const BisectionBin& b : r.bins)
-    w.row({b.x, b.lo, b.hi, b.p, b.p_err, b.p_exact, b.g1, b.g2, b.p_exact_prev});
+    w->row({b.x, b.lo, b.hi, b.p, b.p_err, b.p_exact, b.g1, b.g2, b.p_exact_prev});
 }
 
 }  // namespace gs::models

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "analysis/rfm_gaps.hpp"
+#include "core/records.hpp"
 #include "core/rng.hpp"
 
 namespace gs::models {
@@ -66,6 +67,7 @@ struct BisectionResult {
 BisectionResult run_bisection(const BisectionParams& p);
 
 /// columns x, x_lo, x_hi, P, P_err, P_exact, G1, G2, P_exact_prev; metadata levels
-void write_bisection_csv(const std::filesystem::path& path, const BisectionResult& r);
+void write_bisection_csv(const RecordSink& sink, const std::filesystem::path& path,
+                         const BisectionResult& r);
 
 }  // namespace gs::models

@@ -9,7 +9,6 @@
 #include <numbers>
 #include <string>
 
-#include "analysis/rfm_csv.hpp"
 #include "core/error.hpp"
 
 #if defined(GS_HAVE_FFTW)
@@ -364,10 +363,10 @@ std::vector<rfm::SkShell> cascade_expected_sk(CascadeKind kind, int levels, int 
   return shells;
 }
 
-void write_cascade_csv(const std::filesystem::path& path, const CascadeResult& r,
-                       const std::vector<rfm::SkShell>& exact, CascadeKind kind,
-                       const rfm::DfFit* fit) {
-  rfm::CsvMeta meta = {{"D2", correlation_dimension(kind)}, {"mass_mean", r.mass_mean}};
+void write_cascade_csv(const RecordSink& sink, const std::filesystem::path& path,
+                       const CascadeResult& r, const std::vector<rfm::SkShell>& exact,
+                       CascadeKind kind, const rfm::DfFit* fit) {
+  RecordMeta meta = {{"D2", correlation_dimension(kind)}, {"mass_mean", r.mass_mean}};
   if (fit) {
     meta.insert(meta.end(), {{"D_f", fit->d_f},
                              {"D_f_err", fit->d_f_err},
@@ -376,10 +375,10 @@ void write_cascade_csv(const std::filesystem::path& path, const CascadeResult& r
                              {"k_hi", fit->k_hi},
                              {"chi2_r", fit->chi2_r}});
   }
-  rfm::CsvWriter w(path, {"k", "n", "S", "S_err", "S_exact"}, meta);
+  const auto w = sink.create(path.string(), {"k", "n", "S", "S_err", "S_exact"}, meta);
   for (std::size_t i = 0; i < r.shells.size(); ++i) {
     const double e = i < exact.size() ? exact[i].s : std::numeric_limits<double>::quiet_NaN();
-    w.row({r.shells[i].k, r.shells[i].n, r.shells[i].s, r.shells[i].s_err, e});
+    w->row({r.shells[i].k, r.shells[i].n, r.shells[i].s, r.shells[i].s_err, e});
   }
 }
 

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "analysis/rfm_sk.hpp"
+#include "core/records.hpp"
 #include "core/rng.hpp"
 
 namespace gs::models {
@@ -76,8 +77,8 @@ std::vector<rfm::SkShell> cascade_expected_sk(CascadeKind kind, int levels, int 
                                               double box = 1.0);
 
 /// columns k, n, S, S_err, S_exact; metadata D2 and the fit (D_f, D_f_err, A, k_lo, k_hi)
-void write_cascade_csv(const std::filesystem::path& path, const CascadeResult& r,
-                       const std::vector<rfm::SkShell>& exact, CascadeKind kind,
-                       const rfm::DfFit* fit = nullptr);
+void write_cascade_csv(const RecordSink& sink, const std::filesystem::path& path,
+                       const CascadeResult& r, const std::vector<rfm::SkShell>& exact,
+                       CascadeKind kind, const rfm::DfFit* fit = nullptr);
 
 }  // namespace gs::models

@@ -6,7 +6,6 @@
 #include <limits>
 #include <string>
 
-#include "analysis/rfm_csv.hpp"
 #include "analysis/rfm_fit.hpp"
 #include "core/error.hpp"
 #include "core/rng.hpp"
@@ -287,36 +286,37 @@ double gaussian_tail_coefficient(const WalkResult& r, const WalkParams& p, doubl
   return -f.b / scale;
 }
 
-void write_walk_csv(const std::filesystem::path& path, const WalkResult& r, const WalkParams& p,
-                    double radius) {
+void write_walk_csv(const RecordSink& sink, const std::filesystem::path& path, const WalkResult& r,
+                    const WalkParams& p, double radius) {
   const double vs = walk_velocity_scale(p, radius);
-  rfm::CsvWriter w(path, {"v", "u", "count", "Q", "Q_err", "Q_scaled", "arrival"},
-                   {{"dim", static_cast<double>(r.dim)},
-                    {"dt", r.dt},
-                    {"radius", radius},
-                    {"velocity_scale", vs},
-                    {"mean_exit_time", r.mean_exit_time},
-                    {"exit_time_err", r.exit_time_err},
-                    {"mean_v2", r.mean_v2},
-                    {"heating_residual", r.heating_residual},
-                    {"heating_residual_err", r.heating_residual_err},
-                    {"virial_residual", r.virial_residual},
-                    {"virial_residual_err", r.virial_residual_err}});
+  const auto w =
+      sink.create(path.string(), {"v", "u", "count", "Q", "Q_err", "Q_scaled", "arrival"},
+                  {{"dim", static_cast<double>(r.dim)},
+                   {"dt", r.dt},
+                   {"radius", radius},
+                   {"velocity_scale", vs},
+                   {"mean_exit_time", r.mean_exit_time},
+                   {"exit_time_err", r.exit_time_err},
+                   {"mean_v2", r.mean_v2},
+                   {"heating_residual", r.heating_residual},
+                   {"heating_residual_err", r.heating_residual_err},
+                   {"virial_residual", r.virial_residual},
+                   {"virial_residual_err", r.virial_residual_err}});
   const auto qb = r.q.bins(), ab = r.arrival.bins();
   for (std::size_t i = 0; i < qb.size(); ++i)
-    w.row({qb[i].x, qb[i].x / vs, qb[i].count, qb[i].p, qb[i].p_err, qb[i].p * vs, ab[i].p});
+    w->row({qb[i].x, qb[i].x / vs, qb[i].count, qb[i].p, qb[i].p_err, qb[i].p * vs, ab[i].p});
 }
 
-void write_interval_csv(const std::filesystem::path& path, const WalkResult& r, const WalkParams& p,
-                        double length) {
+void write_interval_csv(const RecordSink& sink, const std::filesystem::path& path,
+                        const WalkResult& r, const WalkParams& p, double length) {
   // arrivals at x = L in u = v/(D_v L)^(1/3), normalised over u > 0, beside B.32
   const double vs = walk_velocity_scale(p, length);
   const double tau_theory = appendix_b_mean_exit_time_coefficient() * walk_time_scale(p, length);
-  rfm::CsvWriter w(path, {"u", "count", "f", "f_err", "f_theory"},
-                   {{"mean_exit_time", r.mean_exit_time},
-                    {"exit_time_err", r.exit_time_err},
-                    {"mean_exit_time_theory", tau_theory},
-                    {"length", length}});
+  const auto w = sink.create(path.string(), {"u", "count", "f", "f_err", "f_theory"},
+                             {{"mean_exit_time", r.mean_exit_time},
+                              {"exit_time_err", r.exit_time_err},
+                              {"mean_exit_time_theory", tau_theory},
+                              {"length", length}});
   const auto bins = r.arrival.bins();
   double total = 0.0;
   for (const auto& b : bins)
@@ -324,20 +324,21 @@ void write_interval_csv(const std::filesystem::path& path, const WalkResult& r, 
   for (const auto& b : bins) {
     if (!(b.x > 0.0)) continue;
     const double du = (b.hi - b.lo) / vs;
-    w.row({b.x / vs, b.count, b.count / (total * du), std::sqrt(b.count) / (total * du),
-           appendix_b_arrival_density(b.x / vs)});
+    w->row({b.x / vs, b.count, b.count / (total * du), std::sqrt(b.count) / (total * du),
+            appendix_b_arrival_density(b.x / vs)});
   }
 }
 
-void write_heating_csv(const std::filesystem::path& path, const HeatingCurve& h,
-                       const WalkParams& p) {
+void write_heating_csv(const RecordSink& sink, const std::filesystem::path& path,
+                       const HeatingCurve& h, const WalkParams& p) {
   const double dv = p.noise / (p.mass * p.mass);
-  rfm::CsvWriter w(path, {"t", "v2", "v2_err", "v2_exact", "x2", "x2_err", "x2_exact"},
-                   {{"D_v", dv}, {"dt", p.dt}});
+  const auto w =
+      sink.create(path.string(), {"t", "v2", "v2_err", "v2_exact", "x2", "x2_err", "x2_exact"},
+                  {{"D_v", dv}, {"dt", p.dt}});
   for (std::size_t k = 0; k < h.t.size(); ++k) {
     const double n = std::round(h.t[k] / p.dt);
     const double x2 = 2.0 * dv * p.dt * p.dt * p.dt * (n - 1.0) * n * (2.0 * n - 1.0) / 6.0;
-    w.row({h.t[k], h.v2[k], h.v2_err[k], 2.0 * dv * h.t[k], h.x2[k], h.x2_err[k], x2});
+    w->row({h.t[k], h.v2[k], h.v2_err[k], 2.0 * dv * h.t[k], h.x2[k], h.x2_err[k], x2});
   }
 }
 

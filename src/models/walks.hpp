@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "analysis/rfm_hist.hpp"
+#include "core/records.hpp"
 
 namespace gs::models {
 
@@ -96,15 +97,15 @@ double gaussian_tail_coefficient(const WalkResult& r, const WalkParams& p, doubl
 
 /// columns v, u = v/(D l/M²)^(1/3), count, Q, Q_err, Q_scaled = Q·(D l/M²)^(1/3), arrival;
 /// metadata dim, dt, radius, mean_exit_time, mean_v2 and the identity residuals
-void write_walk_csv(const std::filesystem::path& path, const WalkResult& r, const WalkParams& p,
-                    double radius);
+void write_walk_csv(const RecordSink& sink, const std::filesystem::path& path, const WalkResult& r,
+                    const WalkParams& p, double radius);
 /// the arrivals at x = L of an interval_walk against appendix B: columns u = v/(D_v L)^(1/3),
 /// count, f, f_err (normalised over u > 0), f_theory (B.32); metadata mean_exit_time and
 /// mean_exit_time_theory (uniform release)
-void write_interval_csv(const std::filesystem::path& path, const WalkResult& r, const WalkParams& p,
-                        double length);
+void write_interval_csv(const RecordSink& sink, const std::filesystem::path& path,
+                        const WalkResult& r, const WalkParams& p, double length);
 /// columns t, v2, v2_err, v2_exact, x2, x2_err, x2_exact
-void write_heating_csv(const std::filesystem::path& path, const HeatingCurve& h,
-                       const WalkParams& p);
+void write_heating_csv(const RecordSink& sink, const std::filesystem::path& path,
+                       const HeatingCurve& h, const WalkParams& p);
 
 }  // namespace gs::models

@@ -5,8 +5,11 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <utility>
 
@@ -15,21 +18,43 @@
 
 namespace gs {
 
-CsvWriter::CsvWriter(const std::string& path, const std::vector<std::string>& columns)
+namespace {
+
+// the sidecar's text: a flat object in the order given, whole numbers (counts) as JSON
+// integers, other numbers with every digit, a non-finite one (no measurement) as null
+std::string meta_json(const RecordMeta& meta) {
+  nlohmann::ordered_json j = nlohmann::ordered_json::object();
+  for (const auto& [k, v] : meta) {
+    if (std::isfinite(v) && v == std::trunc(v) && std::abs(v) < 9007199254740992.0)
+      j[k] = static_cast<std::int64_t>(v);
+    else if (std::isfinite(v))
+      j[k] = v;
+    else
+      j[k] = nullptr;
+  }
+  return j.dump(2) + '\n';
+}
+
+}  // namespace
+
+CsvWriter::CsvWriter(const std::string& path, const std::vector<std::string>& columns,
+                     const RecordMeta& meta)
     : path_(path), ncol_(columns.size()) {
+  // the sidecar first: a reader that finds the table finds its metadata
+  if (!meta.empty()) write_file_atomic(table_meta_path(path).string(), meta_json(meta));
   f_ = std::fopen(path.c_str(), "w");
-  if (!f_) throw InputError(path, "", std::string("cannot write: ") + std::strerror(errno));
+  if (!f_) throw OutputError(path + ": cannot open the file for writing: " + std::strerror(errno));
   std::string h;
   for (std::size_t k = 0; k < columns.size(); ++k) h += (k ? "," : "") + columns[k];
   h += '\n';
   if (std::fputs(h.c_str(), f_) < 0 || std::fflush(f_) != 0)
-    throw InputError(path, "", std::string("write failed: ") + std::strerror(errno));
+    throw OutputError(path + ": write failed: " + std::strerror(errno));
 }
 
 CsvWriter CsvWriter::append(const std::string& path, std::size_t columns) {
   CsvWriter w;
   w.f_ = std::fopen(path.c_str(), "a");
-  if (!w.f_) throw InputError(path, "", std::string("cannot append: ") + std::strerror(errno));
+  if (!w.f_) throw OutputError(path + ": cannot open the file to append: " + std::strerror(errno));
   w.path_ = path;
   w.ncol_ = columns;
   return w;
@@ -52,6 +77,9 @@ CsvWriter::~CsvWriter() {
 
 void CsvWriter::row(const std::vector<double>& values) {
   if (!f_) throw OutputError(path_ + ": write after an earlier failure");
+  if (values.size() != ncol_)
+    throw std::logic_error(path_ + ": a row of " + std::to_string(values.size()) +
+                           " values for a header of " + std::to_string(ncol_) + " columns");
   char buf[32];
   std::string line;
   line.reserve(values.size() * 16);
@@ -92,9 +120,11 @@ class CsvTable final : public RecordTable {
 
 class CsvRecords final : public RecordSink {
  public:
+  using RecordSink::create;
   std::unique_ptr<RecordTable> create(const std::string& path,
-                                      const std::vector<std::string>& columns) const override {
-    return std::make_unique<CsvTable>(CsvWriter(path, columns));
+                                      const std::vector<std::string>& columns,
+                                      const RecordMeta& meta) const override {
+    return std::make_unique<CsvTable>(CsvWriter(path, columns, meta));
   }
   std::unique_ptr<RecordTable> append(const std::string& path, std::size_t columns) const override {
     return std::make_unique<CsvTable>(CsvWriter::append(path, columns));

@@ -1,7 +1,8 @@
 // observers: read-only measurements hooked into a run. They see the Simulation after every
-// step (and decide themselves when to sample), write their own files in the run directory,
-// and never change state. A run that checkpoints asks each observer for its state (save) and
-// a resumed run hands it back (resume instead of start); see docs/robustness.md.
+// step (decide themselves when to sample) and never change state; what they record goes into
+// the run directory (measure/'s observers hand their rows to a RecordSink, core/records.hpp).
+// A run that checkpoints asks each observer for its state (save) and a resumed run hands it
+// back (resume instead of start); see docs/robustness.md.
 #pragma once
 #include <cstdint>
 #include <memory>
@@ -19,7 +20,7 @@ class Observer {
   virtual ~Observer() = default;
   /// a stable name: the key of this observer's state in a checkpoint
   virtual const char* name() const = 0;
-  /// the run starts; files go into run_dir
+  /// the run starts; what it records goes into run_dir
   virtual void start(const Simulation& sim, const std::string& run_dir) = 0;
   /// after every step (keep it cheap: sample on your own interval)
   virtual void after_step(const Simulation& sim) = 0;
@@ -30,14 +31,15 @@ class Observer {
     (void)sim;
     return 0;
   }
-  /// the run ends (completed, interrupted or stopped by a health check): flush everything
+  /// the run ends (completed, interrupted, stopped by a health check or a failed write): write
+  /// the end-of-run tables and summaries
   virtual void finish(const Simulation& sim) = 0;
   /// checkpoint (between two steps, files flushed): everything needed to continue exactly —
   /// accumulators, counters. Files are not saved: the run stores their sizes and truncates
   /// them to those sizes on resume.
   virtual void save(ByteWriter& out) const = 0;
-  /// continue a run from a checkpoint instead of start(): reopen files for appending and take
-  /// back what save() wrote. `sim` is the restored simulation.
+  /// continue a run from a checkpoint instead of start(): continue its tables (appending) and
+  /// take back what save() wrote. `sim` is the restored simulation.
   virtual void resume(const Simulation& sim, const std::string& run_dir, ByteReader& in) = 0;
 };
 

@@ -125,7 +125,7 @@ bool skin_moved_block(const AccelArrays& a, std::size_t k, std::size_t m) {
 
 // disks with the fused kick: the accelerations of a block into a buffer that stays in the L1
 // cache, then the kick over the block, which still sees a_n (the noise loop is scalar and full
-// of rare branches; the kick inside it cost 13% more than this at 10⁴ disks); ahead, with
+// of rare branches, and a kick inside it would run at its pace); ahead, with
 // a.skin, the broad phase's displacement test of the predicted block too (returned: has any
 // particle of [b, e) moved beyond the skin?)
 template <bool kNoise, bool kRing>

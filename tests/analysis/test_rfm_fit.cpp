@@ -1,12 +1,9 @@
-// least-squares helpers (T.A.7) and the CSV format of the RFM outputs
+// least-squares helpers (T.A.7)
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 #include <vector>
 
-#include "analysis/rfm_csv.hpp"
 #include "analysis/rfm_fit.hpp"
 #include "core/error.hpp"
 #include "core/rng.hpp"
@@ -74,41 +71,6 @@ TEST(RfmFit, LevenbergMarquardtPullsAreUnitNormal) {
     EXPECT_NEAR(m, 0.0, 0.2) << "parameter " << k;
     EXPECT_NEAR(sd, 1.0, 0.15) << "parameter " << k;
   }
-}
-
-TEST(RfmCsv, RoundTripIsExact) {
-  // shortest round-trip formatting: values and metadata read back bit for bit
-  const auto path = std::filesystem::temp_directory_path() / "gs_rfm_csv_roundtrip.csv";
-  {
-    CsvWriter w(path, {"k", "S"}, {{"D_f", 1.6077}, {"k_D", 1.0 / 3.0}});
-    w.row({0.1, 1e-300});
-    w.row({2.0 / 3.0, -5.5e12});
-    EXPECT_THROW(w.row({1.0}), InputError);
-  }
-  const CsvTable t = read_csv(path);
-  EXPECT_EQ(t.meta.at("D_f"), 1.6077);
-  EXPECT_EQ(t.meta.at("k_D"), 1.0 / 3.0);
-  ASSERT_EQ(t.column.at("k").size(), 2u);
-  EXPECT_EQ(t.column.at("k")[1], 2.0 / 3.0);
-  EXPECT_EQ(t.column.at("S")[0], 1e-300);
-  std::filesystem::remove(path);
-}
-
-TEST(RfmCsv, BadInputNamesFileAndLine) {
-  const auto path = std::filesystem::temp_directory_path() / "gs_rfm_csv_bad.csv";
-  {
-    std::ofstream o(path);
-    o << "# a=1\nx,y\n1,2\n3,oops\n";
-  }
-  try {
-    read_csv(path);
-    FAIL() << "no exception";
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find(":4"), std::string::npos) << e.what();
-    EXPECT_EQ(e.key(), "y");
-  }
-  std::filesystem::remove(path);
-  EXPECT_THROW(read_csv(path), InputError);
 }
 
 }  // namespace

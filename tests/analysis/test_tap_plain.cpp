@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 
@@ -71,6 +72,31 @@ std::vector<TapRunInput> two_plain_series() {
     runs.push_back(r);
   }
   return runs;
+}
+
+// analysis.json is JSON whatever the labels hold: a quote is escaped, a byte that is not UTF-8
+// is written as U+FFFD, a missing value is null and a whole one an integer
+TEST(TapPlainAnalysis, AnalysisJsonReadsBackWithAnyLabel) {
+  auto runs = two_plain_series();
+  runs[0].label = "dry \"A\"";
+  runs[1].label = "wet\xff";
+  TapAnalysisOptions o;
+  const TapAnalysisResult r = run_tap_analysis(runs, o);
+  const fs::path dir = fs::temp_directory_path() / ("gs-plain-json-" + std::to_string(::getpid()));
+  write_tap_analysis(r, runs, o, dir.string());
+  std::ifstream a(dir / "analysis.json");
+  const nlohmann::json j = nlohmann::json::parse(a, nullptr, false);
+  ASSERT_FALSE(j.is_discarded());
+  ASSERT_EQ(j.at("runs").size(), 2u);
+  EXPECT_EQ(j.at("runs")[0].at("label"), "dry \"A\"");
+  EXPECT_EQ(j.at("runs")[1].at("label"), "wet\xef\xbf\xbd");
+  EXPECT_TRUE(j.at("runs")[0].at("control").is_null());
+  EXPECT_TRUE(j.at("test_area").is_null());
+  EXPECT_TRUE(j.at("runs")[0].at("n_used").is_number_integer());
+  EXPECT_EQ(j.at("runs")[0].at("n_used"), r.runs[0].n_used);
+  EXPECT_EQ(j.at("runs")[0].at("phi_mean").get<double>(), r.runs[0].phi_mean);
+  EXPECT_EQ(j.at("files")[0], "summary.csv");
+  fs::remove_all(dir);
 }
 
 // without the test area: per-run statistics and the pair test, no β̂ or quadron fit, and a note

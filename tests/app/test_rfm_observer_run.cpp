@@ -7,8 +7,11 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <numeric>
 #include <string>
 #include <utility>
@@ -117,6 +120,45 @@ TEST(RfmObserver, TinyRunWritesSaneFiles) {
   // §8.5) and the noise-only bound (initial + 4D/M²·t = 0.04 + 1.3 m²/s²)
   EXPECT_GT(t_mean, 0.01);
   EXPECT_LT(t_mean, 1.4);
+
+  // the end-of-run tables come through the writer of the series (the one CSV writer): the text
+  // of each steady sample's t and T in temperature.csv is, character for character, that of
+  // the same sample in rfm_series.csv
+  {
+    auto lines = [&](const char* name) {
+      std::ifstream in(r.dir / "run" / name);
+      std::vector<std::string> out;
+      for (std::string l; std::getline(in, l);) out.push_back(l);
+      return out;
+    };
+    auto cells = [](const std::string& line) {
+      std::vector<std::string> c;
+      std::size_t at = 0;
+      for (std::size_t k; (k = line.find(',', at)) != std::string::npos; at = k + 1)
+        c.push_back(line.substr(at, k - at));
+      c.push_back(line.substr(at));
+      return c;
+    };
+    const auto temp = lines("temperature.csv"), series = lines("rfm_series.csv");
+    ASSERT_EQ(cells(series.at(0)).at(2), "T");
+    std::map<std::string, std::string> t_of_series;  // t → T, as written
+    for (std::size_t i = 1; i < series.size(); ++i) {
+      const auto c = cells(series[i]);
+      if (c.at(8) == "1") t_of_series[c.at(0)] = c.at(2);
+    }
+    ASSERT_EQ(temp.size(), 152u);
+    for (std::size_t i = 1; i < temp.size(); ++i) {
+      const auto c = cells(temp[i]);
+      ASSERT_EQ(t_of_series.count(c.at(0)), 1u) << temp[i];
+      EXPECT_EQ(t_of_series[c.at(0)], c.at(1)) << "t = " << c.at(0);
+      // and in the writer's form: 17 significant digits, read back to the same double
+      for (const std::string& x : c) {
+        char buf[32];
+        std::snprintf(buf, sizeof buf, "%.17g", std::strtod(x.c_str(), nullptr));
+        EXPECT_EQ(x, buf);
+      }
+    }
+  }
 
   // moments: ⟨|v|²⟩ over the samples equals the mean T exactly (same velocities, COM frame),
   // and the pooled components give half of it

@@ -14,15 +14,29 @@ namespace gs::test {
 struct MemoryRecords final : RecordSink {
   struct Table {
     std::vector<std::string> columns;
+    RecordMeta meta;
     std::vector<std::vector<double>> rows;
+    /// a column by name (throws when there is none)
+    std::vector<double> col(const std::string& name) const {
+      for (std::size_t c = 0; c < columns.size(); ++c)
+        if (columns[c] == name) {
+          std::vector<double> v;
+          for (const auto& r : rows) v.push_back(r[c]);
+          return v;
+        }
+      throw std::runtime_error("no column " + name);
+    }
   };
   mutable std::map<std::string, std::shared_ptr<Table>> tables;
   mutable std::map<std::string, std::string> documents;
 
+  using RecordSink::create;
   std::unique_ptr<RecordTable> create(const std::string& path,
-                                      const std::vector<std::string>& columns) const override {
+                                      const std::vector<std::string>& columns,
+                                      const RecordMeta& meta) const override {
     auto t = std::make_shared<Table>();
     t->columns = columns;
+    t->meta = meta;
     tables[path] = t;
     return std::make_unique<Rows>(t, columns.size());
   }

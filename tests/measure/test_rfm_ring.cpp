@@ -12,7 +12,6 @@
 #include <filesystem>
 #include <memory>
 
-#include "analysis/rfm_csv.hpp"
 #include "broadphase/broadphase.hpp"
 #include "core/rng.hpp"
 #include "measure/memory_records.hpp"
@@ -104,9 +103,18 @@ TEST(RfmRing, ElasticGasHasUniformPointGaps) {
   EXPECT_FALSE(fs::exists(dir / "rfm_series.csv"));
   EXPECT_EQ(records.documents.count((dir / "rfm.json").string()), 1u);
   EXPECT_FALSE(fs::exists(dir / "rfm.json"));
-  const rfm::CsvTable m = rfm::read_csv(dir / "gap_moments.csv");
-  const auto& mom = m.column.at("moment");
-  const auto& err = m.column.at("error");
+  // so did every end-of-run table: the observer opened no file of its own
+  for (const char* f :
+       {"temperature.csv", "moments.csv", "hist_velocity.csv", "hist_postcollision.csv",
+        "velocity.csv", "hist_freepath.csv", "freepath.csv", "gh.csv", "gap_moments.csv"})
+    EXPECT_EQ(records.tables.count((dir / f).string()), 1u) << f;
+  EXPECT_TRUE(fs::is_empty(dir));
+  // a raw histogram carries its binning and totals as metadata
+  const auto& raw = *records.tables.at((dir / "hist_freepath.csv").string());
+  ASSERT_FALSE(raw.meta.empty());
+  EXPECT_EQ(raw.meta.front().first, "scale");
+  const auto& m = *records.tables.at((dir / "gap_moments.csv").string());
+  const std::vector<double> mom = m.col("moment"), err = m.col("error");
   // ⟨R⟩ = L′/N up to the overlaps of touching pairs (δ ≲ 3e-5 m ≪ L′/N = 5e-3 m)
   EXPECT_NEAR(mom[0], 1.0 / n, 1e-4 / n);
   // ⟨R²⟩ and ⟨R³⟩ within 4 block errors, and the errors small enough to mean something

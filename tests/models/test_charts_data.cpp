@@ -19,6 +19,7 @@
 #include "models/bisection.hpp"
 #include "models/cascade.hpp"
 #include "models/walks.hpp"
+#include "output/csv.hpp"
 
 namespace gs::models {
 namespace {
@@ -69,7 +70,7 @@ TEST(ChartsData, WritesEveryCsv) {
       temp.push_back(rfm::granular_temperature(v));
     }
     const rfm::BlockAverage b = rfm::block_average(temp, 100);
-    rfm::write_temperature_csv(dir / "temperature.csv", t, temp, &b);
+    rfm::write_temperature_csv(csv_records(), dir / "temperature.csv", t, temp, &b);
     // the second half is in the steady state: mean within 3 % of 2/γ·(1 − 1/N)/(1 − γΔt/2)
     const std::vector<double> late(b.block_means.begin() + 10, b.block_means.end());
     double m = 0.0;
@@ -98,15 +99,17 @@ TEST(ChartsData, WritesEveryCsv) {
     opt.v_abs_min = 2.0;
     const rfm::TailFit tail = rfm::fit_tail(h, opt);
     const rfm::CrossoverFit cross = rfm::fit_crossover(h);
-    rfm::write_velocity_csv(dir / "velocity.csv", h, &tail, &cross);
-    rfm::write_tail_scan_csv(dir / "tail_scan.csv", tail);
+    rfm::write_velocity_csv(csv_records(), dir / "velocity.csv", h, &tail, &cross);
+    rfm::write_tail_scan_csv(csv_records(), dir / "tail_scan.csv", tail);
     // ln–ln with the asymptotic amplitude A₀ = D exp(v_c²/v_r²) (§5.3.3) and with P(0)
     const double a0 = cross.d * std::exp(cross.v_c * cross.v_c / (cross.v_r * cross.v_r));
     double v2 = 0.0;
     for (const auto& b : h.bins()) v2 += b.count * b.x * b.x;
     const double vrms = std::sqrt(v2 / h.total());
-    rfm::write_lnln_csv(dir / "lnln_A0.csv", rfm::lnln_tail(h, a0, vrms, 50.0), a0, vrms);
-    rfm::write_lnln_csv(dir / "lnln_P0.csv", rfm::lnln_tail(h, cross.d, vrms, 50.0), cross.d, vrms);
+    rfm::write_lnln_csv(csv_records(), dir / "lnln_A0.csv", rfm::lnln_tail(h, a0, vrms, 50.0), a0,
+                        vrms);
+    rfm::write_lnln_csv(csv_records(), dir / "lnln_P0.csv", rfm::lnln_tail(h, cross.d, vrms, 50.0),
+                        cross.d, vrms);
     const rfm::CsvTable t = rfm::read_csv(dir / "velocity.csv");
     EXPECT_EQ(t.meta.at("cross_v_c"), cross.v_c);
     EXPECT_EQ(t.column.at("P").size(), 800u);
@@ -128,8 +131,8 @@ TEST(ChartsData, WritesEveryCsv) {
     sys.eps_n = sys.eps_t = 0.1;
     const auto shells = sk.shells();
     const rfm::DfFit f = rfm::fit_df_rfm(shells, sys);
-    rfm::write_sk_csv(dir / "sk.csv", shells, &f);
-    rfm::write_gr_csv(dir / "gr.csv", gr.bins());
+    rfm::write_sk_csv(csv_records(), dir / "sk.csv", shells, &f);
+    rfm::write_gr_csv(csv_records(), dir / "gr.csv", gr.bins());
     EXPECT_GT(f.d_f, 1.3);
     EXPECT_LT(f.d_f, 1.9);
   }
@@ -143,10 +146,10 @@ TEST(ChartsData, WritesEveryCsv) {
       for (std::size_t i = 0; i + 1 < seg.size(); ++i) r.push_back(r.back() + seg[i]);
       g.add_snapshot(r, 1.0);
     }
-    rfm::write_gh_csv(dir / "gh.csv", g);
+    rfm::write_gh_csv(csv_records(), dir / "gh.csv", g);
     BisectionParams bp;
     bp.realisations = 1000;
-    write_bisection_csv(dir / "bisection.csv", run_bisection(bp));
+    write_bisection_csv(csv_records(), dir / "bisection.csv", run_bisection(bp));
   }
 
   // P_l(l): Weibull free paths with the thesis' D_f = 1.63 and its fit (T.4.25)
@@ -154,7 +157,7 @@ TEST(ChartsData, WritesEveryCsv) {
     rfm::Histogram h = rfm::free_path_histogram(1e-7, 1e-1, 60);
     for (int i = 0; i < 500'000; ++i) h.add(std::pow(-std::log(rng.uniform()) / 121.0, 1.0 / 0.63));
     const rfm::FreePathFit f = rfm::fit_free_paths(h);
-    rfm::write_freepath_csv(dir / "freepath.csv", h, &f);
+    rfm::write_freepath_csv(csv_records(), dir / "freepath.csv", h, &f);
   }
 
   // single-particle walks: Q(v, l) for two radii (collapse in v/l^(1/3)) and free heating
@@ -166,15 +169,17 @@ TEST(ChartsData, WritesEveryCsv) {
     p.walks = 4000;
     for (double l : {1.0, 8.0}) {
       p.v_max = 8.0 * walk_velocity_scale(p, l);
-      write_walk_csv(dir / (l == 1.0 ? "walk_l1.csv" : "walk_l8.csv"), disc_walk(p, l), p, l);
+      write_walk_csv(csv_records(), dir / (l == 1.0 ? "walk_l1.csv" : "walk_l8.csv"),
+                     disc_walk(p, l), p, l);
     }
     p.dt = 1e-3;
-    write_heating_csv(dir / "heating.csv", free_heating(p, 2, 1000, 2000, 50), p);
+    write_heating_csv(csv_records(), dir / "heating.csv", free_heating(p, 2, 1000, 2000, 50), p);
     // appendix B: arrivals at x = L against B.32 (thesis Fig. B.1)
     p.walks = 20000;
     p.v_max = 5.0;
     p.bins = 100;
-    write_interval_csv(dir / "interval.csv", interval_walk(p, 1.0, IntervalStart::uniform), p, 1.0);
+    write_interval_csv(csv_records(), dir / "interval.csv",
+                       interval_walk(p, 1.0, IntervalStart::uniform), p, 1.0);
   }
 
   // cascade S(k): UCP, 8 levels, with the exact expectation and the mid-range fit
@@ -186,7 +191,7 @@ TEST(ChartsData, WritesEveryCsv) {
     const auto exact = cascade_expected_sk(cp.kind, 8, 128);
     const double two_pi = 2.0 * std::numbers::pi;
     const rfm::DfFit f = rfm::fit_df(r.shells, two_pi * 4.0 - 1e-9, two_pi * 32.0 + 1e-9);
-    write_cascade_csv(dir / "cascade_ucp.csv", r, exact, cp.kind, &f);
+    write_cascade_csv(csv_records(), dir / "cascade_ucp.csv", r, exact, cp.kind, &f);
   }
 
   // every file is there and parses

@@ -26,6 +26,7 @@
 #include "core/error.hpp"
 #include "measure/rfm_io.hpp"
 #include "models/bisection.hpp"
+#include "output/csv.hpp"
 #include "output/json_text.hpp"
 #include "output/run_dir.hpp"
 
@@ -73,8 +74,8 @@ std::vector<ExponentRow> fit_exponents(const std::vector<RunResult>& results, co
     groups[{static_cast<int>(r.run->get("dimension")), r.run->get("eps_n"), r.run->get("eps_t")}]
         .push_back(&r);
   std::vector<ExponentRow> rows;
-  rfm::CsvWriter mv(out / "moments_vs_N.csv", {"dimension", "eps_n", "eps_t", "N", "m", "v_moment",
-                                               "v_err", "R_moment", "R_err"});
+  CsvWriter mv((out / "moments_vs_N.csv").string(),
+               {"dimension", "eps_n", "eps_t", "N", "m", "v_moment", "v_err", "R_moment", "R_err"});
   for (const auto& [g, rs] : groups) {
     for (int q = 0; q < 2; ++q) {
       std::vector<double> n;
@@ -103,10 +104,10 @@ std::vector<ExponentRow> fit_exponents(const std::vector<RunResult>& results, co
                 at(r->r_errors)});
       }
   }
-  rfm::CsvWriter w(out / "exponents.csv",
-                   {"dimension", "eps_n", "eps_t", "quantity", "m", "exponent", "exponent_err",
-                    "amplitude", "chi2_r", "sizes"},
-                   {{"quantity_0", 0.0}, {"quantity_1", 1.0}});
+  CsvWriter w((out / "exponents.csv").string(),
+              {"dimension", "eps_n", "eps_t", "quantity", "m", "exponent", "exponent_err",
+               "amplitude", "chi2_r", "sizes"},
+              {{"quantity_0", 0.0}, {"quantity_1", 1.0}});
   for (const auto& r : rows)
     w.row({static_cast<double>(r.g.dim), r.g.eps_n, r.g.eps_t, static_cast<double>(r.quantity),
            static_cast<double>(r.fit.m), r.fit.exponent, r.fit.exponent_err, r.fit.amplitude,

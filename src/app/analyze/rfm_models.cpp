@@ -17,6 +17,7 @@
 #include "models/cascade.hpp"
 #include "models/interval_theory.hpp"
 #include "models/walks.hpp"
+#include "output/csv.hpp"
 #include "output/json_text.hpp"
 #include "output/run_dir.hpp"
 
@@ -107,7 +108,7 @@ void run_bisection(const Common& c, BisectionOpt o) {
   o.p.validate();
   const auto lock = open_out(c);
   const models::BisectionResult r = models::run_bisection(o.p);
-  models::write_bisection_csv(out / "bisection.csv", r);
+  models::write_bisection_csv(csv_records(), out / "bisection.csv", r);
   std::vector<std::pair<std::string, double>> f{
       {"levels", o.p.levels}, {"realisations", static_cast<double>(o.p.realisations)}};
   for (std::size_t m = 0; m < r.moments.size(); ++m) {
@@ -188,7 +189,7 @@ void run_walk(const Common& c, WalkOpt o) {
     const models::WalkResult r = models::disc_walk(p, l);
     std::ostringstream name;
     name << "walk_l" << l << ".csv";
-    models::write_walk_csv(out / name.str(), r, p, l);
+    models::write_walk_csv(csv_records(), out / name.str(), r, p, l);
     const std::string k = "l_" + as_text(l);
     double tail_c = 0.0;
     try {
@@ -223,7 +224,7 @@ void run_walk(const Common& c, WalkOpt o) {
     lmean = norm > 0 ? lmean / norm : 1e-3;
     if (wp.v_max == 0) wp.v_max = 8.0 * models::walk_velocity_scale(wp, lmean);
     const models::WalkResult r = models::disc_walk_spm(wp, tab);
-    models::write_walk_csv(out / "walk_spm.csv", r, wp, r.mean_region);
+    models::write_walk_csv(csv_records(), out / "walk_spm.csv", r, wp, r.mean_region);
     f.insert(f.end(), {{"spm_mean_exit_time", r.mean_exit_time},
                        {"spm_mean_v2", r.mean_v2},
                        {"spm_mean_l", r.mean_region}});
@@ -235,7 +236,8 @@ void run_walk(const Common& c, WalkOpt o) {
   if (o.heating) {
     models::WalkParams p = o.p;
     p.dt = 1e-4;
-    models::write_heating_csv(out / "heating.csv", models::free_heating(p, 2, 2000, 1000, 20), p);
+    models::write_heating_csv(csv_records(), out / "heating.csv",
+                              models::free_heating(p, 2, 2000, 1000, 20), p);
   }
   write_model_json(out, "walk", f);
   finish(c, out);
@@ -268,7 +270,7 @@ void run_interval(const Common& c, IntervalOpt o) {
                      as_text(o.length) + " m gives no finite mean exit time (walks " +
                          as_text(r.mean_exit_time) + " s, appendix B " + as_text(theory) +
                          " s): choose a length nearer the scale of --noise and --mass");
-  models::write_interval_csv(out / "interval.csv", r, o.p, o.length);
+  models::write_interval_csv(csv_records(), out / "interval.csv", r, o.p, o.length);
   write_model_json(out, "interval",
                    {{"length", o.length},
                     {"mean_exit_time", r.mean_exit_time},
@@ -319,7 +321,8 @@ void run_cascade(const Common& c, CascadeOpt o) {
                            ", the grid reaches |n| = " + std::to_string(nmax) +
                            "): widen the window or raise --levels");
     }
-    models::write_cascade_csv(out / ("cascade_" + k + ".csv"), r, exact, p.kind, &fit);
+    models::write_cascade_csv(csv_records(), out / ("cascade_" + k + ".csv"), r, exact, p.kind,
+                              &fit);
     const double d2 = models::correlation_dimension(p.kind);
     // a mass fractal in the plane has 0 < D_f ≤ 2; a fit outside, or with an error above half
     // its value, found no power law to report

@@ -12,6 +12,7 @@
 #include "core/error.hpp"
 #include "measure/rfm_io.hpp"
 #include "models/bisection.hpp"
+#include "output/csv.hpp"
 #include "output/json_text.hpp"
 
 namespace gs::rfm_detail {
@@ -29,7 +30,7 @@ void copy_if_there(const fs::path& from, const fs::path& to) {
     return;
   }
   const rfm::CsvTable t = rfm::read_csv(from);
-  rfm::CsvWriter w(to, t.names, rfm::CsvMeta(t.meta.begin(), t.meta.end()));
+  CsvWriter w(to.string(), t.names, RecordMeta(t.meta.begin(), t.meta.end()));
   const std::size_t rows = t.names.empty() ? 0 : t.column.at(t.names.front()).size();
   std::vector<double> row(t.names.size());
   for (std::size_t i = 0; i < rows; ++i) {
@@ -74,9 +75,9 @@ void analyze_velocities(const fs::path& in, const fs::path& out, RunResult& res)
   } catch (const std::exception& e) {
     res.notes.push_back(std::string("crossover fit skipped: ") + e.what());
   }
-  rfm::write_velocity_csv(out / "velocity.csv", h, res.tail ? &*res.tail : nullptr,
+  rfm::write_velocity_csv(csv_records(), out / "velocity.csv", h, res.tail ? &*res.tail : nullptr,
                           res.cross ? &*res.cross : nullptr);
-  if (res.tail) rfm::write_tail_scan_csv(out / "tail_scan.csv", *res.tail);
+  if (res.tail) rfm::write_tail_scan_csv(csv_records(), out / "tail_scan.csv", *res.tail);
   // ln–ln tail plots with the asymptotic amplitude A₀ and with P(0) (§5.3.3)
   double c2 = 0.0, cn = 0.0;
   for (const auto& b : h.bins()) {
@@ -86,9 +87,11 @@ void analyze_velocities(const fs::path& in, const fs::path& out, RunResult& res)
   const double vrms = cn > 0 ? std::sqrt(c2 / cn) : kNaN;
   if (res.tail && vrms > 0) {
     const double a0 = res.tail->best.a;
-    rfm::write_lnln_csv(out / "lnln_A0.csv", rfm::lnln_tail(h, a0, vrms, 50.0), a0, vrms);
+    rfm::write_lnln_csv(csv_records(), out / "lnln_A0.csv", rfm::lnln_tail(h, a0, vrms, 50.0), a0,
+                        vrms);
     const double p0 = density_at_zero(h);
-    rfm::write_lnln_csv(out / "lnln_P0.csv", rfm::lnln_tail(h, p0, vrms, 50.0), p0, vrms);
+    rfm::write_lnln_csv(csv_records(), out / "lnln_P0.csv", rfm::lnln_tail(h, p0, vrms, 50.0), p0,
+                        vrms);
   }
   // velocities just after collisions: the same tail scan
   std::error_code ec;
@@ -98,7 +101,7 @@ void analyze_velocities(const fs::path& in, const fs::path& out, RunResult& res)
       res.tail_post = rfm::fit_tail(hp);
     } catch (const InputError&) {
     }
-    rfm::write_velocity_csv(out / "velocity_post.csv", hp,
+    rfm::write_velocity_csv(csv_records(), out / "velocity_post.csv", hp,
                             res.tail_post ? &*res.tail_post : nullptr);
   }
 }
@@ -130,7 +133,7 @@ void analyze_structure(const RfmRun& r, const fs::path& out, RunResult& res) {
     } catch (const InputError& e) {
       res.notes.push_back(std::string("D_f fit skipped: ") + e.what());
     }
-    rfm::write_sk_csv(out / "sk.csv", shells, res.df ? &*res.df : nullptr);
+    rfm::write_sk_csv(csv_records(), out / "sk.csv", shells, res.df ? &*res.df : nullptr);
   }
 }
 
@@ -146,7 +149,8 @@ void analyze_free_paths(const RfmRun& r, const fs::path& out, RunResult& res) {
   } catch (const std::exception& e) {
     res.notes.push_back(std::string("free-path fit skipped: ") + e.what());
   }
-  rfm::write_freepath_csv(out / "freepath.csv", h, res.paths ? &*res.paths : nullptr);
+  rfm::write_freepath_csv(csv_records(), out / "freepath.csv", h,
+                          res.paths ? &*res.paths : nullptr);
 }
 
 // 1D: G₁(R) against the bisection density of n = round(log₂ N) levels (thesis Fig. 3.16) and
@@ -157,8 +161,9 @@ void write_gh_bisection(const RfmRun& r, const fs::path& out) {
   const rfm::CsvTable t = rfm::read_csv(r.dir / "gh.csv");
   const double n = r.get("particles");
   const int levels = std::max(1, static_cast<int>(std::lround(std::log2(n))));
-  rfm::CsvWriter w(out / "gh_bisection.csv", {"R", "G1", "G1_err", "P_bisection", "P_uniform"},
-                   {{"levels", static_cast<double>(levels)}, {"N", n}});
+  CsvWriter w((out / "gh_bisection.csv").string(),
+              {"R", "G1", "G1_err", "P_bisection", "P_uniform"},
+              {{"levels", static_cast<double>(levels)}, {"N", n}});
   const auto& R = t.col("R");
   for (std::size_t i = 0; i < R.size(); ++i)
     w.row({R[i], t.col("G1")[i], t.col("G1_err")[i], models::bisection_density(R[i], levels),

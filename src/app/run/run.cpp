@@ -35,8 +35,7 @@ namespace {
 std::atomic<bool> g_stop{false};
 extern "C" void on_stop_signal(int) { g_stop = true; }
 
-// x rounded down to three significant digits: a suggested limit that, printed and passed back,
-// is itself within the limit
+// the run directory when none is given: runs/NAME-YYYYMMDD-HHMMSS (local time), new each run
 std::string default_out(const std::string& name) {
   char buf[32];
   const std::time_t now = std::time(nullptr);
@@ -123,7 +122,8 @@ void install_stop_handlers() {
 }
 
 int run_command(const RunOptions& opt) {
-  // scene and run directory are checked before any work is done
+  // the scene is read and prepared before the run directory is touched: a bad scene leaves an
+  // existing run as it was
   std::vector<std::string> sets = opt.sets;
   if (opt.allow_unstable) sets.emplace_back("health.allow_unstable=true");
   PreparedRun prepared = prepare_run(parse_scene_file(opt.scene, sets));

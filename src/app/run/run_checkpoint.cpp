@@ -100,8 +100,9 @@ Checkpoint newest_valid_checkpoint(const std::string& dir) {
   const auto all = list_checkpoints(dir);
   if (all.empty())
     throw InputError(dir, "",
-                     "no checkpoint (checkpoint-*.gsck) in this directory; a run writes them "
-                     "every output.checkpoint_minutes and when it is stopped");
+                     "no checkpoint (checkpoint-*.gsck) in this directory; a run writes them on "
+                     "its output.checkpoint_steps, _taps and _minutes schedule and when it is "
+                     "stopped");
   std::string why;
   for (const std::string& p : all) {
     try {

@@ -187,7 +187,8 @@ int run_session(RunSession& rs) {
       sim.run(m);
       rs.step_loop += std::chrono::duration<double>(Clock::now() - run_start).count();
       since_check += m;
-      // non-finite state is caught at once, whatever health.check_every is
+      // a non-finite first step (a scene that blows up at once) is caught before anything is
+      // written of it, whatever health.check_every is
       if (first) sim.check_finite();
       // the first health check has passed: a replaced run's files can go
       if (rs.replaced != nullptr && sim.world().s.step >= scene.health.check_every) {

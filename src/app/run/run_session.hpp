@@ -42,7 +42,8 @@ std::vector<std::string> series_columns();
 /// one series.csv row of the current state
 void write_series_row(RunSession& rs);
 
-/// step until done or stopped; returns the exit code (kExitOk, kExitUnstable, kExitInterrupted)
+/// step until done or stopped; returns the exit code (kExitOk, kExitUnstable, kExitInterrupted,
+/// kExitOutput)
 int run_session(RunSession& rs);
 
 // ---- checkpoint files (app/run/run_checkpoint.cpp) ----

@@ -1,6 +1,7 @@
 // Model S's pair evaluator (docs/physics.md §3): disks by their centre distance, the linear
-// spring–dashpot with optional friction, no history (force/laws/pair_evaluator.hpp). Its pairs
-// cost a few ns, so it also offers the loop's sparse ways a branch-free preselection
+// spring–dashpot with optional friction, no history (force/laws/pair_evaluator.hpp). A pair is a
+// distance and a few products, cheaper than a mispredicted branch, so it also offers the loop's
+// sparse ways a branch-free preselection
 #pragma once
 #include <cstddef>
 #include <cstdint>

@@ -7,7 +7,8 @@
 //                               narrow<kShape, kShape> and narrow<kShape, BodyKind::Wall>
 //   Ev::kTorque                 its pairs exert torques (the loop sums ForceBuffer::tq)
 //   Ev::kHistory                its contacts carry a ContactState from step to step
-//   Ev::kCheap                  a pair costs a few ns: where few candidates touched, the loop
+//   Ev::kCheap                  a pair costs less than a mispredicted branch or a cache
+//                               miss: where few candidates touched, the loop
 //                               takes its sparse ways (Ev::select and Ev::prefetch before the
 //                               serial loop's pairs, the parallel sums from the touching pairs)
 //   Ev::kChunk                  candidates per chunk of the parallel loop
