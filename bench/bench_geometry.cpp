@@ -74,6 +74,44 @@ gs::PolyStore prepare(const std::vector<Pair>& pairs) {
   return st;
 }
 
+// big–small pairs pressed together along the line of centres by a depth δ drawn log-uniformly
+// in [lo, hi] × the small radius from where they first touch (found by bisection): the resting
+// pile's overlaps (δ/r ≈ 10⁻³…10⁻²) and deeper ones
+std::vector<Pair> make_pressed(double lo, double hi, std::uint64_t seed) {
+  gs::RngStream rng(seed, 0);
+  std::vector<Pair> pairs(kPairs);
+  const gs::Vec2 ca{0.24, 0.3};
+  for (Pair& p : pairs) {
+    const double ang = rng.uniform(0.0, 2.0 * kPi);
+    const gs::Vec2 u{std::cos(ang), std::sin(ang)};
+    const double ta = rng.uniform(0.0, 2.0 * kPi), tb = rng.uniform(0.0, 2.0 * kPi);
+    auto at = [&](double d) { return gs::regular_polygon(10, kRSmall, ca + u * d, tb); };
+    p.a = gs::regular_polygon(10, kRBig, ca, ta);
+    double in = 0.5 * (kRBig + kRSmall), out = kRBig + kRSmall;  // overlapping, apart
+    for (int k = 0; k < 80; ++k) {
+      const double mid = 0.5 * (in + out);
+      (gs::overlap(p.a, at(mid)).area > 0.0 ? in : out) = mid;
+    }
+    p.b = at(out - kRSmall * std::exp(rng.uniform(std::log(lo), std::log(hi))));
+  }
+  return pairs;
+}
+
+// the prepared overlap on pressed pairs: arg 0 resting (δ/r 10⁻³…10⁻², a settled pile's
+// overlaps), 1 deep (δ/r 0.02…0.3)
+void BM_DecagonOverlapPressed(benchmark::State& state) {
+  const gs::PolyStore st =
+      prepare(state.range(0) == 0 ? make_pressed(1e-3, 1e-2, 6) : make_pressed(0.02, 0.3, 7));
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const std::size_t k = i++ & (kPairs - 1);
+    benchmark::DoNotOptimize(gs::overlap(st.ref(2 * k), st.ref(2 * k + 1)));
+  }
+  state.SetLabel(state.range(0) == 0 ? "resting" : "deep");
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_DecagonOverlapPressed)->Arg(0)->Arg(1);
+
 void BM_DecagonOverlapPrepared(benchmark::State& state) {
   const gs::PolyStore st = prepare(make_pairs(0.93, 0.95, 1));
   std::size_t i = 0;

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <numbers>
 #include <vector>
 
@@ -239,6 +240,34 @@ TEST(PreparedOverlap, RepeatedVertexBitwise) {
     if (HasFatalFailure()) return;
   }
   EXPECT_GT(t.touching, 2000);
+}
+
+// pairs pressed together along the line of centres by δ/r from 10⁻⁶ to 0.3 (from where they
+// first touch, found by bisection), at random orientations: a resting pile's shallow overlaps
+// and the rarer deep ones, where the prepared routine skips most of its work. The count is
+// GS_OVERLAP_PAIRS (default 2·10⁴; 10⁷ for the full check).
+TEST(PreparedOverlap, PressedPairsAtScaleBitwise) {
+  const char* env = std::getenv("GS_OVERLAP_PAIRS");
+  const long count = env ? std::atol(env) : 20000;
+  RngStream rng(19, 0);
+  Tally t;
+  for (long i = 0; i < count; ++i) {
+    const double ra = (i & 1) ? kRBig : kRSmall, rb = (i & 2) ? kRBig : kRSmall;
+    const Vec2 u = dir(rng.uniform(0.0, 2.0 * kPi));
+    const double ta = rng.uniform(0.0, 2.0 * kPi), tb = rng.uniform(0.0, 2.0 * kPi);
+    const Vec2 ca{rng.uniform(0.0, 0.5), rng.uniform(0.0, 0.5)};
+    const Poly a = regular_polygon(10, ra, ca, ta);
+    auto at = [&](double d) { return regular_polygon(10, rb, ca + u * d, tb); };
+    double in = 0.5 * (ra + rb), out = ra + rb;  // overlapping, apart
+    for (int k = 0; k < 60; ++k) {
+      const double mid = 0.5 * (in + out);
+      (overlap(a, at(mid)).area > 0.0 ? in : out) = mid;
+    }
+    const double depth = std::pow(10.0, rng.uniform(-6.0, std::log10(0.3)));
+    expect_same(a, at(out - std::min(ra, rb) * depth), t);
+    if (HasFatalFailure()) return;
+  }
+  EXPECT_GT(t.two_crossings, count * 9 / 10);
 }
 
 }  // namespace
