@@ -1,4 +1,4 @@
-// the simple CSV files the RFM analyses write for tools/charts_rfm.py: one header line of
+// the simple CSV files the RFM analyses write for gransim.charts.rfm: one header line of
 // column names, then numeric rows (pandas.read_csv reads them as they are); metadata (fit
 // parameters, k_D, …) goes to NAME.json beside NAME.csv, a flat object of numbers (null for a
 // non-finite one). The reader also takes the older form's "# key=value" lines above the header.
