@@ -65,9 +65,11 @@ target_compile_definitions(gs_particle_files PRIVATE GS_VERSION="${PROJECT_VERSI
 gs_module(app DIRS app app/run app/sweep app/study app/analyze app/render app/reproduce
   DEPS gs_measure gs_view gs_render gs_output gs_particle_files gs_analysis gs_models CLI11::CLI11
   Threads::Threads nlohmann_json::nlohmann_json)
-# the scripts and scenes of the source tree, for a build tree that is not beside them
+# the Python package and scenes of the source tree, for a build tree that is not beside them;
+# the installed package's folder relative to the prefix
 set_property(SOURCE ${CMAKE_SOURCE_DIR}/src/app/locations.cpp APPEND PROPERTY
-  COMPILE_DEFINITIONS GS_SOURCE_DIR_OF_BUILD="${CMAKE_SOURCE_DIR}")
+  COMPILE_DEFINITIONS GS_SOURCE_DIR_OF_BUILD="${CMAKE_SOURCE_DIR}"
+  GS_PYTHON_INSTALL_DIR="${GS_PYTHON_INSTALL_DIR}")
 if(TARGET gs_render_gl)
   target_link_libraries(gs_app PUBLIC gs_render_gl)
 endif()

@@ -134,7 +134,7 @@ DfFit fit_df(std::span<const SkShell> shells, double k_lo, double k_hi);
 DfFit fit_df_rfm(std::span<const SkShell> shells, const RfmSystem& sys);
 
 /// columns k, n, S, S_err, modes; metadata D_f, D_f_err, A, k_lo, k_hi, k_D, L_eff when a fit
-/// is given (tools/charts_rfm.py draws the fit line and marks k_D)
+/// is given (gransim.charts.rfm draws the fit line and marks k_D)
 void write_sk_csv(const RecordSink& sink, const std::filesystem::path& path,
                   std::span<const SkShell> shells, const DfFit* fit = nullptr);
 

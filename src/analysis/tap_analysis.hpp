@@ -1,7 +1,7 @@
 // the tapping study's analysis (docs/physics.md §2.6; paper section V): per-run statistics of φ,
 // kernel density estimates, overlapping histograms against a chosen reference run, the ideal
 // quadron fit over all runs and per protocol, written as CSV and JSON files for the charts
-// (tools/charts_tapping.py).
+// (gransim.charts.tapping).
 #pragma once
 #include <functional>
 #include <iosfwd>

@@ -3,6 +3,10 @@
 #include <cstdlib>
 #include <filesystem>
 
+#ifndef GS_PYTHON_INSTALL_DIR
+#define GS_PYTHON_INSTALL_DIR "lib/python3/dist-packages"
+#endif
+
 namespace gs {
 
 namespace fs = std::filesystem;
@@ -33,11 +37,26 @@ std::string find_data_dir(const std::string& folder, const std::string& file) {
   return "";
 }
 
-std::string find_tools_dir(const std::string& script) {
+std::string find_python_dir(const std::string& module) {
+  // gransim.charts.tapping: gransim/charts/tapping.py, or a package's gransim/reproduce/__init__.py
+  std::string rel = module;
+  for (char& c : rel)
+    if (c == '.') c = '/';
   std::error_code ec;
-  if (const char* env = std::getenv("GS_TOOLS_DIR"); env && *env)
-    return fs::exists(fs::path(env) / script, ec) ? std::string(env) : std::string();
-  return find_data_dir("tools", script);
+  const auto holds = [&](const fs::path& d) {
+    return fs::exists(d / (rel + ".py"), ec) || fs::exists(d / rel / "__init__.py", ec);
+  };
+  if (const char* env = std::getenv("GS_PYTHON_DIR"); env && *env)
+    return holds(env) ? std::string(env) : std::string();
+  const fs::path exe_dir = fs::path(self_executable()).parent_path();
+  // a build tree (its copy of the package), then an install
+  for (const fs::path& d : {exe_dir / "python", exe_dir / ".." / GS_PYTHON_INSTALL_DIR})
+    if (holds(d)) return fs::weakly_canonical(d, ec).string();
+#ifdef GS_SOURCE_DIR_OF_BUILD
+  const fs::path source = fs::path(GS_SOURCE_DIR_OF_BUILD) / "python";
+  if (holds(source)) return source.string();
+#endif
+  return "";
 }
 
 }  // namespace gs

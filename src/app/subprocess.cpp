@@ -14,6 +14,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "app/locations.hpp"
+
 extern char** environ;
 
 namespace gs {
@@ -68,10 +70,12 @@ std::pair<pid_t, int> spawn(const std::vector<std::string>& args, const ChildSet
 
 // start argv and wait: {false, errno} when it cannot be started, else {true, waitpid status}
 std::pair<bool, int> spawn_and_wait(const std::vector<std::string>& args, bool quiet_out,
-                                    bool quiet_err) {
+                                    bool quiet_err,
+                                    const std::vector<std::string>* environment = nullptr) {
   ChildSetup setup;
   setup.quiet_stdout = quiet_out;
   setup.quiet_stderr = quiet_err;
+  setup.environment = environment;
   const auto [pid, err] = spawn(args, setup);
   if (pid < 0) return {false, err};
   int status = 0;
@@ -107,9 +111,10 @@ std::string python_interpreter() {
   return chosen;
 }
 
-std::string run_process(const std::vector<std::string>& args, bool quiet_stdout) {
+std::string run_process(const std::vector<std::string>& args, bool quiet_stdout,
+                        const std::vector<std::string>* environment) {
   if (args.empty()) return "nothing to run";
-  const auto [started, status] = spawn_and_wait(args, quiet_stdout, false);
+  const auto [started, status] = spawn_and_wait(args, quiet_stdout, false, environment);
   if (!started) return args[0] + " cannot be started (" + std::strerror(status) + ")";
   if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return "";
   if (WIFEXITED(status) && WEXITSTATUS(status) == 127) return args[0] + " was not found";
@@ -118,22 +123,43 @@ std::string run_process(const std::vector<std::string>& args, bool quiet_stdout)
   return args[0] + " exited with " + std::to_string(WEXITSTATUS(status));
 }
 
-std::string run_python_script(const std::string& script, const std::vector<std::string>& args,
+std::string run_python_module(const std::string& module, const std::vector<std::string>& args,
                               bool quiet_stdout) {
+  const std::string dir = find_python_dir(module);
+  if (dir.empty())
+    return module +
+           " not found: the gransim Python package is neither beside the executable, "
+           "nor in its install, nor in the source tree it was built from (set "
+           "GS_PYTHON_DIR to the folder that holds gransim/)";
+  // our environment, the package first on the path; PYTHONSAFEPATH keeps the working
+  // directory's files from shadowing the modules the package imports
+  std::vector<std::string> env;
+  const std::string path_var = "PYTHONPATH=";
+  std::string path = path_var + dir;
+  for (char** e = environ; *e; ++e) {
+    const std::string entry(*e);
+    if (entry.rfind(path_var, 0) == 0) {
+      if (entry.size() > path_var.size()) path += ":" + entry.substr(path_var.size());
+    } else if (entry.rfind("PYTHONSAFEPATH=", 0) != 0) {
+      env.push_back(entry);
+    }
+  }
+  env.push_back(path);
+  env.push_back("PYTHONSAFEPATH=1");
+
   const std::string py = python_interpreter();
-  std::vector<std::string> argv{py, script};
+  std::vector<std::string> argv{py, "-m", module};
   argv.insert(argv.end(), args.begin(), args.end());
-  const std::string err = run_process(argv, quiet_stdout);
+  const std::string err = run_process(argv, quiet_stdout, &env);
   if (err.empty()) return "";
-  const std::string name = std::filesystem::path(script).filename().string();
   if (err.find("cannot be started") != std::string::npos ||
       err.find("not found") != std::string::npos)
     return err + " (set GS_PYTHON to a python3 with numpy and matplotlib)";
   if (!python_has_charts(py))
-    return name + " failed: " + py +
+    return module + " failed: " + py +
            " cannot import numpy and matplotlib (install python3-matplotlib, or set GS_PYTHON "
            "to a python3 that has them)";
-  return name + " failed under " + py + " (" + err.substr(py.size() + 1) +
+  return module + " failed under " + py + " (" + err.substr(py.size() + 1) +
          "; its error is printed above)";
 }
 

@@ -1,5 +1,6 @@
-// child processes of the application, every one started here: the Python chart and report
-// scripts, and a sweep's runs (this binary again, its output into a log file)
+// child processes of the application, every one started here: the charts and the report of the
+// gransim Python package (python3 -m gransim.…), and a sweep's runs (this binary again, its
+// output into a log file)
 #pragma once
 #include <sys/types.h>
 
@@ -23,9 +24,10 @@ struct ChildSetup {
 /// process id. Throws std::runtime_error naming the program when it cannot be started.
 pid_t start_process(const std::vector<std::string>& argv, const ChildSetup& setup);
 
-/// the interpreter for the scripts: $GS_PYTHON; else `python3` on PATH when it imports numpy and
-/// matplotlib (the user's own environment); else /usr/bin/python3 (Debian's, where
-/// python3-matplotlib installs them); else `python3`. Decided once per process.
+/// the interpreter for the Python package's charts and report: $GS_PYTHON; else `python3` on
+/// PATH when it imports numpy and matplotlib (the user's own environment); else
+/// /usr/bin/python3 (Debian's, where python3-matplotlib installs them); else `python3`. Decided
+/// once per process.
 std::string python_interpreter();
 
 /// whether `python` imports numpy and matplotlib (runs it once, silently)
@@ -33,12 +35,16 @@ bool python_has_charts(const std::string& python);
 
 /// run argv[0] (looked up on PATH) with argv and wait; returns "" when it exited 0, else a
 /// sentence saying what went wrong (cannot be started, not found, its exit code). With
-/// `quiet_stdout` the child's standard output goes to /dev/null (its errors still show).
-std::string run_process(const std::vector<std::string>& argv, bool quiet_stdout = false);
+/// `quiet_stdout` the child's standard output goes to /dev/null (its errors still show);
+/// `environment` (NAME=value entries) replaces ours when given.
+std::string run_process(const std::vector<std::string>& argv, bool quiet_stdout = false,
+                        const std::vector<std::string>* environment = nullptr);
 
-/// run a chart or report script under python_interpreter(); "" on success, else a sentence
-/// naming the script and the interpreter, and the missing libraries only when they are missing
-std::string run_python_script(const std::string& script, const std::vector<std::string>& args,
+/// run `python3 -m module args` for a module of the gransim Python package
+/// (gransim.charts.tapping, gransim.reproduce) under python_interpreter(), the package's folder
+/// (find_python_dir) first on PYTHONPATH; "" on success, else a sentence naming the module and
+/// the interpreter, and the missing libraries only when they are missing
+std::string run_python_module(const std::string& module, const std::vector<std::string>& args,
                               bool quiet_stdout = false);
 
 }  // namespace gs

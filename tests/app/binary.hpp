@@ -123,9 +123,9 @@ inline std::string slurp(const std::filesystem::path& p) {
   return s.str();
 }
 
-/// the command line that runs gransim with `args` (the chart scripts of this source tree)
+/// the command line that runs gransim with `args` (the Python package of this source tree)
 inline std::string gransim(const std::string& args) {
-  return std::string("GS_TOOLS_DIR=") + GS_SOURCE_DIR + "/tools " + GS_BINARY + " " + args;
+  return std::string("GS_PYTHON_DIR=") + GS_SOURCE_DIR + "/python " + GS_BINARY + " " + args;
 }
 
 /// a 40-grain tapping pile in a 0.1 m box (velocity Verlet at 1e-4 s, T = 0.5 s, 0.01 s

@@ -190,14 +190,17 @@ TEST_F(AnalyzeSeries, ChartsUseAPythonThatHasMatplotlib) {
   EXPECT_EQ(o.code, 0) << o.output;
   EXPECT_NE(o.output.find("cannot import numpy and matplotlib"), std::string::npos) << o.output;
   EXPECT_TRUE(fs::exists(dir_ / "a3" / "summary.csv"));
-  // a script that fails for another reason is not blamed on matplotlib
-  fs::create_directories(dir_ / "tools");
-  std::ofstream(dir_ / "tools" / "charts_tapping.py") << "raise KeyError('kinetic_energy')\n";
-  how.env = {"GS_TOOLS_DIR=" + (dir_ / "tools").string()};
+  // a chart module that fails for another reason is not blamed on matplotlib
+  const fs::path charts = dir_ / "python" / "gransim" / "charts";
+  fs::create_directories(charts);
+  std::ofstream(dir_ / "python" / "gransim" / "__init__.py") << "";
+  std::ofstream(charts / "__init__.py") << "";
+  std::ofstream(charts / "tapping.py") << "raise KeyError('kinetic_energy')\n";
+  how.env = {"GS_PYTHON_DIR=" + (dir_ / "python").string()};
   o = run_binary({"analyze", "--manifest", manifest, "--out", (dir_ / "a4").string(), "-q"},
                  dir_ / "log.txt", how);
   EXPECT_EQ(o.code, 0) << o.output;
-  EXPECT_NE(o.output.find("charts_tapping.py failed under"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("gransim.charts.tapping failed under"), std::string::npos) << o.output;
   EXPECT_EQ(o.output.find("matplotlib"), std::string::npos) << o.output;
 }
 

@@ -29,8 +29,8 @@ using testing::sh;
 
 // two ranks on this machine, as root too (containers, CI)
 std::string mpirun2(const std::string& args) {
-  return std::string("OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 GS_TOOLS_DIR=") +
-         GS_SOURCE_DIR + "/tools mpirun --oversubscribe -np 2 " + GS_BINARY + " " + args;
+  return std::string("OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 GS_PYTHON_DIR=") +
+         GS_SOURCE_DIR + "/python mpirun --oversubscribe -np 2 " + GS_BINARY + " " + args;
 }
 
 // run.json and sweep.json without what depends on the machine's speed (wall times, rates)

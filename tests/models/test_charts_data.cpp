@@ -1,4 +1,4 @@
-// writes every CSV that tools/charts_rfm.py draws, from models and synthetic data, and reads
+// writes every CSV that gransim.charts.rfm draws, from models and synthetic data, and reads
 // them back. The directory is $GS_RFM_CSV_DIR, or gs_rfm_charts in the temporary directory.
 #include <gtest/gtest.h>
 

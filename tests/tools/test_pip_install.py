@@ -59,6 +59,13 @@ class PipInstall(unittest.TestCase):
             self.assertEqual(steps, "10")
             with open(os.path.join(SOURCE, "CMakeLists.txt")) as f:
                 self.assertIn("project(gransim VERSION %s" % version, f.read())
+            # the subpackages the command line runs (charts, the reproduction's report) came along
+            code = ("import gransim.charts.tapping, gransim.reproduce.cli as c, sys; "
+                    "print(c.__file__); print(c.study_claims.__name__)")
+            res = subprocess.run([py, "-c", code], env=env, cwd=tmp, capture_output=True,
+                                 text=True)
+            self.assertEqual(res.returncode, 0, res.stderr)
+            self.assertTrue(res.stdout.startswith(os.path.join(venv, "lib")), res.stdout)
 
             # the metadata declares what read_run and the arrays need
             code = ("import importlib.metadata as m; "

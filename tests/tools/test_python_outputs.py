@@ -34,7 +34,7 @@ class PythonOutputs(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         cls.tmp = tempfile.mkdtemp(prefix="gs-python-outputs-")
-        env = dict(os.environ, OMP_NUM_THREADS="1", GS_TOOLS_DIR=os.path.join(ROOT, "tools"))
+        env = dict(os.environ, OMP_NUM_THREADS="1", GS_PYTHON_DIR=os.path.join(ROOT, "python"))
         scene = os.path.join(cls.tmp, "tiny_tapping.toml")
         with open(scene, "w") as f:
             f.write(TAPPING)

@@ -12,17 +12,16 @@ import tempfile
 import unittest
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
-sys.path.insert(0, os.path.join(ROOT, "tools"))
-sys.path.insert(0, os.path.join(ROOT, "tools", "reproduce"))
+sys.path.insert(0, os.path.join(ROOT, "python"))
 
 import matplotlib  # noqa: E402
 
 matplotlib.use("Agg")
 
-import described  # noqa: E402
-import report  # noqa: E402
-import reproduce_report  # noqa: E402
-from verdicts import AGREES, DISAGREES, UNRESOLVED  # noqa: E402
+from gransim.reproduce import described  # noqa: E402
+from gransim.reproduce import report  # noqa: E402
+from gransim.reproduce import cli  # noqa: E402
+from gransim.reproduce.verdicts import AGREES, DISAGREES, UNRESOLVED  # noqa: E402
 
 PUBLISHED = os.path.join(ROOT, "docs", "reproduction", "tapping-standard")
 
@@ -55,7 +54,7 @@ class ReportDescribesItsRuns(unittest.TestCase):
         return tmp
 
     def report_md(self, tmp, budget):
-        title, intro, claims, notes, facts = reproduce_report.study_claims("tapping", tmp, budget)
+        title, intro, claims, notes, facts = cli.study_claims("tapping", tmp, budget)
         report.write_report(tmp, title, intro, [], claims, notes, "tapping", facts)
         with open(os.path.join(tmp, "report.md")) as f:
             return intro, claims, f.read()
@@ -102,7 +101,7 @@ class ReportDescribesItsRuns(unittest.TestCase):
 
     def test_rfm_systems_from_the_runs(self):
         """the RFM report names the systems its runs simulated, not the thesis' defaults"""
-        import rfm
+        from gransim.reproduce import rfm
         tmp = tempfile.mkdtemp(prefix="gs-report-rfm-")
         self.addCleanup(shutil.rmtree, tmp, ignore_errors=True)
         with open(os.path.join(ROOT, "scenes", "rfm2d_reference.toml")) as f:
@@ -118,7 +117,7 @@ class ReportDescribesItsRuns(unittest.TestCase):
         os.makedirs(os.path.join(tmp, "charts"))
         with open(os.path.join(tmp, "plan.json"), "w") as f:
             json.dump({"purpose": "proves the pipeline; resolves no claim", "resolves": False}, f)
-        title, intro, claims, notes, facts = reproduce_report.study_claims("rfm", tmp, "smoke")
+        title, intro, claims, notes, facts = cli.study_claims("rfm", tmp, "smoke")
         self.assertIn("the 2D reference fluid (N = 500, L = 0.2 m, φ = 0.0884, ε = 0.6)", intro)
         self.assertNotIn("N = 2000", intro)
         self.assertNotIn("structure fluid (", intro)  # no run of it here

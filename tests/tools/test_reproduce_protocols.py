@@ -11,17 +11,17 @@ import unittest
 
 import numpy as np
 
-sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "..", "tools", "reproduce"))
+sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "..", "python"))
 
 import matplotlib  # noqa: E402
 
 matplotlib.use("Agg")
 
-from tapping_data import quadron_phi  # noqa: E402
-from tapping_protocols import (histogram_dbeta, offsets_test, sigma_of_phi,  # noqa: E402
+from gransim.reproduce.tapping_data import quadron_phi  # noqa: E402
+from gransim.reproduce.tapping_protocols import (histogram_dbeta, offsets_test, sigma_of_phi,  # noqa: E402
                                sigma_phi, sigma_verdict)
-from tapping_timestep import compare, ks_p  # noqa: E402
-from verdicts import AGREES, DISAGREES, UNRESOLVED  # noqa: E402
+from gransim.reproduce.tapping_timestep import compare, ks_p  # noqa: E402
+from gransim.reproduce.verdicts import AGREES, DISAGREES, UNRESOLVED  # noqa: E402
 
 V_G, A = 0.1336, 576.0
 
@@ -152,7 +152,7 @@ class OverlappingHistograms(unittest.TestCase):
 
 
 def _p(chi2, dof):
-    from verdicts import chi2_sf
+    from gransim.reproduce.verdicts import chi2_sf
     return chi2_sf(chi2, dof)
 
 

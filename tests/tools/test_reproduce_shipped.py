@@ -1,6 +1,6 @@
 """Every report published in docs/reproduction/ with its series (series/, report.json) is
-written again from them alone (reproduce_report.py --from-series, as `gransim reproduce …
---from-series` runs it): report.md and claims.csv must come out byte for byte as shipped, so
+written again from them alone (python3 -m gransim.reproduce --from-series, as `gransim
+reproduce … --from-series` runs it): report.md and claims.csv must come out byte for byte as shipped, so
 anyone can recompute each verdict from the published folder.
 Run: python3 -m unittest tests/tools/test_reproduce_shipped.py"""
 import glob
@@ -32,10 +32,12 @@ class Shipped(unittest.TestCase):
                 shutil.copytree(folder, copy)
                 os.remove(os.path.join(copy, "report.md"))
                 os.remove(os.path.join(copy, "claims.csv"))
-                p = subprocess.run([PYTHON, os.path.join(ROOT, "tools", "reproduce_report.py"),
+                # the package of this source tree: its pure-Python part needs no build
+                env = dict(os.environ, PYTHONPATH=os.path.join(ROOT, "python"))
+                p = subprocess.run([PYTHON, "-m", "gransim.reproduce",
                                     "--study", info["study"], "--budget", info["budget"],
                                     "--from-series", copy],
-                                   capture_output=True, text=True, timeout=600)
+                                   capture_output=True, text=True, timeout=600, env=env)
                 self.assertEqual(p.returncode, 0, p.stderr[-3000:])
                 for f in ("report.md", "claims.csv"):
                     with open(os.path.join(folder, f), "rb") as a, \

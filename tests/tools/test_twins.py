@@ -14,13 +14,13 @@ import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.join(HERE, "..", "..")
-sys.path.insert(0, os.path.join(ROOT, "tools", "reproduce"))
+sys.path.insert(0, os.path.join(ROOT, "python"))
 
-from verdicts import (AGREES, DISAGREES, below_bound, chi2_consistent,  # noqa: E402
+from gransim.reproduce.verdicts import (AGREES, DISAGREES, below_bound, chi2_consistent,  # noqa: E402
                       compare_value, cov_inverse, extremum, feature_test, chi2_sf, t_sf2,
                       without_covariance)
-from tapping_data import quadron_phi  # noqa: E402
-from tapping_edwards import (conditional_err, gauss_curvature, gauss_dbeta,  # noqa: E402
+from gransim.reproduce.tapping_data import quadron_phi  # noqa: E402
+from gransim.reproduce.tapping_edwards import (conditional_err, gauss_curvature, gauss_dbeta,  # noqa: E402
                              gauss_dlnz_excess, gls_a, one_curve_test, quadron_sigma,
                              two_refs_verdict, A_PREC)
 
@@ -228,7 +228,7 @@ class ProtocolClaims(Twin):
     agrees)"""
 
     def test_sigma_curve(self):
-        from tapping_protocols import sigma_of_phi, sigma_verdict
+        from gransim.reproduce.tapping_protocols import sigma_of_phi, sigma_verdict
         phi, _ = quadron_runs(np.linspace(1.2e4, 3.5e4, 12))
         grp = ["left"] * 4 + ["right"] * 4 + ["rot"] * 4
         sig = np.array([sigma_of_phi(p, A, V_G) for p in phi])
@@ -247,7 +247,7 @@ class ProtocolClaims(Twin):
                                   claim(sig[sel]), claim(bad[sel]))
 
     def test_cross_references(self):
-        from tapping_protocols import offsets_test, references_verdict
+        from gransim.reproduce.tapping_protocols import offsets_test, references_verdict
         betas_true = np.linspace(1.2e4, 3.5e4, 10)
         phi, sig = quadron_runs(betas_true)
         runs = [f"x{i}" for i in range(10)]
@@ -273,7 +273,7 @@ class ProtocolClaims(Twin):
                               claim("edwards", e), claim("gauss", e))
 
     def test_timestep(self):
-        from tapping_timestep import compare, timestep_verdict
+        from gransim.reproduce.tapping_timestep import compare, timestep_verdict
         for n in (50, 500, 2500):
             def claim(r, width):
                 x = r.normal(0.82, 0.003, n)
@@ -338,7 +338,7 @@ class FeatureClaims(Twin):
                 extremum(self.G, flat, e, "min", 20, depth)[0])
 
     def test_stress_offsets(self):
-        from tapping import stress_offsets
+        from gransim.reproduce.tapping import stress_offsets
         x = np.linspace(0.812, 0.845, 12)
         grp = ["a"] * 6 + ["b"] * 6
         smooth = 0.5 + 3 * (x - 0.83) + 40 * (x - 0.83) ** 2
@@ -365,6 +365,7 @@ class Segregation(unittest.TestCase):
 
 class PowerTable(unittest.TestCase):
     def test_regenerates(self):
+        sys.path.insert(0, os.path.join(ROOT, "tools"))
         import power_table
         docs = os.path.join(ROOT, "docs", "reproduction")
         with open(os.path.join(docs, "power.md")) as f:

@@ -7,9 +7,9 @@ import unittest
 
 import numpy as np
 
-sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "..", "tools", "reproduce"))
+sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "..", "python"))
 
-from verdicts import (AGREES, DISAGREES, UNRESOLVED, below_bound, chi2_consistent,  # noqa: E402
+from gransim.reproduce.verdicts import (AGREES, DISAGREES, UNRESOLVED, below_bound, chi2_consistent,  # noqa: E402
                       chi2_power, chi2_sf, compare_value, extremum, mean_err,
                       power_two_sided, t_sf2, tau_int)
 

@@ -15,7 +15,6 @@
 
 #include "analysis/tap_analysis.hpp"
 #include "app/analyze/rfm_analyze.hpp"
-#include "app/locations.hpp"
 #include "app/progress.hpp"
 #include "app/run/run_info.hpp"
 #include "app/subprocess.hpp"
@@ -142,24 +141,14 @@ int finish_analysis(const std::vector<TapRunInput>& runs, const std::vector<RunS
           t.p_mean, t.sigma_ratio, t.p_sigma, t.ks_d, t.ks_p);
     }
     for (const auto& n : res.notes) std::printf("note: %s\n", n.c_str());
-    std::fflush(stdout);  // before the chart scripts write to the same terminal
+    std::fflush(stdout);  // before the chart modules write to the same terminal
   }
   std::fprintf(stderr, "gransim analyze: %zu runs, analysis in %s\n", runs.size(), out.c_str());
 
   // the charts (python + matplotlib); without them the CSV and JSON files still stand
   if (!opt.charts) return kExitOk;
-  const std::string tools = find_tools_dir("charts_tapping.py");
-  if (tools.empty()) {
-    std::fprintf(stderr,
-                 "gransim analyze: charts skipped: tools/charts_tapping.py not found next "
-                 "to the executable (set GS_TOOLS_DIR); the CSV and JSON files are in %s\n",
-                 out.c_str());
-    return kExitOk;
-  }
-  for (const char* script : {"charts_tapping.py", "charts_taprun.py"}) {
-    const std::string path = tools + "/" + script;
-    if (!fs::exists(path)) continue;
-    const std::string err = run_python_script(path, {out});
+  for (const char* module : {"gransim.charts.tapping", "gransim.charts.taprun"}) {
+    const std::string err = run_python_module(module, {out});
     if (!err.empty()) {
       std::fprintf(stderr,
                    "gransim analyze: charts skipped: %s. The CSV and JSON files are in %s\n",

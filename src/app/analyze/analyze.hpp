@@ -1,7 +1,7 @@
 // `gransim analyze`: the tapping study's statistics over run and sweep directories (docs/physics.md
 // §2.6): finds the tapping runs (taps.csv), reads protocol and control value from each run's
 // scene.toml, writes the analysis (gs::analyze_tapping) and draws the charts with
-// tools/charts_tapping.py and tools/charts_taprun.py
+// gransim.charts.tapping and gransim.charts.taprun
 #pragma once
 #include <string>
 #include <vector>
@@ -19,7 +19,7 @@ struct AnalyzeOptions {
   bool discard_auto = false;  ///< per run, the larger of discard and the MSER-5 cut
   std::string reference;      ///< reference run label (default: the library's choice)
   std::string reference2;     ///< second reference label
-  bool charts = true;         ///< run the chart scripts
+  bool charts = true;         ///< draw the charts (gransim.charts)
   bool quiet = false;         ///< no summary table and no progress display
   /// the progress display of an analysis that takes more than a couple of seconds: one line
   /// redrawn on a terminal, a plain line every 5 s otherwise (tests give it a clock)

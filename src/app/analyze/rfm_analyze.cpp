@@ -20,7 +20,6 @@
 #include "analysis/rfm_sk.hpp"
 #include "analysis/rfm_tails.hpp"
 #include "app/analyze/rfm_run.hpp"
-#include "app/locations.hpp"
 #include "app/run/run_info.hpp"
 #include "app/subprocess.hpp"
 #include "core/error.hpp"
@@ -196,10 +195,8 @@ void print_table(const std::vector<RunResult>& results) {
 bool is_rfm_run(const std::string& dir) { return !run_dirs(dir).empty(); }
 
 std::string draw_rfm_charts(const std::string& dir) {
-  const std::string tools = find_tools_dir("charts_rfm.py");
-  if (tools.empty()) return "tools/charts_rfm.py not found (set GS_TOOLS_DIR)";
-  // the script's "wrote …" lines are not wanted on our stdout
-  return run_python_script((fs::path(tools) / "charts_rfm.py").string(), {dir}, true);
+  // the charts' "wrote …" lines are not wanted on our stdout
+  return run_python_module("gransim.charts.rfm", {dir}, true);
 }
 
 void analyze_rfm_runs(const std::vector<std::string>& dirs, const std::string& out_dir, bool charts,

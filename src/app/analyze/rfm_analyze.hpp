@@ -1,6 +1,6 @@
 // `gransim analyze` for Random Force Model runs (docs/physics.md §5.3, docs/rfm.md): the fits of
 // the thesis on what the RFM observer wrote (measure/rfm_observer.hpp), per run and across system
-// sizes, as CSV/JSON plus charts drawn by tools/charts_rfm.py.
+// sizes, as CSV/JSON plus charts drawn by gransim.charts.rfm.
 //   per run (OUT/<run name>/): temperature.csv, velocity.csv with the tail scan (appendix A:
 //   counts 50…5000, accept α while χ²_r < 1.2) and the crossover fit (T.5.32), tail_scan.csv,
 //   lnln_A0.csv / lnln_P0.csv (§5.3.3), velocity_post.csv (post-collision), moments.csv;
@@ -21,12 +21,12 @@ namespace gs {
 bool is_rfm_run(const std::string& dir);
 
 /// analyse the RFM runs found in `dirs` (runs or folders of runs) into `out`; charts with
-/// tools/charts_rfm.py unless `charts` is false (a missing python only warns); prints a
+/// gransim.charts.rfm unless `charts` is false (a missing python only warns); prints a
 /// summary table unless quiet. Throws gs::InputError when no RFM run is found.
 void analyze_rfm_runs(const std::vector<std::string>& dirs, const std::string& out,
                       bool charts = true, bool quiet = false);
 
-/// draw the charts of one folder of RFM CSV files with tools/charts_rfm.py; returns "" on
+/// draw the charts of one folder of RFM CSV files with gransim.charts.rfm; returns "" on
 /// success, else what went wrong (no python, no matplotlib, script not found)
 std::string draw_rfm_charts(const std::string& dir);
 

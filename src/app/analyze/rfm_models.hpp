@@ -1,6 +1,6 @@
 // `gransim model bisection|walk|interval|cascade [options] --out DIR`: the thesis' auxiliary
 // models (docs/physics.md §5.4, src/models/) as commands writing their CSV files and charts
-// (tools/charts_rfm.py) into DIR: bisection.csv; walk_l<l>.csv, walk_spm.csv, heating.csv;
+// (gransim.charts.rfm) into DIR: bisection.csv; walk_l<l>.csv, walk_spm.csv, heating.csv;
 // interval.csv; cascade_<kind>.csv; plus model.json with the headline numbers
 #pragma once
 

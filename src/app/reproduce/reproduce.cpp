@@ -115,6 +115,14 @@ void write_plan_json(const ReproducePlan& p, const fs::path& out, const std::str
   if (!o) throw OutputError((out / "plan.json").string() + ": cannot be written");
 }
 
+// the report's Python package is found, else an input error that says where it was looked for
+void check_report_package() {
+  if (find_python_dir("gransim.reproduce").empty())
+    throw InputError("gransim.reproduce", "",
+                     "the report's Python package is not beside the executable, in its install "
+                     "or in its source tree (set GS_PYTHON_DIR to the folder that holds gransim/)");
+}
+
 // a published report written again from the series it ships: no run, no analysis
 int report_from_series(const ReproducePlan& plan, const std::string& out) {
   const fs::path dir(out);
@@ -122,13 +130,10 @@ int report_from_series(const ReproducePlan& plan, const std::string& out) {
     throw InputError((dir / "report.json").string(), "",
                      "missing: --from-series needs a report folder with its series (written by "
                      "gransim reproduce)");
-  const std::string tools = find_tools_dir("reproduce_report.py");
-  if (tools.empty())
-    throw InputError("reproduce_report.py", "",
-                     "the report script is not beside the executable (set GS_TOOLS_DIR)");
-  const std::string err =
-      run_process({python_interpreter(), tools + "/reproduce_report.py", "--study", plan.study,
-                   "--budget", budget_name(plan.budget), "--from-series", out});
+  check_report_package();
+  const std::string err = run_python_module(
+      "gransim.reproduce",
+      {"--study", plan.study, "--budget", budget_name(plan.budget), "--from-series", out});
   if (!err.empty()) {
     std::fprintf(stderr, "reproduce: the report could not be written: %s\n", err.c_str());
     return kExitFailure;
@@ -262,16 +267,12 @@ int reproduce_command(const ReproduceOptions& opt) {
   if (code != kExitOk) return code;
 
   // the report
-  const std::string tools = find_tools_dir("reproduce_report.py");
-  if (tools.empty())
-    throw InputError("reproduce_report.py", "",
-                     "the report script is not beside the executable (set GS_TOOLS_DIR)");
+  check_report_package();
   char wall_text[32];
   std::snprintf(wall_text, sizeof wall_text, "%.0f", wall);
-  const std::string err =
-      run_process({python_interpreter(), tools + "/reproduce_report.py", "--study", plan.study,
-                   "--budget", opt.budget, "--wall", wall_text, "--cores", std::to_string(cores),
-                   "--command", command, out});
+  const std::string err = run_python_module(
+      "gransim.reproduce", {"--study", plan.study, "--budget", opt.budget, "--wall", wall_text,
+                            "--cores", std::to_string(cores), "--command", command, out});
   if (!err.empty()) {
     std::fprintf(stderr, "reproduce: the report could not be written: %s\n", err.c_str());
     return kExitFailure;

@@ -1,6 +1,6 @@
 // `gransim reproduce tapping|rfm`: the sweeps of a study at a budget (resumable), their
 // analysis, and a report of the sources' claims beside what the program measured, each with a
-// verdict (tools/reproduce_report.py writes DIR/report.md, DIR/report.html, DIR/claims.csv)
+// verdict (python3 -m gransim.reproduce writes DIR/report.md, DIR/report.html, DIR/claims.csv)
 #pragma once
 #include <string>
 

@@ -11,7 +11,6 @@
 #include <map>
 #include <sstream>
 
-#include "app/locations.hpp"
 #include "app/run/run_info.hpp"
 #include "app/study/study_problems.hpp"
 #include "app/study/study_tables.hpp"
@@ -159,11 +158,9 @@ void set_error(const StudySpec& s, StudyRow& r, const StudyOutcome& ref) {
   if (!r.o.stable) r.error = r.sd_error = NAN;
 }
 
-// run tools/charts_study.py on the study directory; "" on success, else what went wrong
+// run gransim.charts.study on the study directory; "" on success, else what went wrong
 std::string draw_charts(const std::string& out) {
-  const std::string tools = find_tools_dir("charts_study.py");
-  if (tools.empty()) return "tools/charts_study.py not found (set GS_TOOLS_DIR)";
-  return run_python_script(tools + "/charts_study.py", {out});
+  return run_python_module("gransim.charts.study", {out});
 }
 
 // the largest stable Δt of one integrator and switch set: sweep up until blow-up

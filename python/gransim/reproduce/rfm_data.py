@@ -11,7 +11,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from verdicts import UNRESOLVED, Verdict  # noqa: E402
+from .verdicts import UNRESOLVED, Verdict  # noqa: E402
 
 CUT = 1e-7        # 1D gaps below this (units of L′) are mostly touching disks: their overlap
 N_THESIS = 398    # §3.1.3: "We have ignored data for systems containing 100, 158 or 251 particles"

@@ -30,7 +30,7 @@ def plan_resolves(p):
 
 def without_verdicts(claims, budget, purpose):
     """every claim 'not resolved', saying why: the plan's runs prove the pipeline only"""
-    from verdicts import UNRESOLVED
+    from .verdicts import UNRESOLVED
     why = (f"no verdict: the {budget} plan resolves no claim ({purpose}); its numbers show that "
            "the pipeline runs, not what the program does at the source's scale")
     for c in claims:

@@ -8,9 +8,9 @@ import matplotlib
 matplotlib.use("Agg")
 import numpy as np  # noqa: E402
 
-from verdicts import DISAGREES, P_KEEP, P_REJECT, UNRESOLVED, Verdict, chi2_sf, compare_value  # noqa: E402
+from .verdicts import DISAGREES, P_KEEP, P_REJECT, UNRESOLVED, Verdict, chi2_sf, compare_value  # noqa: E402
 
-from rfm_data import CUT, N_THESIS, Missing, _csv, _runs, _ci, _gate, _chart, _ax, _wfit  # noqa: E402
+from .rfm_data import CUT, N_THESIS, Missing, _csv, _runs, _ci, _gate, _chart, _ax, _wfit  # noqa: E402
 
 
 def _xi(d):

@@ -4,14 +4,14 @@ import math
 
 import numpy as np
 
-from report import Claim, test_of
-import described
-from tapping_data import (NEG, ROT, Study, _fig, _finish, _pm, _save, block_bootstrap, column,
+from .report import Claim, test_of
+from . import described
+from .tapping_data import (NEG, ROT, Study, _fig, _finish, _pm, _save, block_bootstrap, column,
                           sigma_err, steady_window)
-from tapping_protocols import protocol_claims
-from tapping_edwards import (quadron_claims, q_linear, reference_overlap, sigma_peak_effect,
+from .tapping_protocols import protocol_claims
+from .tapping_edwards import (quadron_claims, q_linear, reference_overlap, sigma_peak_effect,
                              two_references)
-from verdicts import (AGREES, DISAGREES, P_KEEP, P_REJECT, UNRESOLVED, Verdict, below_bound,
+from .verdicts import (AGREES, DISAGREES, P_KEEP, P_REJECT, UNRESOLVED, Verdict, below_bound,
                       chi2_consistent, chi2_sf, compare_value, extremum, feature_test, mean_err,
                       offset_test, t_sf2, z_of)
 

@@ -9,8 +9,8 @@ import os
 import platform
 import subprocess
 
-import departures
-from verdicts import AGREES, DISAGREES, UNRESOLVED
+from . import departures
+from .verdicts import AGREES, DISAGREES, UNRESOLVED
 
 
 @dataclass

@@ -12,7 +12,8 @@ import shutil
 import sys
 import tempfile
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+# the gransim package of this source tree (its pure-Python part needs no build)
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
 
 import matplotlib  # noqa: E402
 
@@ -24,8 +25,8 @@ LENGTHS = (50, 200, 1000, 2500, 10000)
 
 def table(folder, budget="standard", lengths=LENGTHS):
     """Markdown: one row per claim, its power at each series length (taps per value)"""
-    import tapping
-    from tapping_data import column
+    from gransim.reproduce import tapping
+    from gransim.reproduce.tapping_data import column
     with tempfile.TemporaryDirectory() as tmp:  # the claims draw charts: keep them out of folder
         shutil.copytree(os.path.join(folder, "analysis"), os.path.join(tmp, "analysis"))
         os.makedirs(os.path.join(tmp, "charts"))
@@ -34,7 +35,7 @@ def table(folder, budget="standard", lengths=LENGTHS):
     name = os.path.basename(os.path.normpath(folder))
     lines = [f"# Power of each claim's test, by series length",
              "",
-             f"Computed by `tools/reproduce/power_table.py` from the analysis tables of `{name}` "
+             f"Computed by `tools/power_table.py` from the analysis tables of `{name}` "
              f"(median {n_now:.0f} taps per value), every error scaled as 1/√(taps). Power is the "
              "probability that the claim's test detects the alternative its source names or shows "
              "(the *alternative* column, at the 5 % level); a claim *agrees* only where it is at "
@@ -42,7 +43,7 @@ def table(folder, budget="standard", lengths=LENGTHS):
              "series the test needs (per-tap series). one-curve, quadron-a and two-references use "
              "the bootstrap covariance of the β̂ across runs (analysis/beta_cov.csv) where it is "
              "shipped; without it their errors are taken as independent, the power shown is that "
-             "of the independent test, and the claim cannot agree (tools/reproduce/verdicts.py).",
+             "of the independent test, and the claim cannot agree (gransim.reproduce.verdicts).",
              "",
              "| claim | alternative | " + " | ".join(f"{n} taps" for n in lengths) + " |",
              "|---|---|" + "---|" * len(lengths)]
@@ -58,7 +59,7 @@ def table(folder, budget="standard", lengths=LENGTHS):
 
 def main(argv=None):
     argv = sys.argv[1:] if argv is None else argv
-    root = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "docs", "reproduction")
+    root = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "docs", "reproduction")
     folder = argv[0] if argv else os.path.join(root, "tapping-standard")
     out = argv[1] if len(argv) > 1 else os.path.join(root, "power.md")
     if not os.path.isfile(os.path.join(folder, "analysis", "summary.csv")):

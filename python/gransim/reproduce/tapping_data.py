@@ -9,7 +9,7 @@ import os
 import matplotlib.pyplot as plt
 import numpy as np
 
-from verdicts import mean_err, tau_int
+from .verdicts import mean_err, tau_int
 
 
 def read_csv(path):

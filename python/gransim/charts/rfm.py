@@ -1,4 +1,3 @@
-#!/usr/bin/env python3
 """Charts of the Random Force Model analyses (thesis chapters 2-6).
 
 Reads the CSV files written by the gs::rfm and gs::models write_*_csv helpers (one header line,
@@ -18,13 +17,13 @@ numeric rows; metadata in NAME.json beside, or "# key=value" lines above the hea
   heating.csv      <v_x^2>(t) and <x^2>(t) of free particles      -> heating.png
   interval.csv     arrival velocities at x = L against B.32       -> interval.png
   cascade_*.csv    cascade S(k), exact expectation, fit, D2       -> cascade_*.png
-and, drawn by charts_rfm_compare.py:
+and, drawn by gransim.charts.rfm_compare:
   gh_bisection.csv, gh.csv  1D G_h(R) against the bisection (T.3.25, T.3.36) -> gh_bisection.png
   velocity.csv + velocity_post.csv (or hist_velocity.csv + hist_postcollision.csv)
                    post-collision against overall P(v), log-linear -> postcollision.png
   moments_vs_N.csv, exponents.csv  <|v|^m>, <R^m> against N, xi_m, zeta_m -> moments_vs_N.png
 
-Usage: charts_rfm.py CSV_DIR [--out PNG_DIR] [--bisection BISECTION_CSV] [--no-parent]
+Usage: python3 -m gransim.charts.rfm CSV_DIR [--out PNG_DIR] [--bisection BISECTION_CSV] [--no-parent]
 `gransim analyze` calls this once per run folder OUT/<run>; the across-run chart
 moments_vs_N.png of OUT itself is drawn when CSV_DIR is OUT, and also (unless --no-parent)
 from the last run folder listed in OUT/rfm_summary.json. --bisection adds the G_1, G_2 of a
@@ -41,11 +40,12 @@ import sys
 
 try:
     import matplotlib
-    matplotlib.use("Agg")
+    if __name__ == "__main__":  # run as a command: files, not windows
+        matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     import numpy as np
 except ImportError as e:  # pragma: no cover
-    sys.exit(f"charts_rfm.py needs numpy and matplotlib ({e}); try /usr/bin/python3")
+    sys.exit(f"gransim.charts.rfm needs numpy and matplotlib ({e}); try /usr/bin/python3")
 
 
 def read_csv(path):
@@ -380,9 +380,10 @@ def last_run_of_parent(csv_dir):
 
 
 def compare_charts(csv_dir, out, bisection_csv, parent_too):
-    """the charts of charts_rfm_compare.py; a failure of one is reported, never fatal"""
-    sys.modules.setdefault("charts_rfm", sys.modules[__name__])
-    import charts_rfm_compare as cmp
+    """the charts of gransim.charts.rfm_compare; a failure of one is reported, never fatal"""
+    # run as a script (python3 -m), this module is __main__: rfm_compare imports it, not a copy
+    sys.modules.setdefault(__package__ + ".rfm", sys.modules[__name__])
+    from . import rfm_compare as cmp
     jobs = []
     if os.path.exists(os.path.join(csv_dir, "gh_bisection.csv")) or os.path.exists(os.path.join(csv_dir, "gh.csv")):
         jobs.append(("gh_bisection", lambda: cmp.gh_bisection(csv_dir, out, bisection_csv)))
@@ -402,7 +403,8 @@ def compare_charts(csv_dir, out, bisection_csv, parent_too):
             print(f"skipped ({type(e).__name__}: {e}): {name}")
 
 
-def main():
+def main(argv=None):
+    """the command line (argv: its arguments; default sys.argv[1:])"""
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("csv_dir")
     ap.add_argument("--out", default=None, help="where the PNGs go (default: CSV_DIR)")
@@ -410,7 +412,7 @@ def main():
                     help="bisection.csv of `gransim model bisection` to overlay on gh_bisection.png")
     ap.add_argument("--no-parent", action="store_true",
                     help="do not draw the across-run charts of the folder above CSV_DIR")
-    a = ap.parse_args()
+    a = ap.parse_args(argv)
     out = a.out or a.csv_dir
     os.makedirs(out, exist_ok=True)
     p = lambda n: os.path.join(a.csv_dir, n)

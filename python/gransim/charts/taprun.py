@@ -1,4 +1,3 @@
-#!/usr/bin/python3
 """Per-run charts of a tapping study: proof of rest, segregation, stress (docs/physics.md §2.5;
 paper section IV and Fig. 12).
 
@@ -15,7 +14,7 @@ and each run's taps.csv and segregation.csv, and writes into ANALYSIS_DIR (or --
 
 Needs python3, numpy and matplotlib (Agg). Missing files are skipped with a message.
 
-usage: charts_taprun.py ANALYSIS_DIR [--out DIR] [--max-runs N]
+usage: python3 -m gransim.charts.taprun ANALYSIS_DIR [--out DIR] [--max-runs N]
 """
 import argparse
 import csv
@@ -26,7 +25,8 @@ import sys
 
 import matplotlib
 
-matplotlib.use("Agg")
+if __name__ == "__main__":  # run as a command: files, not windows; an importer keeps its own
+    matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
@@ -213,12 +213,13 @@ def chart_stress(runs, taps, discard, out):
     save(fig, out, "fig12_stress_phi.png", "stress tensor vs phi")
 
 
-def main():
+def main(argv=None):
+    """the command line (argv: its arguments; default sys.argv[1:])"""
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("analysis_dir")
     ap.add_argument("--out", help="folder for the PNGs (default: the analysis folder)")
     ap.add_argument("--max-runs", type=int, default=4, help="runs in the per-run charts (default 4)")
-    a = ap.parse_args()
+    a = ap.parse_args(argv)
     out = a.out or a.analysis_dir
     os.makedirs(out, exist_ok=True)
     path = os.path.join(a.analysis_dir, "runs.csv")

@@ -10,13 +10,13 @@ import matplotlib
 matplotlib.use("Agg")
 import numpy as np  # noqa: E402
 
-import described  # noqa: E402
-from report import Claim, test_of  # noqa: E402
-from verdicts import (POWER, UNRESOLVED, Verdict, chi2_consistent, compare_value,  # noqa: E402
+from . import described  # noqa: E402
+from .report import Claim, test_of  # noqa: E402
+from .verdicts import (POWER, UNRESOLVED, Verdict, chi2_consistent, compare_value,  # noqa: E402
                       mean_err)
 
-from rfm_data import ORDER, Missing, _csv, _runs, _ci, _gate, _chart, _ax  # noqa: E402
-from rfm_ring import c_g1, c_xi2, c_xim  # noqa: E402
+from .rfm_data import ORDER, Missing, _csv, _runs, _ci, _gate, _chart, _ax  # noqa: E402
+from .rfm_ring import c_g1, c_xi2, c_xim  # noqa: E402
 
 
 def _temps(d):

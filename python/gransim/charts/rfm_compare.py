@@ -1,4 +1,4 @@
-"""Comparison charts of the Random Force Model analyses, used by charts_rfm.py:
+"""Comparison charts of the Random Force Model analyses, used by gransim.charts.rfm:
 
   gh_bisection.csv (+ gh.csv)      G_h(R) of the 1D ring against the uniform multiplicative
                                    bisection (T.3.25 with T.3.36)              -> gh_bisection.png
@@ -17,7 +17,7 @@ import os
 import numpy as np
 import matplotlib.pyplot as plt
 
-from charts_rfm import read_csv, save
+from .rfm import read_csv, save
 
 
 def skip(what, why):

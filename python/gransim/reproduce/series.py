@@ -1,7 +1,7 @@
 """The series a report ships: every file its verdicts read (the analysis tables and the runs'
 per-tap or per-sample series), gzipped into DIR/series/ with DIR's own path taken out, and
 DIR/report.json (the header and the list of those files). From them alone the report and
-claims.csv can be written again, identical (reproduce_report.py --from-series)."""
+claims.csv can be written again, identical (`python3 -m gransim.reproduce --from-series`)."""
 import gzip
 import json
 import os

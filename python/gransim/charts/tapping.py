@@ -1,4 +1,3 @@
-#!/usr/bin/python3
 """Charts of the tapping study (docs/physics.md §2.6; the tapping paper's Figs 4-11 and 13).
 
 Reads the folder written by the C++ tapping analysis (gs::analyze_tapping: summary.csv,
@@ -6,7 +5,7 @@ series.csv, kde.csv, q_lines.csv, beta.csv, quadron.json, analysis.json) and wri
 into the same folder (or --out). Needs only python3, numpy and matplotlib (Agg backend).
 A chart whose protocol or data is missing is skipped with a message; the script does not fail.
 
-usage: charts_tapping.py ANALYSIS_DIR [--out DIR] [--max-series N]
+usage: python3 -m gransim.charts.tapping ANALYSIS_DIR [--out DIR] [--max-series N]
 """
 import argparse
 import csv
@@ -17,7 +16,8 @@ import sys
 
 import matplotlib
 
-matplotlib.use("Agg")
+if __name__ == "__main__":  # run as a command: files, not windows; an importer keeps its own
+    matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
@@ -385,13 +385,14 @@ def chart_kernels(kde, analysis, out):
     save(fig, out, "fig13_kernels.png", "KDE kernels compared")
 
 
-def main():
+def main(argv=None):
+    """the command line (argv: its arguments; default sys.argv[1:])"""
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("analysis_dir")
     ap.add_argument("--out", help="folder for the PNGs (default: the analysis folder)")
     ap.add_argument("--max-series", type=int, default=2,
                     help="runs per protocol in the time-series chart (default 2: lowest, highest)")
-    a = ap.parse_args()
+    a = ap.parse_args(argv)
     d = a.analysis_dir
     out = a.out or d
     os.makedirs(out, exist_ok=True)

@@ -8,9 +8,9 @@ import os
 
 import numpy as np
 
-from report import Claim, test_of
-from tapping_data import _fig, _finish, read_csv, read_json
-from verdicts import UNRESOLVED, decide, tau_int
+from .report import Claim, test_of
+from .tapping_data import _fig, _finish, read_csv, read_json
+from .verdicts import UNRESOLVED, decide, tau_int
 
 Z80 = 1.96 + 0.8416
 

@@ -6,10 +6,10 @@ import math
 
 import numpy as np
 
-from report import Claim, test_of
-from tapping_data import NEXT, ROT, _fig, _finish, column, sigma_err
-from tapping_edwards import A_PREC, _fit, _n_med, _need, gauss_dbeta
-from verdicts import UNRESOLVED, Verdict, chi2_sf, focused_test, tau_int
+from .report import Claim, test_of
+from .tapping_data import NEXT, ROT, _fig, _finish, column, sigma_err
+from .tapping_edwards import A_PREC, _fit, _n_med, _need, gauss_dbeta
+from .verdicts import UNRESOLVED, Verdict, chi2_sf, focused_test, tau_int
 
 
 def _langevin(x):
@@ -40,7 +40,7 @@ def sigma_of_phi(phi, a, v_g, rlp=0.81, rcp=0.855):
 
 
 def _groups(st):
-    from tapping_edwards import _groups_of  # protocol and branch, as one-curve and stress
+    from .tapping_edwards import _groups_of  # protocol and branch, as one-curve and stress
     return _groups_of(st)
 
 
@@ -320,5 +320,5 @@ def cross_references(st, budget):
 
 def protocol_claims(st, budget):
     """the claims of this module and the time-step check, in the report's order"""
-    from tapping_timestep import timestep
+    from .tapping_timestep import timestep
     return [rot_sigma(st, budget), cross_references(st, budget), timestep(st, budget)]

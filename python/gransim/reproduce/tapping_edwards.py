@@ -4,9 +4,9 @@ import math
 
 import numpy as np
 
-from report import Claim, test_of
-from tapping_data import NEG, NEXT, ROT, _fig, _finish, column, quadron_phi, sigma_err
-from verdicts import (AGREES, DISAGREES, UNRESOLVED, Verdict, below_bound, chi2_consistent,
+from .report import Claim, test_of
+from .tapping_data import NEG, NEXT, ROT, _fig, _finish, column, quadron_phi, sigma_err
+from .verdicts import (AGREES, DISAGREES, UNRESOLVED, Verdict, below_bound, chi2_consistent,
                       chi2_power, chi2_sf, compare_value, cov_inverse, decide, offset_test,
                       without_covariance)
 
@@ -432,7 +432,7 @@ def one_curve_test(groups, resid, err, jac, alts, inv=None):
 
 
 def _groups_of(st):
-    from tapping import _groups  # the protocol and branch of each run, as the stress claim
+    from .tapping import _groups  # the protocol and branch of each run, as the stress claim
     return _groups(st)
 
 
@@ -504,5 +504,5 @@ def _lnz(st, budget):
 
 def _sigma_phi(st, budget):
     """Fig. 11: σ_φ(φ̄) of every run, both protocols and branches, against eq. (17) on the fit"""
-    from tapping_protocols import sigma_phi  # the σ_φ claims share their test there
+    from .tapping_protocols import sigma_phi  # the σ_φ claims share their test there
     return sigma_phi(st, budget)

@@ -1,11 +1,10 @@
-#!/usr/bin/env python3
 """Write the report of `gransim reproduce`: DIR/report.md, DIR/report.html, DIR/claims.csv and
 the claim charts in DIR/charts/, from the analysis in DIR/analysis and the runs in DIR/sweeps;
 DIR/series/ and DIR/report.json keep every file the verdicts read. With --from-series, the
 report is written again from DIR/series and DIR/report.json alone (a published report).
 
-usage: reproduce_report.py --study tapping|rfm --budget B [--wall S] [--cores N]
-                           [--command TEXT] [--from-series] DIR
+usage: python3 -m gransim.reproduce --study tapping|rfm --budget B [--wall S] [--cores N]
+                                    [--command TEXT] [--from-series] DIR
 """
 import argparse
 import csv
@@ -18,15 +17,13 @@ import shutil
 import sys
 import tempfile
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "reproduce"))
-
-import matplotlib  # noqa: E402
+import matplotlib
 
 matplotlib.use("Agg")
 
-import described  # noqa: E402
-import report  # noqa: E402
-import series  # noqa: E402
+from . import described  # noqa: E402
+from . import report  # noqa: E402
+from . import series  # noqa: E402
 
 
 def planned_runs(folder):
@@ -59,9 +56,9 @@ def study_claims(study, folder, budget):
 
 def study_module(name):
     if name == "tapping":
-        import tapping as study
+        from . import tapping as study
     else:
-        import rfm as study
+        from . import rfm as study
     return study
 
 
@@ -91,7 +88,8 @@ def from_series(a):
           "report.html, claims.csv")
 
 
-def main():
+def main(argv=None):
+    """the command line (argv: its arguments; default sys.argv[1:])"""
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("dir")
     ap.add_argument("--study", required=True, choices=["tapping", "rfm"])
@@ -101,7 +99,7 @@ def main():
     ap.add_argument("--command", default="")
     ap.add_argument("--from-series", action="store_true",
                     help="write the report again from DIR/series and DIR/report.json")
-    a = ap.parse_args()
+    a = ap.parse_args(argv)
     if a.from_series:
         return from_series(a)
     if not os.path.isdir(os.path.join(a.dir, "analysis")):

@@ -1,9 +1,8 @@
-#!/usr/bin/env python3
 """Charts of `gransim study DIR`: error against cost per reference problem (log-log, one curve
 per integrator and switch set, Pareto front marked, statistical-error band where one exists),
 and the stability map (largest stable dt in contact times per integrator and model).
 
-usage: charts_study.py DIR   (reads DIR/study.csv, DIR/stability.csv; writes DIR/*.png)
+usage: python3 -m gransim.charts.study DIR   (reads DIR/study.csv, DIR/stability.csv; writes DIR/*.png)
 """
 import csv
 import math
@@ -12,7 +11,8 @@ import sys
 
 import matplotlib
 
-matplotlib.use("Agg")
+if __name__ == "__main__":  # run as a command: files, not windows; an importer keeps its own
+    matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 COLORS = {"gear6": "tab:blue", "velocity_verlet": "tab:orange",
@@ -176,11 +176,13 @@ def stability_chart(rows, out):
     plt.close(fig)
 
 
-def main():
-    if len(sys.argv) != 2:
+def main(argv=None):
+    """the command line (argv: its arguments; default sys.argv[1:])"""
+    argv = sys.argv[1:] if argv is None else argv
+    if len(argv) != 1:
         print(__doc__, file=sys.stderr)
         return 2
-    d = sys.argv[1]
+    d = argv[0]
     rows = read_rows(os.path.join(d, "study.csv"))
     problems = []
     for r in rows:

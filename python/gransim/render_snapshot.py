@@ -1,9 +1,9 @@
-#!/usr/bin/env python3
 """Draw one snapshot (DIR/snapshots/snap_NNNNNN.vtp) as ParaView would, with VTK's own renderer
 off screen: each grain's outline filled and coloured by a cell array (speed, species, contacts
 …), a scalar bar, the time in a corner. Needs python3-vtk9 and an X display (or xvfb-run):
 
-    xvfb-run -a tools/render_snapshot.py RUN/snapshots/snap_000004.vtp out.png --color-by speed
+    xvfb-run -a python3 -m gransim.render_snapshot RUN/snapshots/snap_000004.vtp out.png \\
+        --color-by speed
 """
 import argparse
 import sys
