@@ -272,6 +272,34 @@ class ProtocolClaims(Twin):
             self.assert_rules(lambda r: claim("edwards", e, r), lambda r: claim("gauss", e, r),
                               claim("edwards", e), claim("gauss", e))
 
+    def test_cross_references_with_covariance(self):
+        """the generalised least-squares form: differences drawn with a known covariance that
+        correlates them (each shares its run with the others' and the reference's taps)"""
+        from gransim.reproduce.tapping_protocols import offsets_test, references_verdict, stacked
+        betas_true = np.linspace(1.2e4, 3.5e4, 10)
+        phi, sig = quadron_runs(betas_true)
+        runs = [f"x{i}" for i in range(10)]
+        gauss = {(i, j): gauss_dbeta(phi[i], sig[i], phi[j], sig[j], V_G)
+                 for i in range(10) for j in (3, 6)}
+        alts = {"rot": {runs[i]: gauss[i, 3] - gauss[i, 6] for i in range(10)}}
+        keys = [runs[i] for i in range(10)]
+        rho = np.array([[0.6 ** abs(i - j) for j in range(10)] for i in range(10)])
+        for n in (200, 2000, 1e4, 1e6):
+            e = 1400.0 * np.sqrt(215 / n)
+            cov = e * e * (rho + 0.5)  # neighbours in φ̄ correlated, and one shared part
+
+            def claim(kind, r=None):
+                d = np.array([betas_true[6] - betas_true[3] if kind == "edwards"
+                              else gauss[i, 3] - gauss[i, 6] for i in range(10)])
+                if r is not None:
+                    d = d + r.multivariate_normal(np.zeros(10), cov)
+                rows = [("rot", 0.0, e, 10, [(x, q, e) for x, q in zip(keys, d)])]
+                self.assertEqual(stacked(rows)[0], [("rot", x) for x in keys])
+                return references_verdict(rows, alts, cov)
+            self.assert_rules(lambda r: claim("edwards", r), lambda r: claim("gauss", r),
+                              claim("edwards"), claim("gauss"))
+        self.assertTrue(callable(offsets_test))
+
     def test_timestep(self):
         from gransim.reproduce.tapping_timestep import compare, timestep_verdict
         for n in (50, 500, 2500):

@@ -236,30 +236,82 @@ def offsets_test(betas, base, others):
     return chi2, dof, rows
 
 
-def references_verdict(rows, alts):
+def stacked(rows):
+    """offsets_test's differences as one vector: their (other reference, run) keys, the values
+    and the design matrix of one constant per other reference"""
+    keys, v, design = [], [], []
+    for k, (o, _, _, _, d) in enumerate(rows):
+        for x, diff, _ in d:
+            keys.append((o, x))
+            v.append(diff)
+            design.append([1.0 if j == k else 0.0 for j in range(len(rows))])
+    return keys, np.array(v), np.array(design).reshape(len(v), len(rows))
+
+
+def dbeta_covariance(used, base, keys, v_g, reps=200, seed=0):
+    """the covariance of the differences β̂_base(x) − β̂_o(x) for (o, x) in keys, by one
+    moving-block bootstrap over every run's taps at once (blocks of 2τ_int taps, at least 1):
+    the differences share run x, and those of one other reference share it too, so their errors
+    are correlated. None when a quarter of the replicas lose a difference (too little overlap)"""
+    rng = np.random.default_rng(seed)
+    runs = sorted({base} | {o for o, _ in keys} | {x for _, x in keys})
+    series = {r: np.asarray(used[r], float) for r in runs}
+    block = {r: max(1, int(round(2 * tau_int(series[r])))) for r in runs}
+
+    def resample(x, b):
+        n = len(x)
+        starts = rng.integers(0, max(1, n - b + 1), -(-n // b))
+        return np.concatenate([x[s:s + b] for s in starts])[:n]
+
+    def beta(x, ref, res):
+        return 0.0 if x == ref else histogram_dbeta(res[x], res[ref], v_g)[0]
+    out = []
+    for _ in range(reps):
+        res = {r: resample(series[r], block[r]) for r in runs}
+        row = [beta(x, base, res) - beta(x, o, res) for o, x in keys]
+        if all(math.isfinite(q) for q in row):
+            out.append(row)
+    if len(out) < 0.75 * reps or len(out) <= len(keys):
+        return None
+    return np.cov(np.array(out), rowvar=False).reshape(len(keys), len(keys))
+
+
+def offsets_gls(rows, alts, cov=None):
+    """generalised least squares on offsets_test's rows: one constant per other reference
+    fitted to the stacked differences with weights cov⁻¹ (cov in stacked() order; None: each
+    difference's own error, independent). Returns (χ² of the residuals, its degrees of
+    freedom, the residuals' product with the centred alternative alts {other: {run: value}},
+    that alternative's own χ²)"""
+    keys, v, design = stacked(rows)
+    if cov is None:
+        w = np.diag([1 / q[2] ** 2 for _, _, _, _, d in rows for q in d])
+    else:
+        w = np.linalg.inv(cov)
+
+    def residual(y):  # y less its generalised least-squares constants
+        return y - design @ np.linalg.solve(design.T @ w @ design, design.T @ w @ y)
+    r = residual(v)
+    a = residual(np.array([alts[o][x] for o, x in keys]))
+    return float(r @ w @ r), len(v) - len(rows), float(r @ w @ a), float(a @ w @ a)
+
+
+def references_verdict(rows, alts, cov=None):
     """the verdict on offsets_test's rows: rows' differences β̂_base − β̂_other should be one
     constant per other reference; alts {other: {run: the difference Gaussian pairs with the
-    measured φ̄ and σ_φ give}} (App. A, A3: their β̂ are not additive, A4), each centred like
-    the data; the focused part is the data's projection on that pattern"""
-    full, dof, dot, lam = 0.0, 0, 0.0, 0.0
-    for o, c, _, _, d in rows:
-        w = np.array([1 / q[2] ** 2 for q in d])
-        v = np.array([q[1] for q in d]) - c
-        a = np.array([alts[o][q[0]] for q in d])
-        a = a - float((w * a).sum() / w.sum())
-        full += float((w * v * v).sum())
-        dof += len(d) - 1
-        dot += float((w * v * a).sum())
-        lam += float((w * a * a).sum())
+    measured φ̄ and σ_φ give}} (App. A, A3: their β̂ are not additive, A4), centred like the
+    data (offsets_gls); the focused part is the data's projection on that pattern"""
     null = "β̂ with references of either protocol differ by one constant per reference"
     alt = "Gaussian pairs with the measured φ̄ and σ_φ (App. A, A3–A4: β̂ not additive)"
-    if dof < 2:
+    if sum(len(d) for _, _, _, _, d in rows) - len(rows) < 2:
         return Verdict(UNRESOLVED, "fewer than 3 runs overlap both a negative-g and a "
                        "rotating-g reference", null, alt, float("nan"))
+    full, dof, dot, lam = offsets_gls(rows, alts, cov)
+    how = ("bootstrap covariance of the differences, over blocks of taps of every run at once"
+           if cov is not None else "each difference's own error (their correlation not known)")
     return focused_test(full, dof, dot * dot / lam if lam > 0 else 0.0, 1, lam, null, alt,
                         "offsets per reference pair (β̂ from the overlap of the runs' taps: a "
                         "logistic fit of which run a tap belongs to against V_g/φ, overlapping "
-                        "histograms of one tap a bin; errors with τ_int)")
+                        f"histograms of one tap a bin; {how})")
 
 
 def _references_chart(st, refs, betas, rows):
@@ -291,12 +343,15 @@ def cross_references(st, budget):
                     betas[ref][lab] = (b, e)
     chi2, dof, rows = (offsets_test(betas, refs[0], refs[1:]) if len(refs) >= 2
                        else (0.0, 0, []))
+    cov = dbeta_covariance(used, refs[0], stacked(rows)[0], v_g) if dof >= 2 else None
 
     def gauss(x, r):
         return gauss_dbeta(row[x]["phi_mean"], row[x]["sigma"], row[r]["phi_mean"],
                            row[r]["sigma"], v_g)
     alts = {o: {x: gauss(x, refs[0]) - gauss(x, o) for x, _, _ in d} for o, _, _, _, d in rows}
-    v = references_verdict(rows, alts)
+    v = references_verdict(rows, alts, cov)
+    if dof >= 2:
+        chi2, dof = offsets_gls(rows, alts, cov)[:2]
     taps = any(len(u) for u in used.values())
     if dof < 2:
         v.reason += (" (references " + (", ".join(refs) or "none") + "; "
