@@ -11,11 +11,10 @@ namespace gs {
 
 namespace {
 
-// core-seconds per particle-step, one thread a run, RFM observer on, measured as CPU time of
-// `gransim run` on a 2-vCPU Intel Xeon (AVX-512) VM: the 2D reference fluid (φ = 0.353,
-// ε = 0.6), the dense dissipative fluid (ε = 0.1; N = 3000 … 27000, its g(R) over all pairs
-// makes a particle's share grow with N) and the ring on L′ = 1 m (N = 512 … 3981, its contacts
-// a particle grow with N)
+// core-seconds per particle-step (CPU time of `gransim run`, one thread, the RFM observer on):
+// the 2D reference fluid (φ = 0.353, ε = 0.6), the dense dissipative fluid (ε = 0.1, whose
+// g(R) over all pairs makes a particle's share grow with N) and the ring on L′ = 1 m (whose
+// contacts a particle grow with N)
 constexpr double kFluidCost = 2.2e-8;
 constexpr double kDenseCostBase = 2.54e-8;
 constexpr double kDenseCostPerParticle = 6.4e-13;
