@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "core/error.hpp"
@@ -10,12 +11,9 @@ namespace gs {
 
 namespace {
 
-// core-seconds per particle-step, measured on a 2-vCPU Intel Xeon VM (one thread a run):
-// the 1184-decagon pile, and the soft-disk fluids of the Random Force Model; they only
-// scale the projections printed before a run
+// core-seconds per particle-step of the 1184-decagon pile (one thread a run); it only scales
+// the projections printed before a run
 constexpr double kPolygonCost = 1.1e-6;
-constexpr double kDisk2dCost = 4.0e-8;
-constexpr double kRingCost = 2.0e-8;
 
 std::string join(const std::vector<double>& v) {
   std::ostringstream o;
@@ -39,40 +37,12 @@ PlannedSweep tapping_sweep(const std::string& name, const std::string& scene,
   s.params = {key + "=" + join(values)};
   s.sets = {"drive.taps=" + std::to_string(taps)};
   s.sets.insert(s.sets.end(), extra_sets.begin(), extra_sets.end());
-  double seconds = 0.0, longest = 0.0;
   for (double v : values) {
     const double one =
         settle + taps * (key == "drive.g_p" ? neg_tap_seconds(v) : rot_tap_seconds(v));
-    seconds += one;
-    longest = std::max(longest, one);
+    s.run_seconds.push_back(one / dt * grains * kPolygonCost);
   }
-  s.particle_steps = seconds / dt * grains;
-  s.longest_run = longest / dt * grains;
-  s.runs = static_cast<int>(values.size());
-  s.seconds_per_particle_step = kPolygonCost;
   return s;
-}
-
-// an RFM sweep: `runs` runs of `seconds` each of `particles` disks at Δt = 1e-6 s
-PlannedSweep rfm_sweep(const std::string& name, const std::string& scene, const std::string& param,
-                       std::vector<std::string> sets, double particle_seconds,
-                       double longest_particle_seconds, int runs, double cost) {
-  PlannedSweep s;
-  s.longest_run = longest_particle_seconds / 1e-6;
-  s.runs = runs;
-  s.name = name;
-  s.scene = scene;
-  s.params = {param};
-  s.sets = std::move(sets);
-  s.particle_steps = particle_seconds / 1e-6;
-  s.seconds_per_particle_step = cost;
-  return s;
-}
-
-std::string secs(double v) {
-  std::ostringstream o;
-  o << v;
-  return o.str();
 }
 
 // the paper's time-step check (section IV): Δt halved at two pulse strengths, as long as the
@@ -136,50 +106,6 @@ ReproducePlan tapping_plan(Budget b) {
   return p;
 }
 
-ReproducePlan rfm_plan(Budget b) {
-  ReproducePlan p;
-  p.study = "rfm";
-  p.budget = b;
-  // (seconds of the reference runs, of the structure run, of each ring; transient; ring sizes)
-  double t_ref = 2, t_sk = 4, t_ring = 8, discard = 1;
-  std::vector<double> sizes = {400, 1000, 2500, 4000};
-  switch (b) {
-    case Budget::Smoke:
-      t_ref = 0.25, t_sk = 0.2, t_ring = 1.0, discard = 0.1, sizes = {100, 200};
-      p.purpose = "proves the pipeline with runs of a fraction of a second; resolves no claim";
-      p.resolves = false;
-      break;
-    case Budget::Quick:
-      p.purpose =
-          "seconds of simulated time: the steady temperature and its start, the "
-          "velocity tails, S(k) of a young clustered fluid, ξ₂ over N = 400…4000";
-      break;
-    case Budget::Standard:
-      t_ref = 5, t_sk = 20, t_ring = 40, sizes = {400, 630, 1000, 1580, 2500, 4000};
-      p.purpose =
-          "tens of seconds: S(k) and the free paths of a developed clustered fluid, "
-          "ξ_m over N = 400…4000";
-      break;
-    case Budget::Full:
-      t_ref = 20, t_sk = 100, t_ring = 1020,
-      sizes = {100, 158, 251, 398, 631, 1000, 1585, 2512, 3981, 6310, 10000};
-      p.purpose = "the thesis' own run lengths (1D: 1020 s per size up to N = 10⁴)";
-      break;
-  }
-  const std::string d = "rfm.discard_time=" + secs(discard);
-  p.sweeps.push_back(rfm_sweep(
-      "reference", "rfm2d_reference.toml", "preparation.placement=square,hexagonal,uniform",
-      {"scene.duration=" + secs(t_ref), d}, 3 * 2000 * t_ref, 2000 * t_ref, 3, kDisk2dCost));
-  p.sweeps.push_back(rfm_sweep("structure", "rfm2d_structure.toml", "scene.duration=" + secs(t_sk),
-                               {d}, 3000 * t_sk, 3000 * t_sk, 1, kDisk2dCost));
-  double n_total = 0;
-  for (double n : sizes) n_total += n;
-  p.sweeps.push_back(rfm_sweep("ring", "rfm1d_reference.toml", "species[0].count=" + join(sizes),
-                               {"scene.duration=" + secs(t_ring), d}, n_total * t_ring,
-                               sizes.back() * t_ring, static_cast<int>(sizes.size()), kRingCost));
-  return p;
-}
-
 }  // namespace
 
 Budget parse_budget(const std::string& word) {
@@ -204,28 +130,111 @@ const char* budget_name(Budget b) {
   return "?";
 }
 
+double PlannedSweep::core_seconds() const {
+  double s = 0.0;
+  for (double r : run_seconds) s += r;
+  return s;
+}
+
 double ReproducePlan::core_hours() const {
   double s = 0.0;
-  for (const auto& w : sweeps) s += w.particle_steps * w.seconds_per_particle_step;
+  for (const auto& w : sweeps) s += w.core_seconds();
   return s / 3600.0;
 }
 
 double ReproducePlan::longest_run_hours() const {
   double h = 0.0;
   for (const auto& w : sweeps)
-    h = std::max(h, w.longest_run * w.seconds_per_particle_step / 3600.0);
+    for (double r : w.run_seconds) h = std::max(h, r / 3600.0);
   return h;
 }
 
 int ReproducePlan::widest_sweep() const {
   int n = 1;
-  for (const auto& w : sweeps) n = std::max(n, w.runs);
+  for (const auto& w : sweeps) n = std::max(n, static_cast<int>(w.run_seconds.size()));
   return n;
+}
+
+int ReproducePlan::runs() const {
+  int n = 0;
+  for (const auto& w : sweeps) n += static_cast<int>(w.run_seconds.size());
+  return n;
+}
+
+namespace {
+
+// each run goes to the slot that frees first, in the order the runs start
+struct Slots {
+  std::vector<double> free;
+  explicit Slots(int n) : free(static_cast<std::size_t>(std::max(n, 1)), 0.0) {}
+  void add(double seconds) { *std::min_element(free.begin(), free.end()) += seconds; }
+  double end() const { return *std::max_element(free.begin(), free.end()); }
+};
+
+// a sweep's conditions as plan.json gives them
+nlohmann::ordered_json conditions_json(const PlannedSweep& s) {
+  const PlannedConditions& c = s.conditions;
+  auto points = nlohmann::ordered_json::array();
+  for (const auto& q : c.points)
+    points.push_back({{"phi", q.phi},
+                      {"eps_n", q.eps_n},
+                      {"eps_t", q.eps_t},
+                      {c.dimension == 1 ? "reduced_length" : "L", q.length},
+                      {"N", q.particles}});
+  return {{"dimension", c.dimension},
+          {"claims", c.claims},
+          {"points", points},
+          {"seeds", c.seeds},
+          {"starts", c.starts},
+          {"duration_s", c.duration},
+          {"discard_s", c.discard},
+          {"sampled_s", c.sampled()},
+          {"runs", s.run_seconds.size()},
+          {"projected_core_hours", s.core_seconds() / 3600.0}};
+}
+
+}  // namespace
+
+double ReproducePlan::wall_hours(int slots) const {
+  Slots pool(slots);
+  for (const auto& w : sweeps)
+    for (double r : w.run_seconds) pool.add(r);
+  return pool.end() / 3600.0;
+}
+
+double ReproducePlan::sweep_by_sweep_wall_hours(int slots) const {
+  double h = 0.0;
+  for (const auto& w : sweeps) {
+    Slots pool(slots);
+    for (double r : w.run_seconds) pool.add(r);
+    h += pool.end() / 3600.0;
+  }
+  return h;
+}
+
+std::string plan_json(const ReproducePlan& p, const std::string& command, int slots) {
+  nlohmann::ordered_json j;
+  j["study"] = p.study;
+  j["budget"] = budget_name(p.budget);
+  j["purpose"] = p.purpose;
+  j["resolves"] = p.resolves;  // false: the report gives no verdict
+  j["command"] = command;
+  j["projected_core_hours"] = p.core_hours();
+  j["projected_wall_hours"] = p.wall_hours(slots);
+  j["projected_slots"] = slots;
+  j["sweeps"] = nlohmann::ordered_json::array();
+  for (const auto& s : p.sweeps) {
+    nlohmann::ordered_json w = {
+        {"name", s.name}, {"scene", s.scene}, {"params", s.params}, {"sets", s.sets}};
+    if (p.study == "rfm") w["conditions"] = conditions_json(s);
+    j["sweeps"].push_back(w);
+  }
+  return j.dump(2);
 }
 
 ReproducePlan make_plan(const std::string& study, Budget budget) {
   if (study == "tapping") return tapping_plan(budget);
-  if (study == "rfm") return rfm_plan(budget);
+  if (study == "rfm") return plan_detail::rfm_plan(budget);
   throw InputError("", "STUDY", "'" + study + "' is not a study (tapping, rfm)");
 }
 

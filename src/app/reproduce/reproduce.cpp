@@ -47,32 +47,38 @@ int mpi_rank() {
   return 0;
 }
 
-void print_plan(const ReproducePlan& p, const std::string& out, int cores) {
+void print_plan(const ReproducePlan& p, const std::string& out, int cores, int slots) {
   std::printf("gransim reproduce %s --budget %s: %s\n", p.study.c_str(), budget_name(p.budget),
               p.purpose.c_str());
   for (const auto& s : p.sweeps) {
-    std::printf("  %-11s %s --param %s", s.name.c_str(), s.scene.c_str(), s.params[0].c_str());
+    std::printf("  %-13s %s", s.name.c_str(), s.scene.c_str());
+    for (const auto& x : s.params) std::printf(" --param %s", x.c_str());
     for (const auto& x : s.sets) std::printf(" --set %s", x.c_str());
-    std::printf("  (≈ %.2g core-h)\n", s.particle_steps * s.seconds_per_particle_step / 3600.0);
+    std::printf("  (%zu runs, ≈ %.2g core-h)\n", s.run_seconds.size(), s.core_seconds() / 3600.0);
   }
-  std::printf("  projected: %.3g core-hours, ≈ %.2g h on %d cores; into %s\n", p.core_hours(),
-              p.core_hours() / cores, cores, out.c_str());
+  std::printf(
+      "  projected: %d runs, %.3g core-hours, ≈ %.2g h on %d cores (%d runs at a time, the "
+      "longest run %.2g h); into %s\n",
+      p.runs(), p.core_hours(), p.wall_hours(slots), cores, slots, p.longest_run_hours(),
+      out.c_str());
 }
 
 // the cluster commands for a budget too large for one machine: one rank per run of the
-// widest sweep; a run's taps follow one another, so the longest run bounds the wall time
+// widest sweep; under MPI the sweeps run one after the other, and a run's steps follow one
+// another, so each sweep takes at least its longest run
 void print_cluster_commands(const ReproducePlan& p, const std::string& out) {
   const int ranks = p.widest_sweep();
-  const double wall = std::max(p.core_hours() / ranks, p.longest_run_hours());
+  const double wall = p.sweep_by_sweep_wall_hours(ranks);
   std::printf(
       "\nThe %s budget is a cluster job: %.0f core-hours (≈ %.1f days on 2 cores). With %d ranks "
-      "(one per run of the widest sweep) it takes ≈ %.0f h: its longest run alone is ≈ %.0f h, as "
-      "a run's taps follow one another. Nothing was started. To run it:\n"
+      "(one per run of the widest sweep) it takes ≈ %.0f h, its sweeps one after the other: its "
+      "longest run alone is ≈ %.0f h, as a run's steps follow one another. Nothing was started. To "
+      "run it:\n"
       "  mpirun -np %d gransim reproduce %s --budget %s --run --out %s\n"
       "  sbatch -n %d --wrap 'srun --mpi=pmix gransim reproduce %s --budget %s --run --out %s'\n"
       "Each sweep's runs spread over the ranks (one thread each); started again, the command "
       "resumes where it stopped; rank 0 writes the report at the end.\n",
-      budget_name(p.budget), p.core_hours(), p.core_hours() / 2 / 24, ranks, wall,
+      budget_name(p.budget), p.core_hours(), p.wall_hours(2) / 24, ranks, wall,
       p.longest_run_hours(), ranks, p.study.c_str(), budget_name(p.budget), out.c_str(), ranks,
       p.study.c_str(), budget_name(p.budget), out.c_str());
 }
@@ -98,20 +104,10 @@ double add_wall_time(const fs::path& out, double seconds) {
   return total;
 }
 
-void write_plan_json(const ReproducePlan& p, const fs::path& out, const std::string& command) {
-  json j;
-  j["study"] = p.study;
-  j["budget"] = budget_name(p.budget);
-  j["purpose"] = p.purpose;
-  j["resolves"] = p.resolves;  // false: the report gives no verdict
-  j["command"] = command;
-  j["projected_core_hours"] = p.core_hours();
-  j["sweeps"] = json::array();
-  for (const auto& s : p.sweeps)
-    j["sweeps"].push_back(
-        {{"name", s.name}, {"scene", s.scene}, {"params", s.params}, {"sets", s.sets}});
+void write_plan_json(const ReproducePlan& p, const fs::path& out, const std::string& command,
+                     int slots) {
   std::ofstream o(out / "plan.json");
-  o << j.dump(2) << '\n';
+  o << plan_json(p, command, slots) << '\n';
   if (!o) throw OutputError((out / "plan.json").string() + ": cannot be written");
 }
 
@@ -150,7 +146,8 @@ int reproduce_command(const ReproduceOptions& opt) {
   const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   const bool root = mpi_rank() == 0;
   if (opt.from_series) return root ? report_from_series(plan, out) : kExitOk;
-  if (root && !opt.quiet) print_plan(plan, out, cores);
+  const int slots = opt.jobs > 0 ? opt.jobs : cores;  // runs at a time, as the pool runs them
+  if (root && !opt.quiet) print_plan(plan, out, cores, slots);
   if (plan.budget == Budget::Full && !opt.run_full && !opt.report_only) {
     if (root) print_cluster_commands(plan, out);
     return kExitOk;
@@ -180,7 +177,7 @@ int reproduce_command(const ReproduceOptions& opt) {
   // as a reader would type it: where this machine put the runs is no part of the study
   const std::string command = "gransim reproduce " + opt.study + " --budget " + opt.budget;
   if (root && (!opt.report_only || !fs::exists(dir / "plan.json")))
-    write_plan_json(plan, dir, command);
+    write_plan_json(plan, dir, command, slots);
 
   // the sweeps: completed runs are kept, interrupted ones resume from their checkpoints
   const auto t0 = std::chrono::steady_clock::now();

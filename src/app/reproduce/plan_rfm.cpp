@@ -1,0 +1,234 @@
+// the Random Force Model study's plan: the thesis' systems (φ, ε, L, N) at each budget, every
+// point from several seeds, and the conditions each sweep matches for the verdicts
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <sstream>
+
+#include "app/reproduce/plan.hpp"
+
+namespace gs {
+
+namespace {
+
+// core-seconds per particle-step (CPU time of `gransim run`, one thread, the RFM observer on):
+// the 2D reference fluid (φ = 0.353, ε = 0.6), the dense dissipative fluid (ε = 0.1, whose
+// g(R) over all pairs makes a particle's share grow with N) and the ring on L′ = 1 m (whose
+// contacts a particle grow with N)
+constexpr double kFluidCost = 2.2e-8;
+constexpr double kDenseCostBase = 2.54e-8;
+constexpr double kDenseCostPerParticle = 6.4e-13;
+constexpr double kRingCostBase = 1.33e-8;
+constexpr double kRingCostPerParticle = 4.3e-13;
+
+constexpr double kDt = 1e-6;        // the scenes' time step
+constexpr double kRadius = 0.0015;  // the scenes' bead
+
+std::string rfm_text(double v) {
+  std::ostringstream o;
+  o.precision(12);
+  o << v;
+  return o.str();
+}
+
+template <class T>
+std::string rfm_list(const std::vector<T>& v) {
+  std::ostringstream o;
+  o.precision(12);
+  for (std::size_t i = 0; i < v.size(); ++i) o << (i ? "," : "") << v[i];
+  return o.str();
+}
+
+std::vector<std::uint64_t> first_seeds(int n) {
+  std::vector<std::uint64_t> s;
+  for (int i = 1; i <= n; ++i) s.push_back(static_cast<std::uint64_t>(i));
+  return s;
+}
+
+// the seeds as the last (fastest) parameter; one seed is a --set, so that a sweep of one seed
+// keeps the run names of its other parameters (a sweep needs one parameter: then the seed)
+void seed_param(PlannedSweep& s) {
+  const auto& seeds = s.conditions.seeds;
+  if (seeds.size() > 1 || s.params.empty())
+    s.params.push_back("preparation.seed=" + rfm_list(seeds));
+  else
+    s.sets.push_back("preparation.seed=" + rfm_list(seeds));
+}
+
+// a 2D sweep of `scene` (a periodic square box): points at fixed L and ε over N, each run
+// from every start and seed; `dense` picks the cost of a clustering fluid
+PlannedSweep fluid_sweep(const std::string& name, const std::string& scene, double length,
+                         double eps, const std::vector<int>& counts,
+                         const std::vector<std::string>& starts, int seeds, double duration,
+                         double discard, bool dense, std::vector<std::string> claims) {
+  PlannedSweep s;
+  s.name = name;
+  s.scene = scene;
+  PlannedConditions& c = s.conditions;
+  c.dimension = 2;
+  c.claims = std::move(claims);
+  c.seeds = first_seeds(seeds);
+  c.starts = starts;
+  c.duration = duration;
+  c.discard = discard;
+  for (int n : counts)
+    c.points.push_back(
+        {n * std::numbers::pi * kRadius * kRadius / (length * length), eps, eps, length, n});
+  if (counts.size() > 1) s.params.push_back("species[0].count=" + rfm_list(counts));
+  if (starts.size() > 1) s.params.push_back("preparation.placement=" + rfm_list(starts));
+  seed_param(s);
+  s.sets.insert(s.sets.end(),
+                {"scene.duration=" + rfm_text(duration), "rfm.discard_time=" + rfm_text(discard),
+                 "material[0].eps_n=" + rfm_text(eps), "material[0].eps_t=" + rfm_text(eps),
+                 "box.width=" + rfm_text(length), "box.height=" + rfm_text(length)});
+  if (counts.size() == 1) s.sets.push_back("species[0].count=" + std::to_string(counts[0]));
+  if (starts.size() == 1) s.sets.push_back("preparation.placement=" + starts[0]);
+  // the pool's order: the first parameter slowest
+  for (int n : counts)
+    for (std::size_t k = 0; k < starts.size() * c.seeds.size(); ++k)
+      s.run_seconds.push_back(n * duration / kDt * (dense ? rfm_cost_dense(n) : kFluidCost));
+  return s;
+}
+
+// a ring sweep (L′ = 1 m): every ε and N from every seed, the first relax seconds discarded
+PlannedSweep ring_sweep(const std::string& name, const std::vector<double>& eps,
+                        const std::vector<int>& counts, int seeds, double duration, double discard,
+                        std::vector<std::string> claims) {
+  PlannedSweep s;
+  s.name = name;
+  s.scene = "rfm1d_reference.toml";
+  PlannedConditions& c = s.conditions;
+  c.dimension = 1;
+  c.claims = std::move(claims);
+  c.seeds = first_seeds(seeds);
+  c.duration = duration;
+  c.discard = discard;
+  const double reduced = 1.0;
+  for (double e : eps)
+    for (int n : counts)
+      c.points.push_back({n * 2 * kRadius / (reduced + n * 2 * kRadius), e, 1.0, reduced, n});
+  if (eps.size() > 1) s.params.push_back("material[0].eps_n=" + rfm_list(eps));
+  if (counts.size() > 1) s.params.push_back("species[0].count=" + rfm_list(counts));
+  seed_param(s);
+  s.sets.insert(s.sets.end(),
+                {"scene.duration=" + rfm_text(duration), "rfm.discard_time=" + rfm_text(discard),
+                 "box.reduced_length=" + rfm_text(reduced)});
+  if (eps.size() == 1) s.sets.push_back("material[0].eps_n=" + rfm_text(eps[0]));
+  if (counts.size() == 1) s.sets.push_back("species[0].count=" + std::to_string(counts[0]));
+  for (std::size_t e = 0; e < eps.size(); ++e)
+    for (int n : counts)
+      for (std::size_t k = 0; k < c.seeds.size(); ++k)
+        s.run_seconds.push_back(n * duration / kDt * rfm_cost_ring(n));
+  return s;
+}
+
+}  // namespace
+
+double rfm_cost_fluid() { return kFluidCost; }
+double rfm_cost_dense(int particles) {
+  return kDenseCostBase + kDenseCostPerParticle * std::max(particles, 0);
+}
+double rfm_cost_ring(int particles) {
+  return kRingCostBase + kRingCostPerParticle * std::max(particles, 0);
+}
+
+namespace plan_detail {
+
+ReproducePlan rfm_plan(Budget b) {
+  ReproducePlan p;
+  p.study = "rfm";
+  p.budget = b;
+  const std::vector<std::string> starts = {"square", "hexagonal", "uniform"};
+  const std::vector<std::string> ref_claims = {"T-start", "transient", "T-mean-field",
+                                               "alpha-reference"};
+  const std::vector<std::string> sk_claims = {"Df-Sk", "g-R", "alpha-structure"};
+  const std::vector<std::string> ring_claims = {"xi2", "xi-m", "zeta-m", "v-pdf"};
+  switch (b) {
+    case Budget::Smoke:
+      // the ring's seeds prove the seed sweeps; three runs first keep the pool's overlap visible
+      p.sweeps.push_back(fluid_sweep("reference", "rfm2d_reference.toml", 0.2, 0.6, {2000}, starts,
+                                     1, 0.25, 0.1, false, ref_claims));
+      p.sweeps.push_back(fluid_sweep("structure", "rfm2d_structure.toml", 0.2, 0.1, {3000},
+                                     {"hexagonal"}, 1, 0.2, 0.1, true, sk_claims));
+      p.sweeps.push_back(ring_sweep("ring", {0.1}, {100, 200}, 2, 1.0, 0.1, ring_claims));
+      p.purpose = "proves the pipeline with runs of a fraction of a second; resolves no claim";
+      p.resolves = false;
+      break;
+    case Budget::Quick:
+      p.sweeps.push_back(fluid_sweep("reference", "rfm2d_reference.toml", 0.2, 0.6, {2000}, starts,
+                                     1, 2.0, 1.0, false, ref_claims));
+      p.sweeps.push_back(fluid_sweep("structure", "rfm2d_structure.toml", 0.2, 0.1, {3000},
+                                     {"hexagonal"}, 1, 4.0, 1.0, true, sk_claims));
+      p.sweeps.push_back(
+          ring_sweep("ring", {0.1}, {400, 1000, 2500, 4000}, 1, 8.0, 1.0, ring_claims));
+      p.purpose =
+          "seconds of simulated time from one seed: the steady temperature and its start, the "
+          "velocity tails, S(k) of a young clustered fluid, ξ₂ over N = 400…4000 after 1 s "
+          "instead of the thesis' 20 s of relaxation";
+      break;
+    case Budget::Standard:
+      // longest runs first, so that the two slots finish together
+      p.sweeps.push_back(ring_sweep("ring_n512", {0.1}, {512}, 3, 220.0, 20.0,
+                                    {"T-ring-settle", "G1-bisection", "v-pdf"}));
+      p.sweeps.push_back(fluid_sweep("freepath", "rfm2d_structure.toml", 0.6, 0.1, {27000},
+                                     {"hexagonal"}, 3, 2.5, 1.0, true,
+                                     {"Df-freepath", "alpha-structure"}));
+      p.sweeps.push_back(fluid_sweep("structure_l04", "rfm2d_structure.toml", 0.4, 0.1, {8000},
+                                     {"hexagonal"}, 3, 6.0, 1.0, true, {"Df-Sk"}));
+      p.sweeps.push_back(fluid_sweep("structure", "rfm2d_structure.toml", 0.2, 0.1, {3000},
+                                     {"hexagonal"}, 3, 20.0, 1.0, true, sk_claims));
+      p.sweeps.push_back(
+          ring_sweep("ring", {0.1}, {398, 631, 1000, 1585, 2512}, 3, 40.0, 20.0, ring_claims));
+      p.sweeps.push_back(ring_sweep("ring_eps", {0.5, 0.87, 0.99}, {398, 631, 1000, 1585}, 3, 30.0,
+                                    20.0, {"xi2-eps", "collapse"}));
+      p.sweeps.push_back(fluid_sweep("moments_phi", "rfm2d_structure.toml", 0.2, 0.1,
+                                     {500, 1000, 2000, 4000}, {"hexagonal"}, 3, 5.0, 1.0, true,
+                                     {"moments-phi", "alpha-phi"}));
+      p.sweeps.push_back(fluid_sweep("reference", "rfm2d_reference.toml", 0.2, 0.6, {2000}, starts,
+                                     3, 10.0, 1.0, false, ref_claims));
+      p.purpose =
+          "the thesis' systems from three seeds each: the ring at N = 512 for 220 s (past the "
+          "≈ 200 s the temperature takes to settle), ξ₂ and ξ_m over N = 398…2512 at ε = 0.1 "
+          "and ξ₂ over N = 398…1585 at ε = 0.5, 0.87, 0.99 after the thesis' 20 s relaxation "
+          "(20 s and 10 s sampled, not its 200–1000 s); S(k) at φ = 0.53 (L = 0.2 m) and "
+          "φ = 0.353 (L = 0.4 m); free paths at L = 0.6 m over 1.5 s; moments and tails "
+          "against φ = 0.088…0.707 at L = 0.2 m. Out of reach: N above 2512, φ = 0.177 at "
+          "L ≥ L_Eff = 0.48 m, the L = 0.8 m columns of Tables 4.1–4.3 and 5.2";
+      break;
+    case Budget::Full: {
+      const std::vector<int> sizes = {100, 158, 251, 398, 631, 1000, 1585, 2512, 3981, 6310, 10000};
+      p.sweeps.push_back(ring_sweep("ring", {0.1}, sizes, 3, 1020.0, 20.0, ring_claims));
+      p.sweeps.push_back(ring_sweep("ring_eps", {0.21, 0.37, 0.5, 0.6, 0.75, 0.87, 0.97, 0.99},
+                                    sizes, 3, 220.0, 20.0, {"xi2-eps", "collapse"}));
+      p.sweeps.push_back(ring_sweep("ring_n512", {0.1}, {512, 1024, 2048, 4096}, 3, 1020.0, 20.0,
+                                    {"T-ring-settle", "G1-bisection", "renormalisation"}));
+      p.sweeps.push_back(fluid_sweep("freepath", "rfm2d_structure.toml", 0.6, 0.1, {18000, 27000},
+                                     {"hexagonal"}, 3, 20.0, 1.0, true,
+                                     {"Df-freepath", "alpha-structure"}));
+      p.sweeps.push_back(fluid_sweep("structure_l08", "rfm2d_structure.toml", 0.8, 0.1,
+                                     {16000, 32000, 48000}, {"hexagonal"}, 3, 20.0, 1.0, true,
+                                     {"Df-Sk"}));
+      p.sweeps.push_back(fluid_sweep("structure_l04", "rfm2d_structure.toml", 0.4, 0.1,
+                                     {4000, 8000, 12000}, {"hexagonal"}, 3, 50.0, 1.0, true,
+                                     {"Df-Sk"}));
+      p.sweeps.push_back(fluid_sweep("structure", "rfm2d_structure.toml", 0.2, 0.1, {3000},
+                                     {"hexagonal"}, 3, 100.0, 1.0, true, sk_claims));
+      p.sweeps.push_back(fluid_sweep("moments_phi", "rfm2d_structure.toml", 0.2, 0.1,
+                                     {100, 500, 1000, 1500, 2000, 2500, 3000, 3500, 4000, 4500},
+                                     {"hexagonal"}, 3, 20.0, 1.0, true,
+                                     {"moments-phi", "alpha-phi"}));
+      p.sweeps.push_back(fluid_sweep("reference", "rfm2d_reference.toml", 0.2, 0.6, {2000}, starts,
+                                     3, 20.0, 1.0, false, ref_claims));
+      p.purpose =
+          "the thesis' own run lengths from three seeds: the ring 1020 s per size up to "
+          "N = 10⁴ and over ε, N = 512…4096 for the renormalisation, S(k) up to L = 0.8 m, "
+          "free paths at L = 0.6 m (a cluster job)";
+      break;
+    }
+  }
+  return p;
+}
+
+}  // namespace plan_detail
+
+}  // namespace gs

@@ -1,0 +1,200 @@
+// the reproduction plans: what each RFM budget runs, its projected cost on the measured cost
+// model, the seeds of every point, and the conditions plan.json gives the verdicts
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+
+#include "app/reproduce/plan.hpp"
+#include "binary.hpp"
+
+namespace gs {
+namespace {
+
+namespace fs = std::filesystem;
+
+const PlannedSweep* find_sweep(const ReproducePlan& p, const std::string& name) {
+  for (const auto& s : p.sweeps)
+    if (s.name == name) return &s;
+  return nullptr;
+}
+
+bool has_size(const PlannedSweep& s, int n) {
+  return std::any_of(s.conditions.points.begin(), s.conditions.points.end(),
+                     [n](const PlannedPoint& q) { return q.particles == n; });
+}
+
+TEST(ReproducePlan, PoolWallTimeIsListScheduling) {
+  // runs of 3, 1, 1, 1 h on two slots: the 3-hour run on one, the three short ones on the other
+  ReproducePlan p;
+  PlannedSweep a, b;
+  a.run_seconds = {3 * 3600.0, 3600.0};
+  b.run_seconds = {3600.0, 3600.0};
+  p.sweeps = {a, b};
+  EXPECT_DOUBLE_EQ(p.core_hours(), 6.0);
+  EXPECT_DOUBLE_EQ(p.wall_hours(2), 3.0);
+  EXPECT_DOUBLE_EQ(p.wall_hours(1), 6.0);
+  EXPECT_DOUBLE_EQ(p.longest_run_hours(), 3.0);
+  // sweep by sweep (under MPI): 3 h, then 1 h
+  EXPECT_DOUBLE_EQ(p.sweep_by_sweep_wall_hours(2), 4.0);
+  EXPECT_EQ(p.runs(), 4);
+}
+
+TEST(ReproducePlan, RunCostsFollowTheMeasuredCostModel) {
+  // each run's projection is N × steps × the cost a particle-step of its scene
+  const ReproducePlan p = make_plan("rfm", Budget::Standard);
+  for (const auto& s : p.sweeps) {
+    const auto& c = s.conditions;
+    ASSERT_EQ(s.run_seconds.size(),
+              c.points.size() * c.seeds.size() * std::max<std::size_t>(c.starts.size(), 1))
+        << s.name;
+    const PlannedPoint& q = c.points.front();
+    const double steps = c.duration / 1e-6 * q.particles;
+    const double cost = c.dimension == 1                    ? rfm_cost_ring(q.particles)
+                        : s.scene == "rfm2d_reference.toml" ? rfm_cost_fluid()
+                                                            : rfm_cost_dense(q.particles);
+    EXPECT_NEAR(s.run_seconds.front(), steps * cost, 1e-9 * steps * cost) << s.name;
+  }
+  // the ring's and the dense fluid's cost a particle-step grow with N; all lie within the
+  // measured 1.3e-8 … 4.3e-8 core-seconds
+  EXPECT_LT(rfm_cost_ring(512), rfm_cost_ring(3981));
+  EXPECT_LT(rfm_cost_dense(3000), rfm_cost_dense(27000));
+  for (double c : {rfm_cost_ring(512), rfm_cost_ring(3981), rfm_cost_fluid(), rfm_cost_dense(3000),
+                   rfm_cost_dense(27000)}) {
+    EXPECT_GT(c, 1.3e-8);
+    EXPECT_LT(c, 4.4e-8);
+  }
+}
+
+TEST(ReproducePlan, StandardFitsOneNightOnTwoCores) {
+  const ReproducePlan p = make_plan("rfm", Budget::Standard);
+  EXPECT_TRUE(p.resolves);
+  EXPECT_LE(p.wall_hours(2), 8.0) << p.core_hours() << " core-hours";
+  EXPECT_GT(p.wall_hours(2), 0.5 * p.core_hours());  // two slots busy: no idle core
+}
+
+TEST(ReproducePlan, QuickFitsAnHourOnTwoCores) {
+  const ReproducePlan p = make_plan("rfm", Budget::Quick);
+  EXPECT_LE(p.wall_hours(2), 1.0) << p.core_hours() << " core-hours";
+  const ReproducePlan smoke = make_plan("rfm", Budget::Smoke);
+  EXPECT_FALSE(smoke.resolves);
+  EXPECT_LE(smoke.wall_hours(2), 0.1);
+}
+
+TEST(ReproducePlan, EveryStandardPointFromThreeSeeds) {
+  for (Budget b : {Budget::Standard, Budget::Full}) {
+    const ReproducePlan p = make_plan("rfm", b);
+    for (const auto& s : p.sweeps) {
+      const auto& seeds = s.conditions.seeds;
+      EXPECT_GE(seeds.size(), 3u) << s.name;
+      EXPECT_EQ(std::set<std::uint64_t>(seeds.begin(), seeds.end()).size(), seeds.size());
+      // the seeds are swept: each is its own run
+      const bool swept = std::any_of(s.params.begin(), s.params.end(), [](const std::string& x) {
+        return x.rfind("preparation.seed=", 0) == 0;
+      });
+      EXPECT_TRUE(swept) << s.name;
+      EXPECT_FALSE(s.conditions.points.empty()) << s.name;
+    }
+  }
+}
+
+TEST(ReproducePlan, StandardRunsTheThesisSystems) {
+  const ReproducePlan p = make_plan("rfm", Budget::Standard);
+  // G₁ against the bisection at N = 2⁹, sampled past the ≈ 200 s the ring takes to settle
+  const PlannedSweep* n512 = find_sweep(p, "ring_n512");
+  ASSERT_NE(n512, nullptr);
+  EXPECT_TRUE(has_size(*n512, 512));
+  EXPECT_GE(n512->conditions.duration, 200.0);
+  // ξ₂: the thesis' sizes (N ≥ 398 on L′ = 1 m) after its 20 s of relaxation, at ε = 0.1 and
+  // three more restitutions
+  for (const char* name : {"ring", "ring_eps"}) {
+    const PlannedSweep* r = find_sweep(p, name);
+    ASSERT_NE(r, nullptr) << name;
+    EXPECT_GE(r->conditions.discard, 20.0);
+    EXPECT_GT(r->conditions.sampled(), 0.0);
+    for (const auto& q : r->conditions.points) {
+      EXPECT_GE(q.particles, 398);
+      EXPECT_DOUBLE_EQ(q.length, 1.0);
+    }
+  }
+  std::set<double> eps;
+  for (const char* name : {"ring", "ring_eps"})
+    for (const auto& q : find_sweep(p, name)->conditions.points) eps.insert(q.eps_n);
+  EXPECT_GE(eps.size(), 4u);
+  // free paths at the thesis' L = 0.6 m, φ = 0.53 (N = 27 000)
+  const PlannedSweep* fp = find_sweep(p, "freepath");
+  ASSERT_NE(fp, nullptr);
+  EXPECT_DOUBLE_EQ(fp->conditions.points.front().length, 0.6);
+  EXPECT_NEAR(fp->conditions.points.front().phi, 0.530, 0.001);
+  // S(k): φ = 0.53 at L = 0.2 m and φ = 0.353 at L = 0.4 m (Table 4.1, both above L_Eff)
+  EXPECT_NEAR(find_sweep(p, "structure")->conditions.points.front().phi, 0.530, 0.001);
+  EXPECT_NEAR(find_sweep(p, "structure_l04")->conditions.points.front().phi, 0.353, 0.001);
+  // the reference fluid from its three starts
+  EXPECT_EQ(find_sweep(p, "reference")->conditions.starts.size(), 3u);
+}
+
+TEST(ReproducePlan, PlanJsonCarriesTheConditions) {
+  const ReproducePlan p = make_plan("rfm", Budget::Standard);
+  const auto j = nlohmann::json::parse(plan_json(p, "gransim reproduce rfm --budget standard", 2));
+  EXPECT_NEAR(j.at("projected_wall_hours").get<double>(), p.wall_hours(2), 1e-12);
+  ASSERT_EQ(j.at("sweeps").size(), p.sweeps.size());
+  for (const auto& s : j.at("sweeps")) {
+    const auto& c = s.at("conditions");
+    for (const char* k : {"dimension", "claims", "points", "seeds", "starts", "duration_s",
+                          "discard_s", "sampled_s", "runs", "projected_core_hours"})
+      EXPECT_TRUE(c.contains(k)) << s.at("name") << " " << k;
+    EXPECT_DOUBLE_EQ(c.at("sampled_s").get<double>(),
+                     c.at("duration_s").get<double>() - c.at("discard_s").get<double>());
+    for (const auto& q : c.at("points")) {
+      for (const char* k : {"phi", "eps_n", "eps_t", "N"}) EXPECT_TRUE(q.contains(k));
+      EXPECT_TRUE(q.contains(c.at("dimension") == 1 ? "reduced_length" : "L"));
+    }
+  }
+  // the reference fluid: φ = Nπr²/L² = 0.353
+  const auto& ref = j.at("sweeps").back();
+  ASSERT_EQ(ref.at("name"), "reference");
+  EXPECT_NEAR(ref.at("conditions").at("points")[0].at("phi").get<double>(), 0.353, 0.001);
+  EXPECT_EQ(ref.at("conditions").at("seeds"), nlohmann::json::array({1, 2, 3}));
+  // the tapping plan carries none (its verdicts read the runs)
+  const auto t = nlohmann::json::parse(plan_json(make_plan("tapping", Budget::Quick), "x", 2));
+  EXPECT_FALSE(t.at("sweeps")[0].contains("conditions"));
+}
+
+TEST(ReproducePlan, RunsGetTheirPointFromTheSets) {
+  // each run's scene keys give its point: φ, ε, L, N as the conditions say
+  const ReproducePlan p = make_plan("rfm", Budget::Standard);
+  const PlannedSweep* fp = find_sweep(p, "freepath");
+  ASSERT_NE(fp, nullptr);
+  auto has = [&](const std::string& x) {
+    return std::find(fp->sets.begin(), fp->sets.end(), x) != fp->sets.end();
+  };
+  EXPECT_TRUE(has("box.width=0.6"));
+  EXPECT_TRUE(has("box.height=0.6"));
+  EXPECT_TRUE(has("species[0].count=27000"));
+  EXPECT_TRUE(has("material[0].eps_n=0.1"));
+  EXPECT_TRUE(has("material[0].eps_t=0.1"));
+  EXPECT_TRUE(has("scene.duration=2.5"));
+  EXPECT_TRUE(has("rfm.discard_time=1"));
+}
+
+TEST(ReproducePlan, FullBudgetPrintsItsClusterCommands) {
+  const fs::path dir = fs::temp_directory_path() / "gs_test_reproduce_full";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const auto o = testing::run_binary(
+      {"reproduce", "rfm", "--budget", "full", "--out", (dir / "study").string()}, dir / "log");
+  ASSERT_TRUE(o.exited) << o.output;
+  EXPECT_EQ(o.code, 0) << o.output;
+  EXPECT_NE(o.output.find("mpirun -np"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("sbatch -n"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("core-hours"), std::string::npos) << o.output;
+  EXPECT_FALSE(fs::exists(dir / "study" / "sweeps"));  // nothing was started
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace gs
