@@ -37,8 +37,8 @@ inline double steady_seconds() {
 /// the stage's name in run.json and in `gransim run --profile`
 constexpr std::string_view stage_name(Stage s) {
   constexpr std::array<std::string_view, kStageCount> names{
-      "drive",   "predict",      "broad_phase", "pairs",  "accelerate",
-      "kick",    "correct",      "predict_next", "place_next", "health"};
+      "drive", "predict", "broad_phase",  "pairs",      "accelerate",
+      "kick",  "correct", "predict_next", "place_next", "health"};
   return names[static_cast<std::size_t>(s)];
 }
 

@@ -35,8 +35,7 @@ class ContactModel {
   ForceStats evaluate(const World& w, const std::vector<PairKey>& candidates, ContactSet& cs,
                       ForceBuffer& f, double dt, ThreadTeam& team, std::uint64_t generation = 0,
                       ParticlePhase* then = nullptr) {
-    if (w.polygons())
-      return loop_.run(polygons_, w, candidates, cs, f, dt, team, generation, then);
+    if (w.polygons()) return loop_.run(polygons_, w, candidates, cs, f, dt, team, generation, then);
     return loop_.run(disks_, w, candidates, cs, f, dt, team, generation, then);
   }
   /// polygons: place particles [b, e) at their current state for the next evaluate(), from

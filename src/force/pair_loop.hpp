@@ -73,8 +73,7 @@ class PairLoop {
   template <class Ev>
   ForceStats parallel(Ev& ev, const World& w, const std::vector<PairKey>& cand,
                       const ContactSet& cs, ForceBuffer& f, double dt, ThreadTeam& team,
-                      bool reindex, bool from_touching, std::size_t to_place,
-                      ParticlePhase* then);
+                      bool reindex, bool from_touching, std::size_t to_place, ParticlePhase* then);
   static void clear_forces(ForceBuffer& f, std::size_t n);
   void note_touched(ForceBuffer& f, std::size_t n);
   void sums_from_touching(const World& w, ForceBuffer& f, std::size_t b, std::size_t e) const;

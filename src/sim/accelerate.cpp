@@ -345,7 +345,7 @@ class KickStage final : public StepStage {
  private:
   AccelArrays a_{};
   BroadPhase::SkinTest skin_;
-  std::atomic<bool> moved_{false};  ///< an OR: the same answer whatever the thread count
+  std::atomic<bool> moved_{false};        ///< an OR: the same answer whatever the thread count
   std::vector<double> block_sums_, pre_;  ///< the ring's noise: kicks per block, a before the mean
 };
 

@@ -139,7 +139,7 @@ class Simulation {
   ForceStats stats_;
   std::vector<std::uint64_t> noise_keys_;  ///< random force: stream keys per particle (cached)
   std::unique_ptr<StepExecutor> exec_ = make_executor(ExecutorKind::Fused);
-  StageList stages_;              ///< a step, in order (the constructor makes it)
+  StageList stages_;             ///< a step, in order (the constructor makes it)
   StageTrace* trace_ = nullptr;  ///< a test's record of each stage
   Vec2 gravity_;
   std::int64_t sort_every_ = 0;

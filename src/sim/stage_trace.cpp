@@ -27,8 +27,8 @@ std::string trace_number(double v) {
 }  // namespace
 
 const std::array<const char*, StageTrace::kFields>& StageTrace::field_names() {
-  static const std::array<const char*, kFields> names{
-      "x", "y", "th", "vx", "vy", "omega", "ax", "ay", "alpha", "fx", "fy", "tq"};
+  static const std::array<const char*, kFields> names{"x",  "y",  "th",    "vx", "vy", "omega",
+                                                      "ax", "ay", "alpha", "fx", "fy", "tq"};
   return names;
 }
 

@@ -81,10 +81,13 @@ class FusedExecutor final : public StepExecutor {
   StepStage* stand_in(StepStage& s, bool kick) {
     if (!kick) return &s;
     switch (s.id()) {
-      case Stage::Accelerate: return kick_.get();
+      case Stage::Accelerate:
+        return kick_.get();
       case Stage::Correct:
-      case Stage::PredictNext: return nullptr;
-      default: return &s;
+      case Stage::PredictNext:
+        return nullptr;
+      default:
+        return &s;
     }
   }
 

@@ -87,7 +87,7 @@ TEST(Executors, StagedAndFusedGiveTheSameBits) {
         Simulation fused = make_sim(s, ExecutorKind::Fused);
         std::size_t contacts = 0;  // at the ends of the runs
         const bool is_ring = name == std::string("ring");
-        const int steps = is_ring ? 100 : 10;  // the ring's steps are cheap
+        const int steps = is_ring ? 100 : 10;   // the ring's steps are cheap
         for (int part = 0; part < 4; ++part) {  // each part as run(steps) takes it
           EXPECT_EQ(StepInspector::first_difference(staged, fused, steps), "") << what;
           contacts += fused.contacts().keys.size();
@@ -177,7 +177,8 @@ TEST(Executors, TheFirstDifferenceIsNamedByStageParticleAndField) {
   };
   const Case cases[] = {
       {&verlet, Stage::Predict, 0, 5, &State::x, "step 0, stage predict, particle 5, field x: "},
-      {&gear, Stage::Correct, 3, 1717, &State::vx, "step 3, stage correct, particle 1717, field vx: "},
+      {&gear, Stage::Correct, 3, 1717, &State::vx,
+       "step 3, stage correct, particle 1717, field vx: "},
       {&polys, Stage::Accelerate, 2, 9, &State::alpha,
        "step 2, stage accelerate, particle 9, field alpha: "},
       {&polys, Stage::PredictNext, 4, 3, &State::y,

@@ -73,7 +73,8 @@ TEST(KickFusion, OnForDisksWithVelocityVerletOnly) {
   EXPECT_FALSE(StepInspector::kicks_in_force_pass(make_sim(gas(IntegratorKind::PositionVerlet))));
   SceneSpec pile = build::decagon_pile(40, 0.2, 0.4, 1);
   pile.integrator.kind = IntegratorKind::VelocityVerlet;
-  EXPECT_FALSE(StepInspector::kicks_in_force_pass(make_sim(pile)));  // polygons: the integrator's own correct()
+  EXPECT_FALSE(StepInspector::kicks_in_force_pass(
+      make_sim(pile)));  // polygons: the integrator's own correct()
   Simulation s = make_sim(gas());
   StepInspector::set_verlet_correction(s, VerletCorrection::HalfStepVelocity);
   EXPECT_FALSE(StepInspector::kicks_in_force_pass(s));

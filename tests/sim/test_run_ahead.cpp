@@ -161,7 +161,8 @@ TEST(RunAhead, RingWithAndWithoutNoise) {
     a.run(700);
     steps(b, 700);
     expect_same_state(a, b);
-    EXPECT_EQ(StepInspector::steps_predicted_ahead(a), expected_ahead(700, 0, 11, 0)) << "noise " << noise;
+    EXPECT_EQ(StepInspector::steps_predicted_ahead(a), expected_ahead(700, 0, 11, 0))
+        << "noise " << noise;
   }
 }
 

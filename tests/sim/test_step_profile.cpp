@@ -121,8 +121,8 @@ TEST(StepProfile, ShortStepsAreSampledAndStillAddUpToTheWallTime) {
 }
 
 TEST(StepProfile, NamesEveryStageOnce) {
-  const std::string names[] = {"drive",   "predict", "broad_phase",  "pairs",      "accelerate",
-                               "kick",    "correct", "predict_next", "place_next", "health"};
+  const std::string names[] = {"drive", "predict", "broad_phase",  "pairs",      "accelerate",
+                               "kick",  "correct", "predict_next", "place_next", "health"};
   for (std::size_t k = 0; k < kStageCount; ++k)
     EXPECT_EQ(stage_name(static_cast<Stage>(k)), names[k]);
 }
