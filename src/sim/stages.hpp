@@ -40,13 +40,13 @@ struct StepParts {
 /// one step (or the start's force evaluation) as the stages see it
 struct StepContext {
   Simulation& sim;
-  std::optional<StepParts> parts;  ///< made anew where a stage rebuilds them (the sort)
-  std::vector<Channel> ch;         ///< the integrator's channels over the state
-  std::int64_t index = 0;          ///< the force evaluation's number (the random force's stream)
-  bool start = false;              ///< the start: forces and accelerations only
-  bool may_ahead = false;          ///< nothing reads or edits the state before the next step
-  bool ahead = false;              ///< the executor's choice: this step predicts the next one
-  bool predicted = false;          ///< the last step predicted this one
+  std::optional<StepParts> parts{};  ///< made anew where a stage rebuilds them (the sort)
+  std::vector<Channel> ch{};         ///< the integrator's channels over the state
+  std::int64_t index = 0;            ///< the force evaluation's number (the random force's stream)
+  bool start = false;                ///< the start: forces and accelerations only
+  bool may_ahead = false;            ///< nothing reads or edits the state before the next step
+  bool ahead = false;                ///< the executor's choice: this step predicts the next one
+  bool predicted = false;            ///< the last step predicted this one
   const std::vector<PairKey>* candidates = nullptr;  ///< the broad phase's list
   StageTrace* trace = nullptr;                       ///< a test's record of each stage
   const StepParts& p() const { return *parts; }
