@@ -314,6 +314,7 @@ class KickStage final : public StepStage {
   bool by_range(const StepContext& c) const override { return !ring_noise(c.p()); }
   void prepare(StepContext& c) override {
     const StepParts& p = c.p();
+    p.integ.ranges().check_correct(c.ch, p.dt);  // what correct() would throw, thrown here
     skin_ = {};
     if (c.ahead && p.w.box != BoxKind::Ring1D) skin_ = p.broad.skin_test();
     if (skin_.n != p.w.size()) skin_ = {};
