@@ -9,17 +9,23 @@
 
 namespace gs {
 
-/// a step's stages, in the order a step runs them (docs/architecture.md, "One step")
+/// a step's stages, in the order a step runs them (docs/architecture.md, "One step"): each a
+/// slot of the profile, charged with the time of exactly what its name says
 enum class Stage : std::uint8_t {
   Drive,        ///< the time, the gravity of the moment, the random force's streams
   Predict,      ///< the integrator's prediction at t + Δt
   BroadPhase,   ///< candidate pairs
-  NarrowPhase,  ///< each candidate's contact geometry and contact law; the new contact set
-  Laws,         ///< each particle's contact forces summed, body forces, accelerations
-  Correct,      ///< the integrator's correction (run back to back: and the next prediction)
+  Pairs,        ///< each candidate's contact geometry and law, the new contact set, each
+                ///< particle's contact forces summed
+  Accelerate,   ///< body forces and each particle's acceleration
+  Kick,         ///< accelerations, velocity Verlet's kick and (run back to back) the next
+                ///< step's prediction in one pass over each block of disks
+  Correct,      ///< the integrator's correction
+  PredictNext,  ///< run back to back: the next step's prediction, made by the correction
+  PlaceNext,    ///< run back to back: the next step's polygons placed
   Health,       ///< drift removal, spatial sort, health checks, periodic re-wrapping
 };
-inline constexpr std::size_t kStageCount = 7;
+inline constexpr std::size_t kStageCount = 10;
 
 /// a monotonic clock in seconds: the profile's time source (a test gives its own, so that no
 /// test depends on how busy the machine is)
@@ -31,12 +37,13 @@ inline double steady_seconds() {
 /// the stage's name in run.json and in `gransim run --profile`
 constexpr std::string_view stage_name(Stage s) {
   constexpr std::array<std::string_view, kStageCount> names{
-      "drive", "predict", "broad_phase", "narrow_phase", "laws", "correct", "health"};
+      "drive", "predict", "broad_phase",  "pairs",      "accelerate",
+      "kick",  "correct", "predict_next", "place_next", "health"};
   return names[static_cast<std::size_t>(s)];
 }
 
 /// wall time spent in each stage, summed over the steps since the profile was cleared.
-/// Short steps are sampled: a step's eight clock reads cost about as much as a 1D ring's
+/// Short steps are sampled: a step's ten or so clock reads cost about as much as a 1D ring's
 /// step does in a few per cent, so where steps are shorter than kTimedStepMin one step in
 /// `stride` is timed and counts for `stride` (an unbiased estimate of the sum). The timed steps
 /// are picked by a hash of the step index, so that no period of the run (sorts, health

@@ -7,7 +7,6 @@
 
 #include "contact/contact_set.hpp"
 #include "core/parallel.hpp"
-#include "core/stage_clock.hpp"
 #include "force/laws/disk_pair.hpp"
 #include "force/laws/pair_evaluator.hpp"
 #include "force/laws/polygon_pair.hpp"
@@ -30,21 +29,17 @@ class ContactModel {
   /// Pairs are evaluated in parallel, then each particle's forces are summed over its pairs in
   /// candidate order, so the result is bitwise the same for any number of threads. `team`:
   /// which thread runs, places and sums what (its pass schedule and particle split, which this
-  /// pass's timings move). `after(b, e)`, if given, runs once the forces of particles [b, e)
-  /// are final, on the thread that summed them (each thread its own range, the team's particle
-  /// split, as in the integrators' loops): what depends on a particle's force alone, such
-  /// as its acceleration, is then computed where the force and the integrator's data are.
-  /// `clock`, if given, gets the first thread's laps: Stage::NarrowPhase once the pairs are
-  /// done and the contact set is made, Stage::Laws once its particles' forces are summed.
+  /// pass's timings move). `then`, if given, runs in the pair loop's particle phase
+  /// (ParticlePhase): what depends on a particle's force alone, such as its acceleration, is
+  /// then computed where the force and the integrator's data are.
   ForceStats evaluate(const World& w, const std::vector<PairKey>& candidates, ContactSet& cs,
                       ForceBuffer& f, double dt, ThreadTeam& team, std::uint64_t generation = 0,
-                      RangeFn after = {}, StageClock* clock = nullptr) {
-    if (w.polygons())
-      return loop_.run(polygons_, w, candidates, cs, f, dt, team, generation, after, clock);
-    return loop_.run(disks_, w, candidates, cs, f, dt, team, generation, after, clock);
+                      ParticlePhase* then = nullptr) {
+    if (w.polygons()) return loop_.run(polygons_, w, candidates, cs, f, dt, team, generation, then);
+    return loop_.run(disks_, w, candidates, cs, f, dt, team, generation, then);
   }
   /// polygons: place particles [b, e) at their current state for the next evaluate(), from
-  /// inside this evaluate()'s `after` (the pairs are done by then), once the caller has
+  /// inside this evaluate()'s particle phase (the pairs are done by then), once the caller has
   /// predicted the next step there (Simulation::run); every particle once, then
   /// placed_ahead(), and the next evaluate() does not place them again (one pass and, on
   /// the team, one barrier less)

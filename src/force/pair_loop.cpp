@@ -47,7 +47,7 @@ std::size_t PairLoop::parallel_pairs_from(bool cheap, std::size_t n) {
 template <class Ev>
 ForceStats PairLoop::run(Ev& ev, const World& w, const std::vector<PairKey>& cand, ContactSet& cs,
                          ForceBuffer& f, double dt, ThreadTeam& team, std::uint64_t generation,
-                         RangeFn after, StageClock* clock) {
+                         ParticlePhase* then) {
   static_assert(!Ev::kCheap || !Ev::kTorque, "the sums from the touching pairs add no torques");
   const std::size_t n = w.size();
   const std::size_t ncand = cand.size();
@@ -64,7 +64,7 @@ ForceStats PairLoop::run(Ev& ev, const World& w, const std::vector<PairKey>& can
     const bool from_touching = Ev::kCheap && few_touched(cs, ncand);
     const bool reindex = !from_touching && (generation == 0 || generation != indexed_generation_ ||
                                             n != indexed_n_ || ncand != indexed_count_);
-    st = parallel(ev, w, cand, cs, f, dt, team, reindex, from_touching, to_place, after, clock);
+    st = parallel(ev, w, cand, cs, f, dt, team, reindex, from_touching, to_place, then);
     if (reindex) {
       indexed_generation_ = generation;
       indexed_n_ = n;
@@ -73,8 +73,9 @@ ForceStats PairLoop::run(Ev& ev, const World& w, const std::vector<PairKey>& can
   } else {
     ev.place(w, 0, to_place);
     st = serial(ev, w, cand, cs, f, dt);
-    if (clock) clock->lap(Stage::NarrowPhase);  // the serial loop sums each pair as it goes
-    if (after) parallel_ranges(team, n, kParallelMinCheap, after);
+    if (then != nullptr)  // the serial loop summed each pair as it went
+      parallel_ranges(team, n, kParallelMinCheap,
+                      [then](std::size_t b, std::size_t e) { then->run(b, e); });
   }
   cs.replace(next_);
   cs.degenerate += st.degenerate;
@@ -175,8 +176,8 @@ void PairLoop::note_touched(ForceBuffer& f, std::size_t n) {
 template <class Ev>
 ForceStats PairLoop::parallel(Ev& ev, const World& w, const std::vector<PairKey>& cand,
                               const ContactSet& cs, ForceBuffer& f, double dt, ThreadTeam& team,
-                              bool reindex, bool from_touching, std::size_t to_place, RangeFn after,
-                              StageClock* clock) {
+                              bool reindex, bool from_touching, std::size_t to_place,
+                              ParticlePhase* then) {
   const std::size_t n = w.size();
   const std::size_t ncand = cand.size();
   const double rc = ev.common_radius();
@@ -205,7 +206,7 @@ ForceStats PairLoop::parallel(Ev& ev, const World& w, const std::vector<PairKey>
       schedule.place(tid, nt, [&](std::size_t b, std::size_t e) { ev.place(w, b, e); });
 #pragma omp barrier
     }
-    // the time this thread spends on its own particles (summing, the callback): the next
+    // the time this thread spends on its own particles (summing, the particle phase): the next
     // step's particles are split by it
     double t_particles = 0.0;
     auto run_chunk = [&](std::size_t c) {
@@ -253,7 +254,6 @@ ForceStats PairLoop::parallel(Ev& ev, const World& w, const std::vector<PairKey>
     if (from_touching) {  // the sums read every thread's compacted pairs
 #pragma omp barrier
     }
-    if (clock && tid == 0) clock->lap(Stage::NarrowPhase);
     const double tp1 = wall_seconds();  // (the barrier's wait is no particle's work)
     if (from_touching) {
       sums_from_touching(w, f, p_begin, p_end);
@@ -279,8 +279,7 @@ ForceStats PairLoop::parallel(Ev& ev, const World& w, const std::vector<PairKey>
         if constexpr (Ev::kTorque) f.tq[p] = tq;
       }
     }
-    if (clock && tid == 0) clock->lap(Stage::Laws);
-    if (after) after(p_begin, p_end);
+    if (then != nullptr) then->run(p_begin, p_end);
     t_particles += wall_seconds() - tp1;
     schedule.record_particles(tid, nt, p_end - p_begin, t_particles);
   }  // omp parallel
@@ -345,9 +344,9 @@ void PairLoop::sums_from_touching(const World& w, ForceBuffer& f, std::size_t b,
 // the loop for each model's evaluator
 template ForceStats PairLoop::run(PolygonPairEvaluator&, const World&, const std::vector<PairKey>&,
                                   ContactSet&, ForceBuffer&, double, ThreadTeam&, std::uint64_t,
-                                  RangeFn, StageClock*);
+                                  ParticlePhase*);
 template ForceStats PairLoop::run(DiskPairEvaluator&, const World&, const std::vector<PairKey>&,
                                   ContactSet&, ForceBuffer&, double, ThreadTeam&, std::uint64_t,
-                                  RangeFn, StageClock*);
+                                  ParticlePhase*);
 
 }  // namespace gs

@@ -8,7 +8,6 @@
 
 #include "contact/contact_set.hpp"
 #include "core/parallel.hpp"
-#include "core/stage_clock.hpp"
 #include "core/team.hpp"
 #include "force/laws/pair_evaluator.hpp"
 #include "world/world.hpp"
@@ -43,15 +42,27 @@ struct ForceStats {
   double max_overlap_rel = 0.0;  ///< the same over the smaller grain's radius
 };
 
+/// the pair loop's particle phase: what runs on a thread's particles [b, e) once their contact
+/// forces are final, on the thread that summed them (each thread its own range, the team's
+/// particle split): the by-range stages of a step (sim/step_executor.hpp)
+class ParticlePhase {
+ public:
+  virtual void run(std::size_t b, std::size_t e) = 0;
+
+ protected:
+  ~ParticlePhase() = default;
+};
+
 /// the loop's buffers, kept from step to step; run() is instantiated for each evaluator
 class PairLoop {
  public:
   /// every contact among the candidates by `ev`, the contact set replaced by the new one, f
-  /// set to the contact forces (ContactModel::evaluate says what the arguments mean)
+  /// set to the contact forces (ContactModel::evaluate says what the arguments mean);
+  /// `then`, if given, runs in the particle phase
   template <class Ev>
   ForceStats run(Ev& ev, const World& w, const std::vector<PairKey>& cand, ContactSet& cs,
                  ForceBuffer& f, double dt, ThreadTeam& team, std::uint64_t generation,
-                 RangeFn after, StageClock* clock);
+                 ParticlePhase* then);
   /// from how many candidate pairs run() takes the parallel way (more than one thread)
   static std::size_t parallel_pairs_from(bool cheap, std::size_t particles);
 
@@ -62,8 +73,7 @@ class PairLoop {
   template <class Ev>
   ForceStats parallel(Ev& ev, const World& w, const std::vector<PairKey>& cand,
                       const ContactSet& cs, ForceBuffer& f, double dt, ThreadTeam& team,
-                      bool reindex, bool from_touching, std::size_t to_place, RangeFn after,
-                      StageClock* clock);
+                      bool reindex, bool from_touching, std::size_t to_place, ParticlePhase* then);
   static void clear_forces(ForceBuffer& f, std::size_t n);
   void note_touched(ForceBuffer& f, std::size_t n);
   void sums_from_touching(const World& w, ForceBuffer& f, std::size_t b, std::size_t e) const;

@@ -17,6 +17,22 @@ namespace gs {
 
 namespace {
 
+// a stage of the Simulation's own (the drive, what runs between steps): a whole pass
+class OwnStage final : public StepStage {
+ public:
+  using Runs = bool (*)(Simulation&, const StepContext&);
+  using Pass = void (*)(Simulation&, StepContext&);
+  OwnStage(Stage id, Runs runs, Pass pass) : id_(id), runs_(runs), pass_(pass) {}
+  Stage id() const override { return id_; }
+  bool runs(const StepContext& c) const override { return runs_(c.sim, c); }
+  void pass(StepContext& c) override { pass_(c.sim, c); }
+
+ private:
+  Stage id_;
+  Runs runs_;
+  Pass pass_;
+};
+
 // velocity Verlet corrects disks by the kick an executor may apply inside its force pass, and
 // polygons from the half-step velocity
 IntegratorSettings integrator_settings(const SimSettings& s, const World& w) {
@@ -43,12 +59,54 @@ Simulation::Simulation(World w, const SimSettings& settings, BroadPhaseKind bp)
   if (d.kind == DriveKind::RandomForce && w_.box != BoxKind::Ring1D)
     drift_trigger_ = Trigger::every_steps(d.com_removal_every);
   health_trigger_ = Trigger::every_steps(settings_.health.check_every);
+  // a step: what runs between steps (the sort), the drive, the physics, the constraints
+  stages_.push_back(std::make_unique<OwnStage>(
+      Stage::Health,
+      [](Simulation& sim, const StepContext& c) {
+        return !c.start && sim.sorts_before(sim.w_.s.step);
+      },
+      [](Simulation& sim, StepContext& c) {
+        sim.sort_particles();  // slots in cell order: the broad phase and the arrays anew
+        c.parts.emplace(sim.parts());
+        c.ch = sim.channels();
+      }));
+  stages_.push_back(std::make_unique<OwnStage>(
+      Stage::Drive, [](Simulation&, const StepContext&) { return true; },
+      [](Simulation& sim, StepContext& c) {
+        // the step ends at t + Δt: the drive of that moment (the start: of the moment)
+        if (!c.start) sim.w_.s.t = static_cast<double>(sim.w_.s.step + 1) * sim.dt_;
+        sim.drive();
+      }));
+  stages_.push_back(make_predict_stage());
+  stages_.push_back(make_broad_phase_stage());
+  stages_.push_back(make_pairs_stage());
+  stages_.push_back(make_accelerate_stage());
+  stages_.push_back(make_correct_stage());
+  stages_.push_back(make_predict_next_stage());
+  stages_.push_back(make_place_next_stage());
+  stages_.push_back(std::make_unique<OwnStage>(
+      Stage::Health, [](Simulation&, const StepContext& c) { return !c.start; },
+      [](Simulation& sim, StepContext&) { sim.constrain(); }));
   // forces at the initial state start the integrator
-  drive();
-  exec_->run(parts(), broad_->update(w_, team_), {}, w_.s.step, false, nullptr);
+  evaluate_start();
   auto ch = channels();
   integ_->init(ch, dt_);
   take_energy_yardstick();
+}
+
+StepContext Simulation::context(bool start) {
+  StepContext c{*this};
+  c.parts.emplace(parts());
+  c.ch = channels();
+  c.start = start;
+  c.index = start ? w_.s.step : w_.s.step + 1;
+  c.trace = trace_;
+  return c;
+}
+
+void Simulation::evaluate_start() {
+  StepContext c = context(true);
+  exec_->run(stages_, c, nullptr);
 }
 
 // the energy yardstick of the blow-up check: 5% of the start's kinetic + elastic energy, or of
@@ -81,10 +139,6 @@ double Simulation::mechanical_energy() const {
   for (std::size_t i = 0; i < w_.size(); ++i)
     e -= w_.mass[i] * (gravity_.x * w_.s.x[i] + gravity_.y * w_.s.y[i]);
   return e;
-}
-
-void Simulation::set_verlet_correction(VerletCorrection c) {
-  if (auto* vv = dynamic_cast<VelocityVerlet*>(integ_.get())) vv->set_correction(c);
 }
 
 bool Simulation::driven() const { return settings_.drive.kind != DriveKind::None; }
@@ -121,13 +175,12 @@ void Simulation::run(std::int64_t n) {
 }
 
 // may step `from`'s correction predict the next step? Only inside run() (nothing outside sees
-// the state between the two steps), where the executor can (StepExecutor::predicts_ahead), and
-// where nothing between the steps reads or edits the state: no drift
-// removal, health check or wrapping after `from`, no sort before the next step
+// the state between the two steps), and where nothing between the steps reads or edits the
+// state: no drift removal, health check or wrapping after `from`, no sort before the next
+// step (the executor decides whether it can)
 bool Simulation::may_predict_ahead(std::int64_t from) const {
   const std::int64_t next = from + 1;  // the step count once `from` is done
-  return exec_->predicts_ahead(parts()) && !removes_drift_after(next) &&
-         !checks_health_after(next) && !sorts_before(next);
+  return !removes_drift_after(next) && !checks_health_after(next) && !sorts_before(next);
 }
 
 bool Simulation::removes_drift_after(std::int64_t step) const {
@@ -142,40 +195,24 @@ bool Simulation::sorts_before(std::int64_t step) const {
   return step > 0 && sort_trigger_.at_step(step);
 }
 
-// one step, stage by stage; the stages' wall times go to profile()
+// one step: the list of stages, run by the executor, which charges each stage's wall time to
+// profile()
 void Simulation::advance(bool then_predict) {
   ++profile_.steps;
+  StepContext c = context(false);
+  c.may_ahead = then_predict && may_predict_ahead(w_.s.step);
   StageClock clock(profile_, w_.s.step);
-  if (sorts_before(w_.s.step)) sort_particles();  // between steps: slots in cell order
-  clock.lap(Stage::Health);
-  // the step ends at t + Δt: the drive of that moment
-  w_.s.t = static_cast<double>(w_.s.step + 1) * dt_;
-  drive();
-  clock.lap(Stage::Drive);
-  // positions and velocities at t + Δt, unless the last step's correction predicted them
-  auto ch = channels();
-  if (ahead_)
-    ++ahead_steps_;
-  else
-    integ_->predict(ch, dt_, team_);
-  ahead_ = false;
-  integ_->ranges().check_correct(ch, dt_);  // here: nothing may throw inside the force pass
-  clock.lap(Stage::Predict);
-  const std::vector<PairKey>& candidates = broad_->update(w_, team_);
-  clock.lap(Stage::BroadPhase);
-  // narrow phase → laws → correct, by the executor (Fused: with the next step following at
-  // once, the correction predicts it too, `ahead`)
-  const bool ahead = then_predict && may_predict_ahead(w_.s.step);
-  exec_->run(parts(), candidates, ch, w_.s.step + 1, ahead, &clock);
+  exec_->run(stages_, c, &clock);
+}
+
+// the step is done: drift removal every K steps, the periodic health check
+void Simulation::constrain() {
   ++w_.s.step;
-  ahead_ = ahead;
-  // constraints and health: drift removal every K steps, the periodic health check
   if (removes_drift_after(w_.s.step)) remove_com_velocity(w_);
   if (checks_health_after(w_.s.step)) {
     health_check();
     w_.rewrap();  // periodic: keep |x| within 32 box lengths (image shifts fit in 8 bits)
   }
-  clock.lap(Stage::Health);
 }
 
 // every grain at rest where it is; the channels' velocities through the integrator (which keeps

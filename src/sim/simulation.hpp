@@ -1,6 +1,5 @@
 // the simulation: owns the World and the stages of a step, and reads like the pipeline
 #pragma once
-#include <functional>
 #include <memory>
 #include <utility>
 #include <vector>
@@ -37,13 +36,12 @@ class Simulation {
   /// run that blew up between two checks is not reported as completed
   void health_check();
 
-  /// advance one time step: drive → predict → broad phase → narrow phase → laws → correct →
-  /// constraints/health (docs/architecture.md, "One step")
+  /// advance one time step: its list of stages (sort → drive → predict → broad phase → pairs
+  /// → accelerate → correct → constraints/health; docs/architecture.md, "One step")
   void step() { advance(false); }
   /// advance n steps: bitwise n × step(), but where nothing reads or edits the state between
-  /// two of them (no drift removal, health check or sort between), the Fused executor's
-  /// correction predicts the next step too, particle by particle inside the force pass
-  /// (velocity Verlet's kick on disks; Gear 6): one pass over the state less per step
+  /// two of them (no drift removal, health check or sort between), the correction may
+  /// predict the next step too (sim/step_executor.hpp): one pass over the state less per step
   void run(std::int64_t n);
 
   const SimSettings& settings() const { return settings_; }
@@ -93,41 +91,29 @@ class Simulation {
     energy_ref_ = ref;
     energy_slack_ = slack;
   }
-  /// how the step's narrow phase → laws → correct run (ExecutorKind; Fused unless set): the
-  /// same bits either way. Between steps
-  void set_executor(ExecutorKind k) { exec_ = make_executor(k); }
-  ExecutorKind executor() const { return exec_->kind(); }
-  /// is velocity Verlet's correction a kick inside the acceleration pass (Fused, disks)?
-  bool kicks_in_force_pass() const { return exec_->kicks_in_pass(parts()); }
-  /// velocity Verlet's correction (disks: the kick, polygons: from the half-step velocity, by
-  /// default); the two differ by round-off. Between steps; other schemes have one form only
-  void set_verlet_correction(VerletCorrection c);
-  /// how many steps so far took their prediction from the previous step's kick (run())
-  std::uint64_t steps_predicted_ahead() const { return ahead_steps_; }
   /// wall time per stage of the steps so far (or since clear_profile())
   const StepProfile& profile() const { return profile_; }
   void clear_profile() { profile_.clear(); }
-  /// steps shorter than `seconds` are sampled (StepProfile; by default 50 µs); 0: every step
-  /// is timed
-  void sample_steps_under(double seconds) {
-    profile_.timed_step_min = seconds;
-    profile_.stride = 1;
-  }
-  /// time the stages on `clock` (steady_seconds by default)
-  void time_profile_on(ClockSeconds clock) { profile_.now = clock; }
   /// does anything drive the system (gravity, pulses, noise)?
   bool driven() const;
   /// can the mechanical energy only decrease (no drive, or constant gravity)?
   bool conservative_drive() const;
 
  private:
-  /// what the executor's stages work on
+  friend class StepInspector;  // tests: the executor, the stages, the profile's clock
+  /// what the stages work on
   StepParts parts() const;
   /// the drive stage at the current time: gravity_, the random force's stream keys
   void drive();
   /// one step; `then_predict`: the next step follows at once (run())
   void advance(bool then_predict);
+  /// the stages' context of one step (`start`: the forces and accelerations of a new state)
+  StepContext context(bool start);
+  /// the forces and accelerations at the state as it is (the constructor, a restart)
+  void evaluate_start();
   bool may_predict_ahead(std::int64_t from) const;
+  /// the step's count, its drift removal and health check (the constraints stage)
+  void constrain();
   /// what step() does around step `step` (the step count after it): the drift removal and the
   /// health check after it, the spatial sort before the next
   bool removes_drift_after(std::int64_t step) const;
@@ -153,8 +139,8 @@ class Simulation {
   ForceStats stats_;
   std::vector<std::uint64_t> noise_keys_;  ///< random force: stream keys per particle (cached)
   std::unique_ptr<StepExecutor> exec_ = make_executor(ExecutorKind::Fused);
-  bool ahead_ = false;  ///< inside run(): the state already holds the next step's prediction
-  std::uint64_t ahead_steps_ = 0;  ///< steps that took their prediction from the last kick
+  StageList stages_;             ///< a step, in order (the constructor makes it)
+  StageTrace* trace_ = nullptr;  ///< a test's record of each stage
   Vec2 gravity_;
   std::int64_t sort_every_ = 0;
   // when the jobs between steps run: slots re-sorted in cell order before a step, the random

@@ -18,9 +18,7 @@ void Simulation::restore_contacts(ContactSet c) {
 void Simulation::restart_from_state() {
   // as the constructor does, on the World as it now is
   contacts_ = ContactSet{};
-  ahead_ = false;
-  drive();
-  exec_->run(parts(), broad_->update(w_, team_), {}, w_.s.step, false, nullptr);
+  evaluate_start();
   auto ch = channels();
   integ_->init(ch, dt_);
   take_energy_yardstick();

@@ -1,399 +1,142 @@
 #include "sim/step_executor.hpp"
 
-#include <algorithm>
-#include <atomic>
-#include <cmath>
-#include <optional>
 #include <stdexcept>
-#include <type_traits>
+#include <vector>
 
 #include "core/parallel.hpp"
-#include "drive/random_force.hpp"
 #include "integrate/range_stepping.hpp"
-#include "integrate/vv_kernel.hpp"
+#include "sim/stage_trace.hpp"
 
 namespace gs {
 namespace {
 
-// what the acceleration pass reads and writes, as plain arrays
-struct AccelArrays {
-  const double *fx, *fy, *tq, *inv_mass, *inv_inertia, *mass;
-  const std::uint64_t* keys;
-  double *ax, *ay, *alpha;
-  double *vx, *vy;      ///< the kick's velocities (fused)
-  double c_new, c_old;  ///< the kick v += c_new·a_{n+1} − c_old·a_n, s (fused)
-  double *qx, *qy;      ///< the positions the next step's prediction advances (ahead)
-  double dt;            ///< Δt, s
-  bool ahead;           ///< after the kick, the next step's prediction (vv_predict_dof)
-  bool half;            ///< ... of the half-step velocity (KickForm::predict_half)
-  bool prefetch;        ///< state beyond the caches: the kick's lines fetched during the noise
-  BroadPhase::SkinTest skin;  ///< ahead: the broad phase's displacement test, made here (x0)
-  Vec2 g;
-  double sigma;
-  std::int64_t index;
-};
-
-// from this many particles on the state outgrows the L2 cache (≈ 100 B per disk): the fused
-// kick fetches its lines ahead
-constexpr std::size_t kPrefetchFrom = 32768;
-
-// accelerations of particles [b, e): contact force, gravity and the random kick of the step;
-// returns Σ m·kick over the range (the ring's momentum kick, for its mean)
-template <bool kNoise, bool kRing, bool kSpin>
-double accelerate(const AccelArrays& a, std::size_t b, std::size_t e) {
-  // the arrays and constants as restrict locals: a store into one output may then not be
-  // taken to change an input or a constant, which would be reloaded for every particle
-  const double* __restrict fx = a.fx;
-  const double* __restrict fy = a.fy;
-  const double* __restrict im_ = a.inv_mass;
-  const std::uint64_t* __restrict keys = a.keys;
-  double* __restrict axo = a.ax;
-  double* __restrict ayo = a.ay;
-  const double gx = a.g.x, gy = a.g.y, sigma = a.sigma;
-  const std::int64_t index = a.index;
-  double kick_sum = 0.0;
-  const ZigguratTables& zt = ZigguratTables::get();
-  // the normals of a sub-block first, its common draws in one pass without branches
-  // (noise_normals_block): with the rare rejections inline this loop spilled registers and
-  // overlapped few particles' draws
-  constexpr std::size_t kSub = 64;
-  alignas(64) double z0s[kNoise ? kSub : 1], z1s[kNoise ? kSub : 1];
-  const std::size_t sub = kNoise ? kSub : e - b;  // without noise: one block
-  for (std::size_t k = b; k < e; k += sub) {
-    const std::size_t m = std::min(sub, e - k);
-    if constexpr (kNoise) noise_normals_block(zt, keys + k, index, kRing, m, z0s, z1s);
-    for (std::size_t q = 0; q < m; ++q) {
-      const std::size_t i = k + q;
-      const double im = im_[i];
-      double ax = fx[i] * im + gx;
-      double ay = kRing ? 0.0 : fy[i] * im + gy;
-      if constexpr (kNoise) {
-        const double ex = sigma * z0s[q] * im;
-        ax += ex;
-        if constexpr (kRing)
-          kick_sum += ex * a.mass[i];
-        else
-          ay += sigma * z1s[q] * im;
-      }
-      axo[i] = ax;
-      if constexpr (!kRing) ayo[i] = ay;
-      if constexpr (kSpin) a.alpha[i] = a.tq[i] * a.inv_inertia[i];
-    }
-  }
-  return kick_sum;
-}
-
-// the integrator's kick v += c_new·a_new − c_old·a_old, then a ← a_new, over one channel's
-// [0, m) (vectorises); kAhead: then the next step's prediction of the same DOFs, as
-// VelocityVerlet::predict would make it (Simulation::run: one pass over the state less)
-template <bool kAhead, bool kHalf>
-void kick_block(std::size_t m, double c_new, double c_old, double dt, const double* __restrict an,
-                double* __restrict a, double* __restrict v, double* __restrict q) {
-  for (std::size_t k = 0; k < m; ++k) {
-    double vk = vv_kick_dof(v[k], an[k], a[k], c_new, c_old);
-    a[k] = an[k];
-    if constexpr (kAhead) {
-      double qk = q[k];
-      vv_predict_dof<kHalf>(dt, an[k], qk, vk);
-      q[k] = qk;
-    }
-    v[k] = vk;
-  }
-}
-void kick_block(const AccelArrays& a, std::size_t m, const double* an, double* acc, double* v,
-                double* q) {
-  if (!a.ahead)
-    kick_block<false, false>(m, a.c_new, a.c_old, a.dt, an, acc, v, q);
-  else if (a.half)
-    kick_block<true, true>(m, a.c_new, a.c_old, a.dt, an, acc, v, q);
-  else
-    kick_block<true, false>(m, a.c_new, a.c_old, a.dt, an, acc, v, q);
-}
-
-// has a particle of the block [k, k + m) moved beyond the broad phase's skin? (a.skin, ahead:
-// the positions just predicted, still in the L1 cache)
-bool skin_moved_block(const AccelArrays& a, std::size_t k, std::size_t m) {
-  const double* __restrict x = a.qx + k;
-  const double* __restrict y = a.qy + k;
-  const double* __restrict x0 = a.skin.x0 + k;
-  const double* __restrict y0 = a.skin.y0 + k;
-  const double lim2 = a.skin.lim2;
-  int moved = 0;
-  for (std::size_t q = 0; q < m; ++q) moved |= skin_moved(x[q] - x0[q], y[q] - y0[q], lim2);
-  return moved != 0;
-}
-
-// disks with the fused kick: the accelerations of a block into a buffer that stays in the L1
-// cache, then the kick over the block, which still sees a_n (the noise loop is scalar and full
-// of rare branches, and a kick inside it would run at its pace); ahead, with
-// a.skin, the broad phase's displacement test of the predicted block too (returned: has any
-// particle of [b, e) moved beyond the skin?)
-template <bool kNoise, bool kRing>
-bool accelerate_kick(const AccelArrays& a, std::size_t b, std::size_t e) {
-  const bool test = a.skin.x0 != nullptr;  // given only ahead, disks in a plane
-  bool moved = false;
-  constexpr std::size_t kBlock = 256, kSub = 32;
-  alignas(64) double bx[kBlock], by[kBlock];
-  AccelArrays to = a;  // particle k + q of `a` is q of `to`
-  to.ax = bx;
-  to.ay = by;
-  for (std::size_t k = b; k < e; k += kBlock) {
-    const std::size_t m = std::min(kBlock, e - k);
-    to.fx = a.fx + k;
-    to.fy = a.fy + k;
-    to.inv_mass = a.inv_mass + k;
-    to.mass = a.mass + k;
-    if (kNoise) to.keys = a.keys + k;
-    // the kick's lines of the block are fetched while the noise is drawn (the noise loop is
-    // compute bound; at 10⁶ disks the kick otherwise waits on memory)
-    for (std::size_t q = 0; q < m; q += a.prefetch ? kSub : m) {
-      if (!a.prefetch) {
-        accelerate<kNoise, kRing, false>(to, 0, m);
-        break;
-      }
-      accelerate<kNoise, kRing, false>(to, q, std::min(m, q + kSub));
-      for (std::size_t l = k + q; l < k + std::min(m, q + kSub); l += 8) {
-        __builtin_prefetch(a.ax + l, 1);
-        __builtin_prefetch(a.vx + l, 1);
-        if (a.ahead) __builtin_prefetch(a.qx + l, 1);
-        if constexpr (!kRing) {
-          __builtin_prefetch(a.ay + l, 1);
-          __builtin_prefetch(a.vy + l, 1);
-          if (a.ahead) __builtin_prefetch(a.qy + l, 1);
-        }
-        if (test) {
-          __builtin_prefetch(a.skin.x0 + l);
-          __builtin_prefetch(a.skin.y0 + l);
-        }
-      }
-    }
-    kick_block(a, m, bx, a.ax + k, a.vx + k, a.qx + k);
-    if (!kRing) kick_block(a, m, by, a.ay + k, a.vy + k, a.qy + k);
-    if (test && !moved) moved = skin_moved_block(a, k, m);
-  }
-  return moved;
-}
-
-// the 1D ring's accelerations with noise: the kicks' mean momentum is removed, summed over
-// fixed blocks and added in block order (T.2.18), so this pass needs every particle's kick
-// before any acceleration is final: the first pass writes them to `pre`, the second the
-// final ones (and, `kick`, the integrator's kick while a_n is still in ax)
-void accelerate_ring_noise(const ThreadTeam& team, const AccelArrays& a, std::size_t n, bool kick,
-                           std::vector<double>& block_sums, std::vector<double>& pre) {
-  block_sums.assign((n + kSumBlock - 1) / kSumBlock, 0.0);
-  pre.resize(n);
-  AccelArrays first = a;
-  first.ax = pre.data();
-  parallel_chunks(n, kParallelMinCheap, kSumBlock, [&](std::size_t b, std::size_t e) {
-    for (std::size_t k = b; k < e; k += kSumBlock)
-      block_sums[k / kSumBlock] =
-          accelerate<true, true, false>(first, k, std::min(e, k + kSumBlock));
-  });
-  double mean = 0.0;
-  for (double m : block_sums) mean += m;
-  if (n > 0) mean /= static_cast<double>(n);
-  parallel_ranges(team, n, kParallelMinCheap, [&](std::size_t b, std::size_t e) {
-    const double* __restrict p = pre.data();
-    const double* __restrict im = a.inv_mass;
-    double* __restrict ax = a.ax;
-    if (!kick) {
-      for (std::size_t i = b; i < e; ++i) ax[i] = p[i] - mean * im[i];
-      return;
-    }
-    // the final accelerations of [b, e) in blocks that stay in the L1 cache, each kicked (and
-    // predicted, ahead) as accelerate_kick's blocks are
-    constexpr std::size_t kBlock = 256;
-    alignas(64) double an[kBlock];
-    for (std::size_t k = b; k < e; k += kBlock) {
-      const std::size_t m = std::min(kBlock, e - k);
-      for (std::size_t q = 0; q < m; ++q) an[q] = p[k + q] - mean * im[k + q];
-      kick_block(a, m, an, ax + k, a.vx + k, a.qx + k);
-    }
-  });
-}
-
-// a lap of the step's clock, where there is one
 void lap(StageClock* clock, Stage s) {
   if (clock != nullptr) clock->lap(s);
 }
 
-// the acceleration pass's arrays over the parts (the force buffer sized for them); `form`,
-// `ahead`, `skin`: the fused kick's
-AccelArrays accel_arrays(const StepParts& p, std::int64_t index, const KickForm& form = {},
-                         bool ahead = false, BroadPhase::SkinTest skin = {}) {
-  World& w = p.w;
-  State& s = w.s;
-  const std::size_t n = w.size();
-  const bool noise = p.drive.kind == DriveKind::RandomForce;
-  p.forces.tq.resize(w.polygons() ? n : 0);  // evaluate() sizes them too, maybe later
-  p.forces.fx.resize(n);
-  p.forces.fy.resize(n);
-  return {p.forces.fx.data(),
-          p.forces.fy.data(),
-          p.forces.tq.data(),
-          w.inv_mass.data(),
-          w.inv_inertia.data(),
-          w.mass.data(),
-          noise ? p.noise_keys.data() : nullptr,
-          s.ax.data(),
-          s.ay.data(),
-          s.alpha.data(),
-          s.vx.data(),
-          s.vy.data(),
-          form.new_frac * p.dt,
-          form.old_frac * p.dt,
-          s.x.data(),
-          s.y.data(),
-          p.dt,
-          ahead,
-          form.predict_half,
-          n >= kPrefetchFrom,
-          skin,
-          p.gravity,
-          noise ? std::sqrt(2.0 * p.drive.D / p.dt) : 0.0,  // T.2.16
-          index};
-}
-
-// body(noise, ring, spin) with the scene's three answers as compile-time constants: the
-// acceleration loops are free of the branches the other cases need
-template <class Body>
-void dispatch(const StepParts& p, Body&& body) {
-  using T = std::true_type;
-  using F = std::false_type;
-  const bool noise = p.drive.kind == DriveKind::RandomForce;
-  const bool ring = p.w.box == BoxKind::Ring1D;  // x only: no ay (and no torques, disks)
-  const bool spin = p.w.polygons();              // polygons: contact torques
-  if (noise) {
-    if (ring)
-      body(T{}, T{}, F{});
-    else if (spin)
-      body(T{}, F{}, T{});
-    else
-      body(T{}, F{}, F{});
-  } else {
-    if (ring)
-      body(F{}, T{}, F{});
-    else if (spin)
-      body(F{}, F{}, T{});
-    else
-      body(F{}, F{}, F{});
+// one stage as a pass of its own (with a test's record of the state after it)
+void run_whole(StepStage& s, StepContext& c, StageClock* clock) {
+  s.prepare(c);
+  if (c.trace != nullptr) c.trace->open(s.id(), c);
+  s.pass(c);
+  s.finish(c);
+  lap(clock, s.id());
+  if (c.trace != nullptr) {
+    c.trace->take(s.id(), c, 0, c.p().w.size());
+    c.trace->close(s.id(), c);
   }
 }
 
-bool ring_noise(const StepParts& p) {
-  return p.w.box == BoxKind::Ring1D && p.drive.kind == DriveKind::RandomForce;
-}
-
-// each stage one pass of its own, in the order of the step
+// each stage one pass of its own, in the order of the list
 class StagedExecutor final : public StepExecutor {
  public:
   ExecutorKind kind() const override { return ExecutorKind::Staged; }
   bool predicts_ahead(const StepParts&) const override { return false; }
   bool kicks_in_pass(const StepParts&) const override { return false; }
-  void run(const StepParts& p, const std::vector<PairKey>& cand, std::span<const Channel> correct,
-           std::int64_t index, bool ahead, StageClock* clock) override {
-    if (ahead) throw std::logic_error("StagedExecutor: no prediction ahead");
-    const std::size_t n = p.w.size();
-    // narrow phase: each pair's contact and law, the contact set, the forces summed
-    p.stats = p.model.evaluate(p.w, cand, p.contacts, p.forces, p.dt, p.team, p.broad.generation(),
-                               {}, clock);
-    // laws: body forces and each particle's acceleration
-    const AccelArrays a = accel_arrays(p, index);
-    dispatch(p, [&](auto nz, auto rg, auto sp) {
-      constexpr bool kNz = decltype(nz)::value, kRg = decltype(rg)::value;
-      constexpr bool kSp = decltype(sp)::value;
-      if constexpr (kNz && kRg)
-        accelerate_ring_noise(p.team, a, n, false, block_sums_, pre_);
-      else
-        parallel_ranges(p.team, n, kParallelMinCheap,
-                        [&](std::size_t b, std::size_t e) { accelerate<kNz, kRg, kSp>(a, b, e); });
-    });
-    lap(clock, Stage::Laws);
-    if (!correct.empty()) p.integ.correct(correct, p.dt, p.team);
-    lap(clock, Stage::Correct);
+  void run(const StageList& list, StepContext& c, StageClock* clock) override {
+    c.ahead = false;
+    c.predicted = false;
+    for (const auto& s : list)
+      if (s->runs(c)) run_whole(*s, c, clock);
+  }
+};
+
+// the by-range stages of a pair loop's particle phase: each over the thread's particles in
+// turn, the first thread lapping the clock after each (the pairs' own time up to the first)
+class TailPhase final : public ParticlePhase {
+ public:
+  TailPhase(const std::vector<StepStage*>& stages, StepContext& c, StageClock* clock)
+      : stages_(stages), c_(c), clock_(clock) {}
+  void run(std::size_t b, std::size_t e) override {
+    StageClock* const own = team_thread() == 0 ? clock_ : nullptr;
+    lap(own, Stage::Pairs);
+    if (c_.trace != nullptr) c_.trace->take(Stage::Pairs, c_, b, e);
+    for (StepStage* s : stages_) {
+      s->range(c_, b, e);
+      lap(own, s->id());
+      if (c_.trace != nullptr) c_.trace->take(s->id(), c_, b, e);
+    }
   }
 
  private:
-  std::vector<double> block_sums_, pre_;  ///< the ring's noise: kicks per block, a before the mean
+  const std::vector<StepStage*>& stages_;
+  StepContext& c_;
+  StageClock* clock_;
 };
 
-// the stages fused into the force pass (ExecutorKind::Fused)
+// the stages after the pair loop run by ranges inside its particle phase, as far as each can
 class FusedExecutor final : public StepExecutor {
  public:
   ExecutorKind kind() const override { return ExecutorKind::Fused; }
-  // the kick predicts (disks), or the integrator after correct_range() (Gear 6; not on the
-  // noisy ring, whose correction is the integrator's whole-channel correct())
+  // the kick predicts (disks), or the integrator by ranges (Gear 6; not on the noisy ring,
+  // whose correction is a whole pass)
   bool predicts_ahead(const StepParts& p) const override {
     return kicks_in_pass(p) || (p.integ.ranges().predicts_by_range() && !ring_noise(p));
   }
-  bool kicks_in_pass(const StepParts& p) const override {
-    return !p.w.polygons() && p.integ.ranges().kick_form().has_value();
-  }
-  void run(const StepParts& p, const std::vector<PairKey>& cand, std::span<const Channel> correct,
-           std::int64_t index, bool ahead, StageClock* clock) override;
+  bool kicks_in_pass(const StepParts& p) const override { return kick_possible(p); }
+  void run(const StageList& list, StepContext& c, StageClock* clock) override;
 
  private:
-  std::vector<double> block_sums_, pre_;  ///< the ring's noise: kicks per block, a before the mean
+  // the stage that runs for s in this step: s, the kick in its place, or none (the kick's)
+  StepStage* stand_in(StepStage& s, bool kick) {
+    if (!kick) return &s;
+    switch (s.id()) {
+      case Stage::Accelerate:
+        return kick_.get();
+      case Stage::Correct:
+      case Stage::PredictNext:
+        return nullptr;
+      default:
+        return &s;
+    }
+  }
+
+  std::unique_ptr<StepStage> kick_ = make_kick_stage();
+  std::vector<StepStage*> tail_;  ///< this step's particle phase
+  bool predicted_ = false;        ///< the last step predicted the next one
 };
 
-// each particle's acceleration from its own force: computed inside the force pass by the
-// thread that summed the force (and predicts and corrects the particle), except the 1D ring's
-// noise, whose mean kick needs every particle first. A kick (disks, velocity Verlet) is the
-// correction, applied where the acceleration is computed
-void FusedExecutor::run(const StepParts& p, const std::vector<PairKey>& cand,
-                        std::span<const Channel> correct, std::int64_t index, bool ahead,
-                        StageClock* clock) {
-  World& w = p.w;
-  const std::size_t n = w.size();
-  RangeStepping& steps = p.integ.ranges();
-  const bool kick = kicks_in_pass(p) && !correct.empty();
-  if (ahead && !predicts_ahead(p))
-    throw std::logic_error("FusedExecutor: no prediction ahead on this path");
-  // ahead with the kick (disks in a plane): the broad phase's displacement test of the
-  // predicted positions is made in the kick's pass, on lines it holds, not by update()
-  BroadPhase::SkinTest skin;
-  if (ahead && kick && w.box != BoxKind::Ring1D) skin = p.broad.skin_test();
-  if (skin.n != n) skin = {};
-  const AccelArrays a = accel_arrays(p, index, kick ? *steps.kick_form() : KickForm{}, ahead, skin);
-  std::atomic<bool> moved{false};  // an OR: the same answer whatever the thread count
-  dispatch(p, [&](auto nz, auto rg, auto sp) {
-    constexpr bool kNz = decltype(nz)::value, kRg = decltype(rg)::value;
-    [[maybe_unused]] constexpr bool kSp = decltype(sp)::value;
-    if constexpr (kNz && kRg) {
-      p.stats = p.model.evaluate(w, cand, p.contacts, p.forces, p.dt, p.team, p.broad.generation(),
-                                 {}, clock);
-      accelerate_ring_noise(p.team, a, n, kick, block_sums_, pre_);
-      lap(clock, Stage::Laws);
-      if (!correct.empty() && !kick) p.integ.correct(correct, p.dt, p.team);
-    } else {
-      auto after = [&](std::size_t b, std::size_t e) {
-        StageClock* const own = team_thread() == 0 ? clock : nullptr;  // the first thread laps
-        if constexpr (!kSp) {
-          if (kick) {  // laws and correction in one pass over each block (counted as correct)
-            if (accelerate_kick<kNz, kRg>(a, b, e)) moved.store(true, std::memory_order_relaxed);
-            lap(own, Stage::Correct);
-            return;
-          }
-        }
-        accelerate<kNz, kRg, kSp>(a, b, e);
-        lap(own, Stage::Laws);
-        if (!correct.empty()) steps.correct_range(correct, b, e);
-        if (ahead) steps.predict_range(correct, b, e);
-        lap(own, Stage::Correct);
-        if constexpr (kSp) {
-          if (ahead) {  // the next step's polygons, placed while their state is at hand
-            p.model.place_ahead(w, b, e);
-            lap(own, Stage::NarrowPhase);
-          }
-        }
-      };
-      p.stats = p.model.evaluate(w, cand, p.contacts, p.forces, p.dt, p.team, p.broad.generation(),
-                                 RangeFn(after), clock);
-      if (ahead && kSp) p.model.placed_ahead();
-      if (skin.x0 != nullptr) p.broad.set_moved(moved.load());
+void FusedExecutor::run(const StageList& list, StepContext& c, StageClock* clock) {
+  c.predicted = predicted_ && !c.start;
+  if (c.predicted) ++predicted_steps_;
+  predicted_ = false;
+  c.ahead = c.may_ahead && !c.start && predicts_ahead(c.p());
+  const bool kick = !c.start && kicks_in_pass(c.p());
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    StepStage* s = stand_in(*list[i], kick);
+    if (s == nullptr || !s->runs(c)) continue;
+    if (!s->hosts_ranges()) {
+      run_whole(*s, c, clock);
+      continue;
     }
-    lap(clock, Stage::Correct);
-  });
+    // the following stages that run by ranges, up to the first that does not
+    tail_.clear();
+    std::size_t j = i + 1;
+    for (; j < list.size(); ++j) {
+      StepStage* t = stand_in(*list[j], kick);
+      if (t == nullptr || !t->runs(c)) continue;
+      if (!t->by_range(c)) break;
+      tail_.push_back(t);
+    }
+    if (tail_.empty()) {
+      run_whole(*s, c, clock);
+      continue;
+    }
+    s->prepare(c);
+    for (StepStage* t : tail_) t->prepare(c);
+    if (c.trace != nullptr) {
+      c.trace->open(s->id(), c);
+      for (StepStage* t : tail_) c.trace->open(t->id(), c);
+    }
+    TailPhase phase(tail_, c, clock);
+    s->pass_with(c, phase);
+    s->finish(c);
+    for (StepStage* t : tail_) t->finish(c);
+    lap(clock, s->id());  // the contact set kept, the team's wait at the end of the pass
+    if (c.trace != nullptr) c.trace->close(s->id(), c);
+    i = j - 1;
+  }
+  predicted_ = c.ahead;
 }
 
 }  // namespace

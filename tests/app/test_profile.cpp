@@ -29,8 +29,8 @@ TEST(RunProfile, TableAtTheEndAndEveryStageInRunJson) {
   const nlohmann::json j = nlohmann::json::parse(slurp(dir / "run.json"));
   ASSERT_TRUE(j.contains("profile"));
   double sum = 0.0;
-  for (const char* stage :
-       {"drive", "predict", "broad_phase", "narrow_phase", "laws", "correct", "health"}) {
+  for (const char* stage : {"drive", "predict", "broad_phase", "pairs", "accelerate", "kick",
+                            "correct", "predict_next", "place_next", "health"}) {
     ASSERT_TRUE(j["profile"].contains(stage)) << stage;
     EXPECT_GE(j["profile"][stage].get<double>(), 0.0) << stage;
     sum += j["profile"][stage].get<double>();

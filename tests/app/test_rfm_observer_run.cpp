@@ -25,6 +25,7 @@
 #include "output/csv.hpp"
 #include "scene/parse.hpp"
 #include "sim/simulation.hpp"
+#include "sim/step_inspector.hpp"
 #include "world/prepare.hpp"
 
 namespace gs {
@@ -298,7 +299,7 @@ TEST(RfmObserver, QuietStepsLoseNothing) {
   // step by step
   EXPECT_LT(calls, steps - 5000);
   EXPECT_GT(calls, steps - 5300);
-  EXPECT_GT(quiet.steps_predicted_ahead(), 4000u);
+  EXPECT_GT(StepInspector::steps_predicted_ahead(quiet), 4000u);
   obs_every.finish(every);
   obs_quiet.finish(quiet);
   fs::remove_all(dir);

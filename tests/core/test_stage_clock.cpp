@@ -50,7 +50,7 @@ TEST(StageClock, AStepNotTimedReadsNoClockAndChargesNothing) {
   while (p.times(untimed)) ++untimed;
   {
     StageClock c(p, untimed);
-    c.lap(Stage::NarrowPhase);
+    c.lap(Stage::Pairs);
   }
   EXPECT_EQ(p.timed, 0u);
   EXPECT_EQ(p.total(), 0.0);
@@ -60,10 +60,10 @@ TEST(StageClock, AStepNotTimedReadsNoClockAndChargesNothing) {
     StageClock c(p, timed);
     volatile double x = 0.0;
     for (int i = 0; i < 100000; ++i) x = x + 1.0;
-    c.lap(Stage::NarrowPhase);
+    c.lap(Stage::Pairs);
   }
   EXPECT_EQ(p.timed, 1u);
-  EXPECT_GT(p[Stage::NarrowPhase], 0.0);
+  EXPECT_GT(p[Stage::Pairs], 0.0);
   EXPECT_EQ(p[Stage::Predict], 0.0);
 }
 

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "scene/parse.hpp"
+#include "sim/step_inspector.hpp"
 #include "test_world.hpp"
 
 namespace gs {
@@ -66,16 +67,17 @@ std::size_t step_both(Simulation& a, Simulation& b, int steps) {
 }
 
 TEST(KickFusion, OnForDisksWithVelocityVerletOnly) {
-  EXPECT_TRUE(make_sim(gas()).kicks_in_force_pass());
-  EXPECT_TRUE(make_sim(ring()).kicks_in_force_pass());
-  EXPECT_FALSE(make_sim(gas(IntegratorKind::Gear6)).kicks_in_force_pass());
-  EXPECT_FALSE(make_sim(gas(IntegratorKind::PositionVerlet)).kicks_in_force_pass());
+  EXPECT_TRUE(StepInspector::kicks_in_force_pass(make_sim(gas())));
+  EXPECT_TRUE(StepInspector::kicks_in_force_pass(make_sim(ring())));
+  EXPECT_FALSE(StepInspector::kicks_in_force_pass(make_sim(gas(IntegratorKind::Gear6))));
+  EXPECT_FALSE(StepInspector::kicks_in_force_pass(make_sim(gas(IntegratorKind::PositionVerlet))));
   SceneSpec pile = build::decagon_pile(40, 0.2, 0.4, 1);
   pile.integrator.kind = IntegratorKind::VelocityVerlet;
-  EXPECT_FALSE(make_sim(pile).kicks_in_force_pass());  // polygons: the integrator's own correct()
+  EXPECT_FALSE(StepInspector::kicks_in_force_pass(
+      make_sim(pile)));  // polygons: the integrator's own correct()
   Simulation s = make_sim(gas());
-  s.set_verlet_correction(VerletCorrection::HalfStepVelocity);
-  EXPECT_FALSE(s.kicks_in_force_pass());
+  StepInspector::set_verlet_correction(s, VerletCorrection::HalfStepVelocity);
+  EXPECT_FALSE(StepInspector::kicks_in_force_pass(s));
 }
 
 // the fused kick v̂ + (a_{n+1} − a_n)·Δt/2 is v_{n+½} + a_{n+1}·Δt/2 in exact arithmetic; the
@@ -86,8 +88,8 @@ TEST(KickFusion, OnForDisksWithVelocityVerletOnly) {
 TEST(KickFusion, FollowsTheIntegratorsOwnCorrection) {
   Simulation fused = make_sim(gas());
   Simulation own = make_sim(gas());
-  own.set_verlet_correction(VerletCorrection::HalfStepVelocity);
-  ASSERT_TRUE(fused.kicks_in_force_pass());
+  StepInspector::set_verlet_correction(own, VerletCorrection::HalfStepVelocity);
+  ASSERT_TRUE(StepInspector::kicks_in_force_pass(fused));
   // the contacts were there to amplify differences
   EXPECT_GT(step_both(fused, own, 600), 600u * 10);
   const double d = max_difference(fused.world(), own.world());
@@ -100,7 +102,7 @@ TEST(KickFusion, FollowsTheIntegratorsOwnCorrection) {
 TEST(KickFusion, RingWithSymmetrisedNoiseFollowsTheOwnCorrection) {
   Simulation fused = make_sim(ring());
   Simulation own = make_sim(ring());
-  own.set_verlet_correction(VerletCorrection::HalfStepVelocity);
+  StepInspector::set_verlet_correction(own, VerletCorrection::HalfStepVelocity);
   auto momentum = [](const World& w) {
     double p = 0.0;
     for (std::size_t i = 0; i < w.size(); ++i) p += w.mass[i] * w.s.vx[i];
@@ -124,8 +126,8 @@ TEST(KickFusion, RingWithSymmetrisedNoiseFollowsTheOwnCorrection) {
 TEST(KickFusion, RingWithoutNoiseFollowsTheOwnCorrection) {
   Simulation fused = make_sim(ring(false));
   Simulation own = make_sim(ring(false));
-  own.set_verlet_correction(VerletCorrection::HalfStepVelocity);
-  ASSERT_TRUE(fused.kicks_in_force_pass());
+  StepInspector::set_verlet_correction(own, VerletCorrection::HalfStepVelocity);
+  ASSERT_TRUE(StepInspector::kicks_in_force_pass(fused));
   EXPECT_GT(step_both(fused, own, 2000), 0u);
   EXPECT_LT(max_difference(fused.world(), own.world()), 1e-9);
 }
@@ -136,13 +138,13 @@ TEST(KickFusion, SwitchesBetweenSteps) {
   Simulation b = make_sim(gas());
   a.run(200);
   b.run(200);
-  b.set_verlet_correction(VerletCorrection::HalfStepVelocity);
+  StepInspector::set_verlet_correction(b, VerletCorrection::HalfStepVelocity);
   a.run(200);
   b.run(200);
-  b.set_verlet_correction(VerletCorrection::Kick);
+  StepInspector::set_verlet_correction(b, VerletCorrection::Kick);
   a.run(200);
   b.run(200);
-  EXPECT_TRUE(b.kicks_in_force_pass());
+  EXPECT_TRUE(StepInspector::kicks_in_force_pass(b));
   EXPECT_LT(max_difference(a.world(), b.world()), 1e-9);
 }
 

@@ -12,6 +12,7 @@
 
 #include "scene/parse.hpp"
 #include "sim/state_file.hpp"
+#include "sim/step_inspector.hpp"
 #include "test_world.hpp"
 
 namespace gs {
@@ -101,8 +102,8 @@ TEST(RunAhead, GasRunIsBitwiseItsSteps) {
   expect_same_state(a, b);
   EXPECT_GT(a.contacts().keys.size(), 0u);  // contacts and their history took part
   // the prediction came from the kick on every step but those after an event
-  EXPECT_EQ(a.steps_predicted_ahead(), expected_ahead(150, 7, 11, 13));
-  EXPECT_EQ(b.steps_predicted_ahead(), 0u);
+  EXPECT_EQ(StepInspector::steps_predicted_ahead(a), expected_ahead(150, 7, 11, 13));
+  EXPECT_EQ(StepInspector::steps_predicted_ahead(b), 0u);
 }
 
 // the kick's pass also makes the cell grid's displacement test of the positions it predicts
@@ -133,7 +134,7 @@ TEST(RunAhead, GasListMadeAnewOnTheSameSteps) {
       EXPECT_EQ(a.broadphase().builds(), b.broadphase().builds()) << n << " part " << k;
     }
     expect_same_state(a, b);
-    EXPECT_EQ(a.steps_predicted_ahead(), static_cast<std::uint64_t>(parts) * 99u);
+    EXPECT_EQ(StepInspector::steps_predicted_ahead(a), static_cast<std::uint64_t>(parts) * 99u);
     EXPECT_GE(b.broadphase().builds(), static_cast<std::uint64_t>(parts));  // 2000: 5 in 400
   }
 }
@@ -160,7 +161,8 @@ TEST(RunAhead, RingWithAndWithoutNoise) {
     a.run(700);
     steps(b, 700);
     expect_same_state(a, b);
-    EXPECT_EQ(a.steps_predicted_ahead(), expected_ahead(700, 0, 11, 0)) << "noise " << noise;
+    EXPECT_EQ(StepInspector::steps_predicted_ahead(a), expected_ahead(700, 0, 11, 0))
+        << "noise " << noise;
   }
 }
 
@@ -177,18 +179,18 @@ TEST(RunAhead, TwoThreadsGiveOneThreadsSteps) {
     steps(b, 40);
   }
   expect_same_state(a, b);
-  EXPECT_GT(a.steps_predicted_ahead(), 0u);
+  EXPECT_GT(StepInspector::steps_predicted_ahead(a), 0u);
 }
 
 // velocity Verlet corrected from the half-step velocity predicts through predict() only
 TEST(RunAhead, NotWithTheIntegratorsOwnKick) {
   Simulation own = make_sim(gas());
-  own.set_verlet_correction(VerletCorrection::HalfStepVelocity);
+  StepInspector::set_verlet_correction(own, VerletCorrection::HalfStepVelocity);
   Simulation own_steps = make_sim(gas());
-  own_steps.set_verlet_correction(VerletCorrection::HalfStepVelocity);
+  StepInspector::set_verlet_correction(own_steps, VerletCorrection::HalfStepVelocity);
   own.run(50);
   steps(own_steps, 50);
-  EXPECT_EQ(own.steps_predicted_ahead(), 0u);
+  EXPECT_EQ(StepInspector::steps_predicted_ahead(own), 0u);
   expect_same_state(own, own_steps);
 }
 
@@ -220,7 +222,7 @@ TEST(RunAhead, GearSixPredictsByRange) {
     EXPECT_TRUE(same_bits(a.world().s.th, b.world().s.th));
     EXPECT_TRUE(same_bits(a.world().s.omega, b.world().s.omega));
     EXPECT_EQ(a.integrator().save(), b.integrator().save());
-    EXPECT_EQ(a.steps_predicted_ahead(), 29u) << paper;
+    EXPECT_EQ(StepInspector::steps_predicted_ahead(a), 29u) << paper;
     if (paper) {
       EXPECT_GT(a.contacts().keys.size(), 2000u);
     }
