@@ -13,7 +13,8 @@ PHI_TOL = 5e-4  # the thesis prints φ to three decimals
 
 # claim id -> the thesis' conditions: dim (2: periodic box, 1: ring), phi, phi_below, eps (ε_n,
 # and ε_t in 2D), eps_below (1D), L (2D box side, m), L1 (ring's L′, m), N, sizes (distinct N
-# ≥ N_from), starts, discard_s, sampled_s; 'source' quotes where each comes from
+# ≥ N_from), starts, discard_s, sampled_s (the time the thesis shows is needed, or with
+# sampled_as_run the time it sampled); 'source' quotes where each comes from
 THESIS = {
     "T-start": dict(dim=2, phi=0.353, eps=0.6, L=0.2, N=2000, starts=2, discard_s=1.0,
                     source="§2.3.3: N = 2000, L = 0.2 m, ε = 0.6 from three starts (Fig. 2.10b), "
@@ -34,7 +35,7 @@ THESIS = {
                 sampled_s=200.0, source="§3.1.3: L′ = 1 m, ε ≤ 0.5, N ≥ 398, 20 s relaxation, "
                                         "then 10 × 20 s sampled (Fig. 2.8: ≈ 200 s to settle)"),
     "xi-m": dict(dim=1, eps_below=0.5, L1=1.0, sizes=2, N_from=398, discard_s=20.0,
-                 sampled_s=1000.0, source="§3.2.1: L′ = 1 m, ε < 0.5, N ≥ 398, 20 s relaxation, "
+                 sampled_s=1000.0, sampled_as_run=True, source="§3.2.1: L′ = 1 m, ε < 0.5, N ≥ 398, 20 s relaxation, "
                                           "then 50 × 20 s sampled"),
     "G1-bisection": dict(dim=1, eps=0.1, N=512, discard_s=20.0, sampled_s=200.0,
                          source="§3.4: N = 2⁹ at ε = 0.1 (Fig. 3.16), after the 20 s relaxation "
@@ -59,30 +60,46 @@ def _fmt(x):
 
 
 def _point_misses(t, c, q):
-    """what a plan point q of a sweep with conditions c lacks of the thesis' conditions t"""
+    """what a plan point q of a sweep with conditions c lacks of the thesis' conditions t, as
+    (quantity, the point's value, the thesis') triples"""
     out = []
     dim = c.get("dimension")
     if t.get("dim") is not None and dim != t["dim"]:
         have = {1: "a 1D ring", 2: "a 2D fluid"}
-        return [f"{have.get(dim, f'dimension {dim}')} where the thesis has {have[t['dim']]}"]
-    if "phi" in t and not abs(q.get("phi", math.nan) - t["phi"]) <= PHI_TOL:
-        out.append(f"φ = {q.get('phi', math.nan):.3f} where the thesis has {t['phi']:.3f}")
-    if "phi_below" in t and not q.get("phi", math.nan) < t["phi_below"]:
-        out.append(f"φ = {q.get('phi', math.nan):.3f} where the thesis has φ < {t['phi_below']:g}")
+        return [("", have.get(dim, f"dimension {dim}"), have[t["dim"]])]
+    phi, n, e_n = q.get("phi", math.nan), q.get("N"), q.get("eps_n", math.nan)
+    if "phi" in t and not abs(phi - t["phi"]) <= PHI_TOL:
+        out.append(("φ", f"{phi:.3f}", f"{t['phi']:.3f}"))
+    if "phi_below" in t and not phi < t["phi_below"]:
+        out.append(("φ", f"{phi:.3f}", f"φ < {t['phi_below']:g}"))
     if "eps" in t:
-        e = [q.get("eps_n", math.nan)] + ([q.get("eps_t", math.nan)] if t["dim"] == 2 else [])
+        e = [e_n] + ([q.get("eps_t", math.nan)] if t["dim"] == 2 else [])
         if not all(abs(x - t["eps"]) <= 1e-9 for x in e):
-            out.append(f"ε = {'/'.join(f'{x:g}' for x in e)} where the thesis has {t['eps']:g}")
-    if "eps_below" in t and not q.get("eps_n", math.nan) <= t["eps_below"]:
-        out.append(f"ε = {q.get('eps_n', math.nan):g} where the thesis has ε ≤ {t['eps_below']:g}")
+            out.append(("ε", "/".join(f"{x:g}" for x in e), f"{t['eps']:g}"))
+    if "eps_below" in t and not e_n <= t["eps_below"]:
+        out.append(("ε", f"{e_n:g}", f"ε ≤ {t['eps_below']:g}"))
     for key, name, unit in (("L", "L", "L"), ("L1", "L′", "reduced_length")):
         if key in t and not abs(q.get(unit, math.nan) - t[key]) <= 1e-9 * t[key]:
-            out.append(f"{name} = {q.get(unit, math.nan):g} m where the thesis has {t[key]:g} m")
-    if "N" in t and q.get("N") != t["N"]:
-        out.append(f"N = {q.get('N')} where the thesis has {t['N']}")
-    if "N_from" in t and not q.get("N", 0) >= t["N_from"]:
-        out.append(f"N = {q.get('N')} below the thesis' N ≥ {t['N_from']}")
+            out.append((name, f"{q.get(unit, math.nan):g} m", f"{t[key]:g} m"))
+    if "N" in t and n != t["N"]:
+        out.append(("N", str(n), str(t["N"])))
+    if "N_from" in t and not (n or 0) >= t["N_from"]:
+        out.append(("N", str(n), f"N ≥ {t['N_from']}"))
     return out
+
+
+def _phrases(per):
+    """the misses of the points closest to the thesis', one phrase a quantity over its points"""
+    fewest = min(len(m) for m in per)
+    merged = {}
+    for m in per:
+        if len(m) == fewest:
+            for name, have, want in m:
+                haves = merged.setdefault((name, want), [])
+                if have not in haves:
+                    haves.append(have)
+    return [f"{name + ' = ' if name else ''}{', '.join(h)} where the thesis has {want}"
+            for (name, want), h in merged.items()]
 
 
 def misses(cid, c):
@@ -100,19 +117,17 @@ def misses(cid, c):
     elif "sizes" in t:
         n = sorted({q.get("N") for q in ok})
         if len(n) < t["sizes"]:
-            seen = []
-            for m in per:
-                seen += [x for x in m if x not in seen]
+            bad = [m for m in per if m]
             out.append(f"{len(n)} ring size(s) at the thesis' parameters where the fit needs "
-                       f"{t['sizes']}" + (f" ({'; '.join(seen)})" if seen else ""))
+                       f"{t['sizes']}" + (f" ({'; '.join(_phrases(bad))})" if bad else ""))
     elif not ok:
-        best = min(per, key=len)
-        out += best
+        out += _phrases(per)
     if "starts" in t and len(c.get("starts") or []) < t["starts"]:
         out.append(f"{len(c.get('starts') or [])} start(s) where the claim compares "
                    f"{t['starts']} at least")
+    verb = "sampled" if t.get("sampled_as_run") else "needed"
     for key, what, need in (("discard_s", "discarded", "the thesis discards"),
-                            ("sampled_s", "sampled", "the thesis needed")):
+                            ("sampled_s", "sampled", f"the thesis {verb}")):
         have = c.get(key)
         if key in t and not (isinstance(have, (int, float)) and have >= t[key] - 1e-6):
             out.append(f"{_fmt(have)} s {what} where {need} ≈ {t[key]:g} s")

@@ -78,16 +78,18 @@ def _runs(d, sweep):
 def seed_mean(values, errors):
     """a point's value from its seeds: their mean; its error the larger of the within-run error
     (the runs' errors combined) and the scatter between seeds (the standard error of their mean),
-    and which it was"""
+    which it was, and the degrees of freedom of a test on it (None: normal)"""
     v, e = np.asarray(values, float), np.asarray(errors, float)
     if len(v) == 1:  # one seed: the run's own value and error, untouched
         return dict(value=float(v[0]), err=float(e[0]), within=float(e[0]), between=math.nan,
-                    seeds=1, which="within the run")
+                    seeds=1, which="within the run", dof=None)
     within = float(np.sqrt((e ** 2).sum()) / len(v))
     between = float(v.std(ddof=1) / math.sqrt(len(v)))
     big = not (within >= between)  # a NaN within-run error gives way to the seeds' scatter
+    # the scatter of n seeds is itself uncertain: tests on it are Student's t of n − 1 dof
     return dict(value=float(v.mean()), err=between if big else within, within=within,
-                between=between, seeds=len(v), which="between seeds" if big else "within runs")
+                between=between, seeds=len(v), which="between seeds" if big else "within runs",
+                dof=len(v) - 1 if big else None)
 
 
 def seed_text(s, unit=""):
