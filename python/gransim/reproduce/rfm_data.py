@@ -61,7 +61,10 @@ def _runs(d, sweep):
     for r in runs:
         r["adir"] = os.path.join(d, "analysis", sweep, r["label"])
         q = os.path.join(r["adir"], "rfm.json")
-        r["info"] = json.load(open(q)) if os.path.exists(q) else {}
+        r["info"] = {}
+        if os.path.exists(q):
+            with open(q) as f:
+                r["info"] = json.load(f)
         m = SEED.search(r["label"])
         r["seed"] = m.group(1) if m else None
         points.setdefault(SEED.sub("", r["label"]) if m else r["label"], []).append(r)

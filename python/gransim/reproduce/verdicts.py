@@ -179,7 +179,7 @@ def compare_value(measured, err, source, source_err=0.0, tolerance=0.0, alternat
     d = abs(measured - source)
     excess = max(d - tolerance, 0.0)
     if dof is not None and s > 0:
-        p = t_sf2(excess / s, dof)
+        p = t_sf2(excess / s, dof) if excess > 0 else 1.0
     else:
         p = 2.0 * (1.0 - phi(excess / s)) if s > 0 else (1.0 if excess == 0 else 0.0)
     text = (f"measured {fmt.format(measured)} ± {fmt.format(err)}, source {fmt.format(source)}"
