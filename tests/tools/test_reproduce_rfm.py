@@ -56,7 +56,7 @@ class SeedMean(unittest.TestCase):
         self.assertAlmostEqual(s["within"], np.sqrt(0.03) / 3)
         self.assertEqual((s["err"], s["which"], s["dof"]), (s["between"], "between seeds", 2))
         s = seed_mean([1.0, 1.001, 0.999], [0.1, 0.1, 0.1])
-        self.assertEqual((s["which"], s["dof"]), ("within runs", None))
+        self.assertEqual((s["which"], s["dof"]), ("within runs", 2))
         self.assertAlmostEqual(s["err"], np.sqrt(0.03) / 3)
 
 
@@ -66,7 +66,8 @@ class SeedTwins(unittest.TestCase):
 
     def test_value_claims(self):
         for seeds in (3, 5):
-            for tau, sigma in ((0.0, 0.01), (0.01, 0.01), (0.02, 0.002)):
+            for tau, sigma in ((0.0, 0.01), (0.005, 0.01), (0.01, 0.01), (0.005, 0.002),
+                               (0.02, 0.002)):
                 with self.subTest(seeds=seeds, tau=tau, sigma=sigma):
                     _, d = rates(lambda r: seed_verdict(r, SRC + TOL, seeds, tau, sigma))
                     self.assertLessEqual(d, 0.01 + SLACK_DISAGREE, "true claims disagree")
@@ -77,7 +78,7 @@ class SeedTwins(unittest.TestCase):
 
     def test_normal_test_on_three_seeds_would_fail(self):
         """the reason for Student's t: the scatter of three seeds taken as a known error makes
-        true claims disagree far more often than 1 %"""
+        true claims (at the edge of the thesis' tolerance) disagree far more often than 1 %"""
         def normal(r):
             v = SRC + TOL + r.normal(0, 0.02, 3)
             s = seed_mean(v, np.full(3, 0.002))

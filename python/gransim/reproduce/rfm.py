@@ -15,7 +15,7 @@ from .report import Claim, test_of  # noqa: E402
 from .verdicts import (POWER, UNRESOLVED, Verdict, chi2_consistent, compare_value,  # noqa: E402
                       groups_consistent, mean_err)
 
-from .rfm_conditions import gate, sweep_for  # noqa: E402
+from .rfm_conditions import THESIS, gate, sweep_for  # noqa: E402
 from .rfm_data import (ORDER, Missing, _csv, _runs, _ci, _gate, _chart, _ax, seed_mean,  # noqa: E402
                        seed_text)
 from .rfm_ring import c_g1, c_xi2, c_xim  # noqa: E402
@@ -100,9 +100,14 @@ def c_meanfield(d, sw="reference"):
     tmf = (c1 * k / i["phi"]) ** (2 / 3) / c1
     # the thesis gives eq. 5.2 no precision and derives it for φ < 0.1; the run is at φ = 0.353
     c = compare_value(tm, em, tmf, fmt="{:.3g}")
-    v = Verdict(UNRESOLVED, f"at face value {c.verdict}: {c.reason}; but eq. 5.2 is the thesis' "
-                f"relation for φ < 0.1 and this run has φ = {i['phi']:g}, outside the conditions it "
-                "is claimed for", c.null, "none: the thesis gives eq. 5.2 no precision")
+    top = THESIS["T-mean-field"]["phi_below"]
+    if i["phi"] < top:  # inside its conditions: no precision, so it can disagree, never agree
+        v = Verdict(c.verdict, c.reason, c.null, "none: the thesis gives eq. 5.2 no precision")
+    else:
+        v = Verdict(UNRESOLVED, f"at face value {c.verdict}: {c.reason}; but eq. 5.2 is the "
+                    f"thesis' relation for φ < {top:g} and this run has φ = {i['phi']:g}, outside "
+                    "the conditions it is claimed for", c.null,
+                    "none: the thesis gives eq. 5.2 no precision")
     reason = (f"{v.reason}; the §2.3.3 value 12 m²/s² would be {12 / tmf:.0f} × T_MF")
 
     def draw(ax):

@@ -12,10 +12,11 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+from .rfm_conditions import THESIS  # noqa: E402
 from .verdicts import UNRESOLVED, Verdict  # noqa: E402
 
 CUT = 1e-7        # 1D gaps below this (units of L′) are mostly touching disks: their overlap
-N_THESIS = 398    # §3.1.3: "We have ignored data for systems containing 100, 158 or 251 particles"
+N_THESIS = THESIS["xi2"]["N_from"]  # §3.1.3: "We have ignored data for … 100, 158 or 251 particles"
 ORDER = ["smoke", "quick", "standard", "full"]
 
 
@@ -81,7 +82,7 @@ def _runs(d, sweep):
 def seed_mean(values, errors):
     """a point's value from its seeds: their mean; its error the larger of the within-run error
     (the runs' errors combined) and the scatter between seeds (the standard error of their mean),
-    which it was, and the degrees of freedom of a test on it (None: normal)"""
+    which it was, and the degrees of freedom of a test on it (None: normal, one seed)"""
     v, e = np.asarray(values, float), np.asarray(errors, float)
     if len(v) == 1:  # one seed: the run's own value and error, untouched
         return dict(value=float(v[0]), err=float(e[0]), within=float(e[0]), between=math.nan,
@@ -89,10 +90,12 @@ def seed_mean(values, errors):
     within = float(np.sqrt((e ** 2).sum()) / len(v))
     between = float(v.std(ddof=1) / math.sqrt(len(v)))
     big = not (within >= between)  # a NaN within-run error gives way to the seeds' scatter
-    # the scatter of n seeds is itself uncertain: tests on it are Student's t of n − 1 dof
+    # Student's t of n − 1 dof whichever is larger: the t test on the seeds' scatter alone has
+    # its nominal size, and a larger error only lowers it (a within-run error that wins by
+    # chance may still miss a scatter the runs do not see)
     return dict(value=float(v.mean()), err=between if big else within, within=within,
                 between=between, seeds=len(v), which="between seeds" if big else "within runs",
-                dof=len(v) - 1 if big else None)
+                dof=len(v) - 1)
 
 
 def seed_text(s, unit=""):
@@ -101,7 +104,7 @@ def seed_text(s, unit=""):
         return ""
     return (f" (mean of {s['seeds']} seeds; 95 % scatter between seeds ± {1.96 * s['between']:.2g}"
             f"{unit}, within runs ± {1.96 * s['within']:.2g}{unit}: the verdict uses the larger, "
-            f"{s['which']})")
+            f"{s['which']}, with Student's t of {s['dof']} degrees of freedom)")
 
 
 def _ci(v, e):
@@ -114,8 +117,9 @@ def _ci(v, e):
     return f"{v:.{n}f} ± {1.96 * e:.{n}f}"
 
 
-def _gate(v, runs, need=1.0):
-    """steady-state claims need the thesis' first second discarded (§2.2.3, §2.3.2)"""
+def _gate(v, runs, need=THESIS["T-start"]["discard_s"]):
+    """steady-state claims need the thesis' first second discarded (§2.2.3, §2.3.2); runs whose
+    plan states its conditions are held to each claim's own (rfm_conditions) first"""
     t = min(q["info"].get("t_steady", q["info"].get("discard_time", 0.0))
             for r in runs for q in r.get("runs", [r]))
     if v.verdict != UNRESOLVED and t < need - 1e-6:

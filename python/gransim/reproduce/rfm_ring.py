@@ -8,6 +8,7 @@ import matplotlib
 matplotlib.use("Agg")
 import numpy as np  # noqa: E402
 
+from .rfm_conditions import THESIS  # noqa: E402
 from .verdicts import DISAGREES, P_KEEP, P_REJECT, UNRESOLVED, Verdict, chi2_sf, compare_value  # noqa: E402
 
 from .rfm_data import (CUT, N_THESIS, Missing, _csv, _runs, _ci, _gate, _chart, _ax, _wfit,  # noqa: E402
@@ -128,7 +129,7 @@ def _ks_p(lam):
 
 def c_g1(d, sw="ring"):
     runs = _runs(d, sw)
-    at = [q for q in runs if q["particles"] == 512]  # the thesis' N = 2⁹ when run, else the largest
+    at = [q for q in runs if q["particles"] == THESIS["G1-bisection"]["N"]]  # else the largest
     r = at[0] if at else max(runs, key=lambda q: q["particles"])
     N = r["particles"]
     cs = [_csv(os.path.join(x["adir"], "gh_bisection.csv"))[0] for x in r["runs"]]
@@ -164,7 +165,7 @@ def c_g1(d, sw="ring"):
            f"{s:.1f}², the ratio of ⟨R²⟩'s block error to its independent-sample error): p = {p:.2g}, "
            f"at face value {face}; the thesis states no precision for its “good agreement”, so no "
            "power")
-    if N != 512:
+    if N != THESIS["G1-bisection"]["N"]:
         v = Verdict(UNRESOLVED, why + f"; the claim is made for N = 2⁹ = 512, this run has N = {N:g}",
                     "G₁ is the bisection's distribution", "none sized by the thesis")
     else:
