@@ -220,6 +220,13 @@ class Conditions(Folder):
                    dict(name="ring_n512", conditions=self.N512)])
         self.assertEqual(sweep_for(self.d, "G1-bisection", "ring"), "ring_n512")
         self.assertIs(gate(self.d, "G1-bisection", "ring_n512", agrees)[0], agrees)
+        phi = dict(REFERENCE, claims=["moments-phi"], starts=["hexagonal"],
+                   points=[dict(phi=p, eps_n=0.1, eps_t=0.1, L=0.2, N=n)
+                           for p, n in ((0.0884, 500), (0.1767, 1000))])
+        self.plan([dict(name="reference", conditions=REFERENCE),
+                   dict(name="moments_phi", conditions=phi)])
+        self.assertEqual(sweep_for(self.d, "T-mean-field", "reference"), "moments_phi")
+        self.assertEqual(sweep_for(self.d, "T-start", "reference"), "reference")
         self.plan([dict(name="ring", params=[], sets=[])])  # an old plan: no conditions
         self.assertIs(gate(self.d, "xi2", "ring", agrees)[0], agrees)
 

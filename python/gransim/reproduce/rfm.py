@@ -93,6 +93,12 @@ def c_start(d, sw="reference"):
 
 def c_meanfield(d, sw="reference"):
     runs, T, E, tm, em = _temps(d, sw)
+    top = THESIS["T-mean-field"]["phi_below"]
+    low = [k for k, r in enumerate(runs) if r["phi"] < top]
+    if low and len(low) < len(runs):  # a sweep over φ: its points inside the thesis' φ < 0.1
+        runs, T, E = [runs[k] for k in low], T[low], E[low]
+        w = 1 / E ** 2
+        tm, em = float((w * T).sum() / w.sum()), float(w.sum() ** -0.5)
     m = [_csv(os.path.join(q["adir"], "moments.csv"))[0]["moment"] for r in runs for q in r["runs"]]
     c1 = float(np.mean([x[0] ** 2 / x[1] for x in m]))  # ⟨v⟩² = C₁⟨v²⟩ of the 2D speeds
     i = runs[0]["info"]

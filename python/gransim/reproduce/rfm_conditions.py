@@ -136,13 +136,15 @@ def misses(cid, c):
 
 def sweep_for(d, cid, default):
     """the sweep a claim reads: of those whose plan conditions list the claim, the first that
-    meets the thesis' conditions, else the first; the default without plan conditions"""
+    meets the thesis' conditions, else the first other sweep that meets them (eq. 5.2's φ < 0.1
+    in a sweep over φ), else the first listed; the default without plan conditions"""
     conds = plan_conditions(d)
-    listed = [n for n, c in (conds or {}).items() if cid in (c.get("claims") or [])]
-    if not listed:
+    if not conds:
         return default
+    listed = [n for n, c in conds.items() if cid in (c.get("claims") or [])]
     good = [n for n in listed if not misses(cid, conds[n])]
-    return (good or listed)[0]
+    good += [n for n, c in conds.items() if n not in listed and cid in THESIS and not misses(cid, c)]
+    return (good or listed or [default])[0]
 
 
 def gate(d, cid, sweep, v):
