@@ -3,7 +3,8 @@ a stated rule, and a verdict (agrees, disagrees, not resolved). Run it as the co
 python3 -m gransim.reproduce --study tapping|rfm --budget B DIR (cli.py).
 
   verdicts     the statistical tests and the rules that turn their p-values into verdicts
-  tapping*     the tapping paper's claims; rfm, rfm_ring, rfm_data: the RFM thesis' claims
+  tapping*     the tapping paper's claims; rfm, rfm_ring, rfm_data: the RFM thesis' claims,
+               rfm_conditions: the thesis' conditions for each, checked against plan.json
   report       report.md, report.html and claims.csv; departures, described: what they say
   series       the series a report ships, from which it is written again (--from-series)
 

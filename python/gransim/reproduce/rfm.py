@@ -13,24 +13,32 @@ import numpy as np  # noqa: E402
 from . import described  # noqa: E402
 from .report import Claim, test_of  # noqa: E402
 from .verdicts import (POWER, UNRESOLVED, Verdict, chi2_consistent, compare_value,  # noqa: E402
-                      mean_err)
+                      groups_consistent, mean_err)
 
-from .rfm_data import ORDER, Missing, _csv, _runs, _ci, _gate, _chart, _ax  # noqa: E402
+from .rfm_conditions import THESIS, gate, sweep_for  # noqa: E402
+from .rfm_data import (ORDER, Missing, _csv, _runs, _ci, _gate, _chart, _ax, seed_mean,  # noqa: E402
+                       seed_text)
 from .rfm_ring import c_g1, c_xi2, c_xim  # noqa: E402
 
 
-def _temps(d):
-    """the reference runs' ⟨T⟩; error: the larger of the block error and the τ_int error of T(t)"""
-    runs = _runs(d, "reference")
+def _temps(d, sweep="reference"):
+    """the reference points' ⟨T⟩ (each the mean over its seeds); a run's error: the larger of the
+    block error and the τ_int error of T(t); a point's: seed_mean's"""
+    runs = _runs(d, sweep)
     T, E = [], []
     for r in runs:
-        e = r["T_err"]
-        try:
-            e = max(e, mean_err(_csv(os.path.join(r["adir"], "temperature.csv"))[0]["T"])[1])
-        except Missing:
-            pass
-        T.append(r["T_mean"])
-        E.append(e)
+        ts, es = [], []
+        for q in r["runs"]:
+            e = q["T_err"]
+            try:
+                e = max(e, mean_err(_csv(os.path.join(q["adir"], "temperature.csv"))[0]["T"])[1])
+            except Missing:
+                pass
+            ts.append(q["T_mean"])
+            es.append(e)
+        r["T_seeds"] = seed_mean(ts, es)
+        T.append(r["T_seeds"]["value"])
+        E.append(r["T_seeds"]["err"])
     T, E = np.array(T, float), np.array(E, float)
     if not (np.all(np.isfinite(T)) and np.all(E > 0)):
         raise Missing("no steady temperature with an error in analysis/reference")
@@ -45,14 +53,31 @@ def _dots(ax, runs, T, E, label):
 
 # ---- 2D reference fluid -----------------------------------------------------------------------
 
-def c_start(d):
-    runs, T, E, tm, em = _temps(d)
+def _seeds_note(runs, key):
+    """'' when every point ran from one seed; else how its error was chosen"""
+    s = [r[key] for r in runs if r[key]["seeds"] > 1]
+    if not s:
+        return ""
+    k = sum(x["which"] == "between seeds" for x in s)
+    return (f"; each the mean of {'/'.join(sorted({str(x['seeds']) for x in s}))} seeds, its error "
+            f"the larger of the scatter between seeds and the within-run error (between seeds for "
+            f"{k} of {len(s)})")
+
+
+def c_start(d, sw="reference"):
+    runs, T, E, tm, em = _temps(d, sw)
     if len(T) < 2:
         raise Missing("fewer than two starts in analysis/reference")
-    w = 1 / E ** 2  # weighted Helmert contrasts: n − 1 independent unit normals, Σz² = Σ(T − T̄)²/σ²
-    z = [(T[k] - (w[:k] * T[:k]).sum() / w[:k].sum()) / math.sqrt(E[k] ** 2 + 1 / w[:k].sum())
-         for k in range(1, len(T))]
-    v, p = chi2_consistent(z, np.ones(len(z)), label="independent contrasts between the starts")
+    if all(len(r["runs"]) > 1 for r in runs):
+        # seeds at every start: the starts' scatter against the seeds' (slow wandering of T that
+        # a run's block error misses is in both)
+        v, p = groups_consistent([[q["T_mean"] for q in r["runs"]] for r in runs],
+                                 label="starts, each from its seeds")
+    else:
+        w = 1 / E ** 2  # weighted Helmert contrasts: n − 1 independent unit normals, Σz² = Σ(T − T̄)²/σ²
+        z = [(T[k] - (w[:k] * T[:k]).sum() / w[:k].sum()) / math.sqrt(E[k] ** 2 + 1 / w[:k].sum())
+             for k in range(1, len(T))]
+        v, p = chi2_consistent(z, np.ones(len(z)), label="independent contrasts between the starts")
 
     def draw(ax):
         _dots(ax, runs, T, E, "gransim steady ⟨T⟩, 95 %")
@@ -60,24 +85,35 @@ def c_start(d):
         _ax(ax, "2D reference from three starts (thesis Fig. 2.10b: one plateau;\n"
             "its 12 m²/s² is off this scale, see notes)", "start", "⟨T⟩ (m²/s²)")
     return dict(measured=", ".join(f"{_ci(t, e)} ({r['name']})" for t, e, r in zip(T, E, runs))
-                + f" m²/s² (95 %); weighted mean {_ci(tm, em)}",
+                + f" m²/s² (95 %); weighted mean {_ci(tm, em)}" + _seeds_note(runs, "T_seeds"),
                 verdict=_gate(Verdict(v.verdict, f"{v.reason}; spread {100 * np.ptp(T) / tm:.1f} % "
                                       "of ⟨T⟩", v.null, v.alternative, v.power, v.scale), runs),
                 chart=_chart(d, "T-start", draw), values=dict(T_mean=tm, T_err=em, p=p))
 
 
-def c_meanfield(d):
-    runs, T, E, tm, em = _temps(d)
-    m = [_csv(os.path.join(r["adir"], "moments.csv"))[0]["moment"] for r in runs]
+def c_meanfield(d, sw="reference"):
+    runs, T, E, tm, em = _temps(d, sw)
+    top = THESIS["T-mean-field"]["phi_below"]
+    low = [k for k, r in enumerate(runs) if r["phi"] < top]
+    if low and len(low) < len(runs):  # a sweep over φ: its points inside the thesis' φ < 0.1
+        runs, T, E = [runs[k] for k in low], T[low], E[low]
+        w = 1 / E ** 2
+        tm, em = float((w * T).sum() / w.sum()), float(w.sum() ** -0.5)
+    m = [_csv(os.path.join(q["adir"], "moments.csv"))[0]["moment"] for r in runs for q in r["runs"]]
     c1 = float(np.mean([x[0] ** 2 / x[1] for x in m]))  # ⟨v⟩² = C₁⟨v²⟩ of the 2D speeds
     i = runs[0]["info"]
     k = i["D"] * i["diameter"] * math.pi / (i["mass"] ** 2 * (2 - i["eps_n"] ** 2 - i["eps_t"] ** 2))
     tmf = (c1 * k / i["phi"]) ** (2 / 3) / c1
     # the thesis gives eq. 5.2 no precision and derives it for φ < 0.1; the run is at φ = 0.353
     c = compare_value(tm, em, tmf, fmt="{:.3g}")
-    v = Verdict(UNRESOLVED, f"at face value {c.verdict}: {c.reason}; but eq. 5.2 is the thesis' "
-                f"relation for φ < 0.1 and this run has φ = {i['phi']:g}, outside the conditions it "
-                "is claimed for", c.null, "none: the thesis gives eq. 5.2 no precision")
+    top = THESIS["T-mean-field"]["phi_below"]
+    if i["phi"] < top:  # inside its conditions: no precision, so it can disagree, never agree
+        v = Verdict(c.verdict, c.reason, c.null, "none: the thesis gives eq. 5.2 no precision")
+    else:
+        v = Verdict(UNRESOLVED, f"at face value {c.verdict}: {c.reason}; but eq. 5.2 is the "
+                    f"thesis' relation for φ < {top:g} and this run has φ = {i['phi']:g}, outside "
+                    "the conditions it is claimed for", c.null,
+                    "none: the thesis gives eq. 5.2 no precision")
     reason = (f"{v.reason}; the §2.3.3 value 12 m²/s² would be {12 / tmf:.0f} × T_MF")
 
     def draw(ax):
@@ -88,15 +124,16 @@ def c_meanfield(d):
         _ax(ax, "steady temperature against the mean-field equation of state (§5.1)", "start",
             "⟨T⟩ (m²/s²)", ylog=True)
     return dict(measured=f"⟨T⟩ = {_ci(tm, em)} m²/s² (95 %); eq. 5.2 gives T_MF = ⟨v⟩²/C₁ = "
-                f"{tmf:.3g} m²/s² with the measured C₁ = ⟨v⟩²/⟨v²⟩ = {c1:.3f}; ratio {tm / tmf:.2f}",
+                f"{tmf:.3g} m²/s² with the measured C₁ = ⟨v⟩²/⟨v²⟩ = {c1:.3f}; ratio {tm / tmf:.2f}"
+                + _seeds_note(runs, "T_seeds"),
                 verdict=_gate(Verdict(v.verdict, reason, v.null, v.alternative), runs),
                 chart=_chart(d, "T-mean-field", draw), values=dict(T_mf=tmf, C1=c1, ratio=tm / tmf))
 
 
-def c_transient(d):
-    runs, rows, curves = _runs(d, "reference"), [], []
-    for r in runs:
-        p = os.path.join(d, "sweeps", "reference", r["label"], "rfm_series.csv")
+def c_transient(d, sw="reference"):
+    runs, rows, curves = _runs(d, sw), [], []
+    for r in [q for p in runs for q in p["runs"]]:  # every seed's run: each its own transient
+        p = os.path.join(d, "sweeps", sw, r["label"], "rfm_series.csv")
         c = _csv(p if os.path.exists(p) else os.path.join(r["dir"], "rfm_series.csv"))[0]
         t, T = c["t"], c["T"]
         end, mid = float(t.max()), 0.5 * (1.0 + float(t.max()))
@@ -132,18 +169,30 @@ def c_transient(d):
 
 # ---- 2D structure: D_f from S(k) and from the free paths --------------------------------------
 
-def _structure(d):
-    r = _runs(d, "structure")[0]
-    return r, r["info"].get("t_end", math.nan) - r["info"].get("t_steady", math.nan)
+def _structure(d, sw):
+    r = _runs(d, sw)[0]
+    return r, min(q["info"].get("t_end", math.nan) - q["info"].get("t_steady", math.nan)
+                  for q in r["runs"])
 
 
-def c_sk(d):
-    r, sampled = _structure(d)
-    s = r.get("structure")
+def _seed_fit(r, key):
+    """a point's fit `key` with D_f the mean over its seeds (seed_mean's error), and seed_mean's
+    summary; the first seed's fit as it is when one seed has it"""
+    fits = [q.get(key) for q in r["runs"]]
+    ok = [f for f in fits if f and f.get("D_f") is not None]
+    if not ok:
+        return None, None
+    s = seed_mean([f["D_f"] for f in ok], [f["D_f_err"] for f in ok])
+    return dict(ok[0], D_f=s["value"], D_f_err=s["err"]), s
+
+
+def c_sk(d, sw="structure"):
+    r, sampled = _structure(d, sw)
+    s, seeds = _seed_fit(r, "structure")
     if not s or s.get("D_f") is None:
-        raise Missing("no S(k) fit in analysis/structure: " + "; ".join(r.get("notes", [])))
+        raise Missing(f"no S(k) fit in analysis/{sw}: " + "; ".join(r.get("notes", [])))
     v = compare_value(s["D_f"], s["D_f_err"], 1.63, tolerance=0.03, alternative=0.06,
-                      precision="the thesis' range 1.63 ± 0.03", fmt="{:.3g}")
+                      precision="the thesis' range 1.63 ± 0.03", fmt="{:.3g}", dof=seeds["dof"])
     young = " — the clusters are still growing in so short a run" if sampled < 10 else ""
     reason = (f"{v.reason}; {s['shells']} shells k ≤ k′ = k_D = {s['k_prime']:.0f} 1/m (L_Eff = "
               f"{s['L_eff']:.2f} m < L), χ²_r = {s['chi2_r']:.2g}, {sampled:.2g} s sampled{young}")
@@ -157,31 +206,35 @@ def c_sk(d):
         ax.plot(kw, a * (kw / kc) ** -s["D_f"], "C0", label=f"fit D_f = {_ci(s['D_f'], s['D_f_err'])} (95 %)")
         ax.plot(kw, a * (kw / kc) ** -1.63, "C3--", label="thesis D_f = 1.63 (same amplitude at the centre)")
         ax.axvline(s["k_prime"], color="grey", ls=":", label="k′ = k_D")
-        _ax(ax, f"S(k), φ = 0.53, ε = 0.1, L = 0.2 m, {sampled:.2g} s sampled (thesis Table 4.1)",
+        _ax(ax, f"S(k), φ = {r['phi']:.3g}, ε = {r['eps_n']:g}, L = {r['info'].get('box', 0.2):g} m, "
+            f"{sampled:.2g} s sampled (thesis Table 4.1)",
             "k (1/m)", "S(k)", True, True)
-    return dict(measured=f"D_f = {_ci(s['D_f'], s['D_f_err'])} (95 %)",
+    return dict(measured=f"D_f = {_ci(s['D_f'], s['D_f_err'])} (95 %)" + seed_text(seeds),
                 verdict=_gate(Verdict(v.verdict, reason, v.null, v.alternative, v.power, v.scale), [r]),
                 chart=_chart(d, "Df-Sk", draw),
                 values=dict(D_f=s["D_f"], D_f_err=s["D_f_err"], chi2_r=s["chi2_r"], sampled_s=sampled))
 
 
-def c_freepath(d):
-    r, sampled = _structure(d)
-    f = r.get("free_paths")
+def c_freepath(d, sw="structure"):
+    r, sampled = _structure(d, sw)
+    f, seeds = _seed_fit(r, "free_paths")
     if not f or f.get("D_f") is None:
-        raise Missing("no free-path fit in analysis/structure: " + "; ".join(r.get("notes", [])))
+        raise Missing(f"no free-path fit in analysis/{sw}: " + "; ".join(r.get("notes", [])))
     p, dia = os.path.join(r["adir"], "freepath.csv"), r["info"].get("diameter", 0.003)
     c = _csv(p)[0] if os.path.exists(p) else {k: np.zeros(0) for k in ("l", "count", "P")}
     m = (c["l"] >= 0.1 * dia) & (c["count"] >= 10)  # the analysis' fit window
     l, P = c["l"][m], c["P"][m]
     dec = math.log10(P.max() / P.min()) if len(P) > 1 else math.nan
     v = compare_value(f["D_f"], f["D_f_err"], 1.61, tolerance=0.04, alternative=0.08,
-                      precision="the thesis' 1.61 ± 0.04", fmt="{:.3g}")
+                      precision="the thesis' 1.61 ± 0.04", fmt="{:.3g}", dof=seeds["dof"])
     reason = (f"{v.reason}; T.4.25 fitted on l ≥ d/10 over {dec:.1f} decades of P_l (thesis: six), "
-              f"χ²_r = {f['chi2_r']:.2g}, {sampled:.2g} s sampled. The thesis ran L = 0.6 m, this run "
-              "0.2 m. That is above L_Eff = 0.16 m, and there its S(k) gives the same D_f at L = 0.2, "
-              "0.4 and 0.8 m (Table 4.1), so the exponent is still a check. But P_l changes shape up to "
-              "L_c ≈ 5 L_min ≈ 0.28 m (§4.3.1, scaled to φ = 0.53), so a difference may be finite size")
+              f"χ²_r = {f['chi2_r']:.2g}, {sampled:.2g} s sampled")
+    box = r["info"].get("box", 0.2)
+    if abs(box - 0.6) > 1e-9:
+        reason += (f". The thesis ran L = 0.6 m, this run {box:g} m. That is above L_Eff = 0.16 m, "
+                   "and there its S(k) gives the same D_f at L = 0.2, 0.4 and 0.8 m (Table 4.1), so "
+                   "the exponent is still a check. But P_l changes shape up to L_c ≈ 5 L_min ≈ "
+                   "0.28 m (§4.3.1, scaled to φ = 0.53), so a difference may be finite size")
 
     def draw(ax):
         # T.4.25 with the thesis' D_f, A₀ and C refitted: ln P + 0.39 ln l = ln A₀ − C l^0.61
@@ -192,9 +245,9 @@ def c_freepath(d):
                 label="T.4.25 with the thesis' D_f = 1.61 (A₀, C refitted)")
         ax.axvline(0.1 * dia, color="grey", ls=":", label="fit from d/10")
         ax.set_ylim(max(c["P"][c["P"] > 0].min() / 3, 1e-6), c["P"].max() * 3)
-        _ax(ax, "free paths, φ = 0.53, ε = 0.1, L = 0.2 m (thesis: L = 0.6 m, Fig. 4.10)",
+        _ax(ax, f"free paths, φ = 0.53, ε = 0.1, L = {box:g} m (thesis: L = 0.6 m, Fig. 4.10)",
             "l (m)", "P_l (1/m)", True, True)
-    return dict(measured=f"D_f = {_ci(f['D_f'], f['D_f_err'])} (95 %) at L = 0.2 m",
+    return dict(measured=f"D_f = {_ci(f['D_f'], f['D_f_err'])} (95 %) at L = {box:g} m" + seed_text(seeds),
                 verdict=_gate(Verdict(v.verdict, reason, v.null, v.alternative, v.power, v.scale), [r]),
                 chart=_chart(d, "Df-freepath", draw),
                 values=dict(D_f=f["D_f"], D_f_err=f["D_f_err"], chi2_r=f["chi2_r"], decades=dec))
@@ -204,7 +257,7 @@ def c_freepath(d):
 
 def _alpha(d, sweep, cid, src, half, label, extra=()):
     runs = _runs(d, sweep)
-    tails = [(r, r["tail"]) for r in runs if r.get("tail")]
+    tails = [(q, q["tail"]) for r in runs for q in r["runs"] if q.get("tail")]  # every seed's
     if not tails:
         raise Missing(f"no tail scan in analysis/{sweep}")
     ok = [t["accepted"] and t["alpha_lo"] is not None for _, t in tails]
@@ -243,6 +296,11 @@ def _alpha(d, sweep, cid, src, half, label, extra=()):
 
 T1, T2, T3, T4 = "2D reference fluid", "2D structure", "Velocity tails", "1D ring"
 
+# the sweep each claim reads when the plan names none for it (plans without conditions)
+SWEEP = {"T-start": "reference", "T-mean-field": "reference", "transient": "reference",
+         "Df-Sk": "structure", "Df-freepath": "structure", "alpha-reference": "reference",
+         "alpha-structure": "structure", "xi2": "ring", "xi-m": "ring", "G1-bisection": "ring"}
+
 CLAIMS = [  # id, topic, quote, place, function, (budget that should resolve it, why)
     ("T-start", T1, "demonstrates that the initial conditions of the system do not affect the "
      "two-dimensional Random Force Model", "§2.3.3, Fig. 2.10(b)", c_start,
@@ -260,12 +318,12 @@ CLAIMS = [  # id, topic, quote, place, function, (budget that should resolve it,
      ("standard", "20 s; the thesis' own L = 0.6 m (N = 27000) is beyond every budget")),
     ("alpha-reference", T3, "\"the ranges of α that are accepted\": 1.28 ± 0.03 at ε = 0.55 and "
      "1.40 ± 0.10 at ε = 0.70, ϕ = 0.353", "§5.1.1, Table 5.1 (L = 0.2 m)",
-     lambda d: _alpha(d, "reference", "alpha-reference", 1.28 + 0.12 / 3, 0.03 + 0.07 / 3,
+     lambda d, sw: _alpha(d, sw, "alpha-reference", 1.28 + 0.12 / 3, 0.03 + 0.07 / 3,
                       "Table 5.1 at ε = 0.6 (linear between 0.55 and 0.70)"),
      ("standard", "more velocity samples; but see the notes on correlated samples")),
     ("alpha-structure", T3, "1.10 ± 0.15 (ϕ = 0.530, L = 0.2); \"upper limit of $\\alpha = 1.163 "
      "\\pm 0.017$\"", "§5.1.2, Table 5.2; §5.1.1",
-     lambda d: _alpha(d, "structure", "alpha-structure", 1.10, 0.15, "Table 5.2: 1.10 ± 0.15",
+     lambda d, sw: _alpha(d, sw, "alpha-structure", 1.10, 0.15, "Table 5.2: 1.10 ± 0.15",
                       [(1.163, "headline upper limit 1.163 (φ ≳ 0.53, ε < 0.6)")]),
      ("quick", "3 s sampled")),
     ("xi2", T4, "ξ_2 can be considered to be approximately constant at a value of $\\simeq 0.53$",
@@ -373,15 +431,18 @@ def claims(d, budget):
         nxt = ORDER[min(ORDER.index(budget) + 1, 3)] if budget in ORDER else "full"
         resolve = (f"the {need} budget ({why})" if budget not in ORDER or ORDER.index(budget) <
                    ORDER.index(need) else f"the {nxt} budget: longer runs ({why})")
+        sw = sweep_for(d, cid, SWEEP[cid])
         try:
-            r = fn(d)
+            r = fn(d, sw)
         except Exception as e:  # a missing file or a failed fit leaves the claim open
             msg = str(e) if isinstance(e, Missing) else f"{type(e).__name__}: {e}"
             out.append(Claim(cid, topic, source, where, "not measured", UNRESOLVED, msg, resolve))
             continue
-        v = r["verdict"]
+        v, miss = gate(d, cid, sw, r["verdict"])
         k = v.scale
-        if v.verdict == UNRESOLVED and math.isfinite(k) and k > 1:
+        if miss:
+            resolve = f"runs at the thesis' conditions: sweep {sw} has {miss}"
+        elif v.verdict == UNRESOLVED and math.isfinite(k) and k > 1:
             resolve += f"; its test reaches 80 % power at {k:.3g} × these runs' length"
         elif v.verdict == UNRESOLVED and v.power < POWER and not math.isfinite(k):
             resolve += "; " + v.need(1.0)

@@ -4,6 +4,7 @@ import csv
 import json
 import math
 import os
+import re
 
 import matplotlib
 
@@ -11,10 +12,11 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+from .rfm_conditions import THESIS  # noqa: E402
 from .verdicts import UNRESOLVED, Verdict  # noqa: E402
 
 CUT = 1e-7        # 1D gaps below this (units of L′) are mostly touching disks: their overlap
-N_THESIS = 398    # §3.1.3: "We have ignored data for systems containing 100, 158 or 251 particles"
+N_THESIS = THESIS["xi2"]["N_from"]  # §3.1.3: "We have ignored data for … 100, 158 or 251 particles"
 ORDER = ["smoke", "quick", "standard", "full"]
 
 
@@ -42,8 +44,13 @@ def _csv(path):
     return {h.strip(): a[:, i] for i, h in enumerate(rows[0])}, meta
 
 
+SEED = re.compile(r"(?:^|_)seed=([^_]+)$")  # the seed is the sweep's last (fastest) parameter
+
+
 def _runs(d, sweep):
-    """the runs of analysis/<sweep>/rfm_summary.json, each with its rfm.json as 'info'"""
+    """the points of analysis/<sweep>/rfm_summary.json: the runs grouped by their label without
+    its seed=K part, each point the fields of its first run (with its rfm.json as 'info') and
+    'runs', every seed's run"""
     p = os.path.join(d, "analysis", sweep, "rfm_summary.json")
     if not os.path.exists(p):
         raise Missing(f"analysis/{sweep}/rfm_summary.json is missing (sweep not run or analysed)")
@@ -51,12 +58,53 @@ def _runs(d, sweep):
         runs = json.load(f)["runs"]
     if not runs:
         raise Missing(f"analysis/{sweep}: no run with steady samples")
+    points = {}
     for r in runs:
         r["adir"] = os.path.join(d, "analysis", sweep, r["label"])
-        r["name"] = r["label"].split("=")[-1] if len(runs) > 1 else sweep
         q = os.path.join(r["adir"], "rfm.json")
-        r["info"] = json.load(open(q)) if os.path.exists(q) else {}
-    return runs
+        r["info"] = {}
+        if os.path.exists(q):
+            with open(q) as f:
+                r["info"] = json.load(f)
+        m = SEED.search(r["label"])
+        r["seed"] = m.group(1) if m else None
+        points.setdefault(SEED.sub("", r["label"]) if m else r["label"], []).append(r)
+    out = []
+    for base, rs in points.items():
+        pt = dict(rs[0], label=base, runs=rs)
+        pt["name"] = base.split("=")[-1] if len(points) > 1 and base else sweep
+        for r in rs:
+            r["name"] = pt["name"] + (f" seed {r['seed']}" if len(rs) > 1 else "")
+        out.append(pt)
+    return out
+
+
+def seed_mean(values, errors):
+    """a point's value from its seeds: their mean; its error the larger of the within-run error
+    (the runs' errors combined) and the scatter between seeds (the standard error of their mean),
+    which it was, and the degrees of freedom of a test on it (None: normal, one seed)"""
+    v, e = np.asarray(values, float), np.asarray(errors, float)
+    if len(v) == 1:  # one seed: the run's own value and error, untouched
+        return dict(value=float(v[0]), err=float(e[0]), within=float(e[0]), between=math.nan,
+                    seeds=1, which="within the run", dof=None)
+    within = float(np.sqrt((e ** 2).sum()) / len(v))
+    between = float(v.std(ddof=1) / math.sqrt(len(v)))
+    big = not (within >= between)  # a NaN within-run error gives way to the seeds' scatter
+    # Student's t of n − 1 dof whichever is larger: the t test on the seeds' scatter alone has
+    # its nominal size, and a larger error only lowers it (a within-run error that wins by
+    # chance may still miss a scatter the runs do not see)
+    return dict(value=float(v.mean()), err=between if big else within, within=within,
+                between=between, seeds=len(v), which="between seeds" if big else "within runs",
+                dof=len(v) - 1)
+
+
+def seed_text(s, unit=""):
+    """'' for one seed, else both errors of a seed mean and which one the verdict uses"""
+    if s["seeds"] < 2:
+        return ""
+    return (f" (mean of {s['seeds']} seeds; 95 % scatter between seeds ± {1.96 * s['between']:.2g}"
+            f"{unit}, within runs ± {1.96 * s['within']:.2g}{unit}: the verdict uses the larger, "
+            f"{s['which']}, with Student's t of {s['dof']} degrees of freedom)")
 
 
 def _ci(v, e):
@@ -69,9 +117,11 @@ def _ci(v, e):
     return f"{v:.{n}f} ± {1.96 * e:.{n}f}"
 
 
-def _gate(v, runs, need=1.0):
-    """steady-state claims need the thesis' first second discarded (§2.2.3, §2.3.2)"""
-    t = min(r["info"].get("t_steady", r["info"].get("discard_time", 0.0)) for r in runs)
+def _gate(v, runs, need=THESIS["T-start"]["discard_s"]):
+    """steady-state claims need the thesis' first second discarded (§2.2.3, §2.3.2); runs whose
+    plan states its conditions are held to each claim's own (rfm_conditions) first"""
+    t = min(q["info"].get("t_steady", q["info"].get("discard_time", 0.0))
+            for r in runs for q in r.get("runs", [r]))
     if v.verdict != UNRESOLVED and t < need - 1e-6:
         return Verdict(UNRESOLVED, f"the runs discard only {t:.2g} s of transient, the thesis measures "
                        f"after the first second; at face value: {v.verdict}, {v.reason}",

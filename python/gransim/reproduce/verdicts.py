@@ -93,11 +93,21 @@ def z_of(p):
     return _N.inv_cdf(1.0 - p)
 
 
-def power_two_sided(effect, sigma, tolerance=0.0, alpha=P_KEEP):
-    """P(|d̂| − tolerance > z_{α/2}·σ) when d̂ ~ N(effect, σ)"""
+def t_of(p, dof):
+    """Student's t quantile with P(|T_dof| > t) = p (bisection on t_sf2)"""
+    lo, hi = 0.0, 1e4
+    for _ in range(100):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if t_sf2(mid, dof) > p else (lo, mid)
+    return hi
+
+
+def power_two_sided(effect, sigma, tolerance=0.0, alpha=P_KEEP, dof=None):
+    """P(|d̂| − tolerance > c·σ) when d̂ ~ N(effect, σ), c = z_{α/2} (or Student's t quantile
+    of dof degrees of freedom when σ is estimated from dof + 1 values)"""
     if not (_finite(effect, sigma) and sigma > 0):
         return float("nan")
-    c = tolerance + z_of(alpha / 2) * sigma
+    c = tolerance + (z_of(alpha / 2) if dof is None else t_of(alpha, dof)) * sigma
     return phi((abs(effect) - c) / sigma) + phi((-abs(effect) - c) / sigma)
 
 
@@ -154,30 +164,36 @@ def decide(p, power, what_null, what_alt, text, scale, feature=False, fmt_p="{:.
 
 
 def compare_value(measured, err, source, source_err=0.0, tolerance=0.0, alternative=None,
-                  precision="", fmt="{:.4g}"):
+                  precision="", fmt="{:.4g}", dof=None):
     """A number against the source's number.
 
     tolerance: the precision the source states (its ±, or the rounding of a printed value),
     quoted in `precision`; alternative: the smallest difference from the source that the
     source would call a failure (None: the source names none, so the test has no power and
-    cannot agree).
+    cannot agree); dof: err is a scatter estimated with dof degrees of freedom (the standard
+    error of a mean over dof + 1 seeds), so the test is Student's t, not normal.
     """
     if not _finite(measured, err):
         return Verdict(UNRESOLVED, "no finite measurement", "", "", float("nan"))
     s = math.hypot(err, source_err)
     d = abs(measured - source)
     excess = max(d - tolerance, 0.0)
-    p = 2.0 * (1.0 - phi(excess / s)) if s > 0 else (1.0 if excess == 0 else 0.0)
+    if dof is not None and s > 0:
+        p = t_sf2(excess / s, dof) if excess > 0 else 1.0
+    else:
+        p = 2.0 * (1.0 - phi(excess / s)) if s > 0 else (1.0 if excess == 0 else 0.0)
     text = (f"measured {fmt.format(measured)} ± {fmt.format(err)}, source {fmt.format(source)}"
             + (f" ± {fmt.format(source_err)}" if source_err else "")
             + (f" (± {fmt.format(tolerance)}: {precision})" if tolerance else "" if source_err else
                " (the source states no precision: the measurement's error alone)")
-            + (f"; {excess / s:.1f}σ beyond it" if excess > 0 and s > 0 else ""))
+            + (f"; {excess / s:.1f}σ beyond it" if excess > 0 and s > 0 else "")
+            + (f" (Student's t, {dof} degrees of freedom)" if dof is not None else ""))
     null = f"true value = {fmt.format(source)}" + (f" ± {fmt.format(tolerance)}" if tolerance else "")
     if alternative is None:
         return decide(p, float("nan"), null, "none named by the source", text, float("nan"))
     def at(k):
-        return power_two_sided(alternative, math.hypot(err / math.sqrt(k), source_err), tolerance)
+        return power_two_sided(alternative, math.hypot(err / math.sqrt(k), source_err), tolerance,
+                               dof=dof)
     alt = f"a difference of {fmt.format(alternative)}"
     return decide(p, at(1.0), null, alt, text, float("nan"), power_at=at)
 
@@ -545,3 +561,37 @@ def t_sf2(t, dof):
     if x < (a + 1.0) / (a + b + 2.0):
         return front * _betacf(a, b, x) / a
     return 1.0 - front * _betacf(b, a, 1.0 - x) / b
+
+
+def f_sf(f, d1, d2):
+    """P(F > f) for Fisher's F of (d1, d2) degrees of freedom: I_{d2/(d2+d1 f)}(d2/2, d1/2)"""
+    if not f > 0:
+        return 1.0
+    x = d2 / (d2 + d1 * f)
+    a, b = 0.5 * d2, 0.5 * d1
+    front = math.exp(math.lgamma(a + b) - math.lgamma(a) - math.lgamma(b)
+                     + a * math.log(x) + b * math.log1p(-x))
+    if x < (a + 1.0) / (a + b + 2.0):
+        return front * _betacf(a, b, x) / a
+    return 1.0 - front * _betacf(b, a, 1.0 - x) / b
+
+
+def groups_consistent(groups, label="groups"):
+    """Groups of independent repeats (a start's seeds) whose means the source says are equal:
+    one-way analysis of variance, the scatter between the groups' means against the scatter of
+    the repeats within them (F of K − 1 and Σ(n_k − 1) degrees of freedom), which needs no
+    error of a single repeat. The source names no alternative: no power. Returns (Verdict, p)."""
+    g = [np.asarray(x, float) for x in groups]
+    k, n = len(g), sum(len(x) for x in g)
+    d1, d2 = k - 1, n - k
+    if k < 2 or d2 < 1:
+        return Verdict(UNRESOLVED, f"{label}: fewer than two groups or no repeats", "", "",
+                       float("nan")), float("nan")
+    mean = np.concatenate(g).mean()
+    between = sum(len(x) * (x.mean() - mean) ** 2 for x in g) / d1
+    within = sum(((x - x.mean()) ** 2).sum() for x in g) / d2
+    f = between / within if within > 0 else math.inf
+    p = f_sf(f, d1, d2) if math.isfinite(f) else 0.0
+    text = f"F = {f:.3g} for {d1} and {d2} degrees of freedom ({label})"
+    return decide(p, float("nan"), f"every {label} has the same mean", "none named by the source",
+                  text, float("nan")), p

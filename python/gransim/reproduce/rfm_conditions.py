@@ -1,0 +1,165 @@
+"""The conditions under which the thesis makes each Random Force Model claim, and the check of a
+sweep's runs against them from DIR/plan.json's sweeps[].conditions: a claim is judged only on
+runs at the thesis' parameters and after the time the thesis shows is needed; otherwise it is
+not resolved and says what is missing. A plan without conditions (older runs) skips the check,
+and the claims keep their own checks of the runs (discarded transient, ring sizes, N)."""
+import json
+import math
+import os
+
+from .verdicts import UNRESOLVED, Verdict
+
+PHI_TOL = 5e-4  # the thesis prints φ to three decimals
+
+# claim id -> the thesis' conditions: dim (2: periodic box, 1: ring), phi, phi_below, eps (ε_n,
+# and ε_t in 2D), eps_below (1D), L (2D box side, m), L1 (ring's L′, m), N, sizes (distinct N
+# ≥ N_from), starts, discard_s, sampled_s (the time the thesis shows is needed, or with
+# sampled_as_run the time it sampled); 'source' quotes where each comes from
+THESIS = {
+    "T-start": dict(dim=2, phi=0.353, eps=0.6, L=0.2, N=2000, starts=2, discard_s=1.0,
+                    source="§2.3.3: N = 2000, L = 0.2 m, ε = 0.6 from three starts (Fig. 2.10b), "
+                           "steady after the first second"),
+    "transient": dict(dim=2, phi=0.353, eps=0.6, L=0.2, N=2000,
+                      source="§2.3.3, Fig. 2.10a: N = 2000, L = 0.2 m, ε = 0.6"),
+    "T-mean-field": dict(dim=2, phi_below=0.1, discard_s=1.0,
+                         source="§5.1: eq. 5.2 is derived for φ < 0.1"),
+    "Df-Sk": dict(dim=2, phi=0.530, eps=0.1, L=0.2, discard_s=1.0,
+                  source="Table 4.1: φ = 0.530, L = 0.2 m, ε = 0.1"),
+    "Df-freepath": dict(dim=2, phi=0.530, eps=0.1, L=0.6, discard_s=1.0,
+                        source="§4.3.3, eq. 4.25: L = 0.6 m, φ = 0.530, ε = 0.1"),
+    "alpha-reference": dict(dim=2, phi=0.353, eps=0.6, L=0.2, discard_s=1.0,
+                            source="Table 5.1 read at ε = 0.6: φ = 0.353, L = 0.2 m"),
+    "alpha-structure": dict(dim=2, phi=0.530, eps=0.1, L=0.2, discard_s=1.0,
+                            source="Table 5.2: φ = 0.530, L = 0.2 m, ε = 0.1"),
+    "xi2": dict(dim=1, eps_below=0.5, L1=1.0, sizes=2, N_from=398, discard_s=20.0,
+                sampled_s=200.0, source="§3.1.3: L′ = 1 m, ε ≤ 0.5, N ≥ 398, 20 s relaxation, "
+                                        "then 10 × 20 s sampled (Fig. 2.8: ≈ 200 s to settle)"),
+    "xi-m": dict(dim=1, eps_below=0.5, L1=1.0, sizes=2, N_from=398, discard_s=20.0,
+                 sampled_s=1000.0, sampled_as_run=True, source="§3.2.1: L′ = 1 m, ε < 0.5, N ≥ 398, 20 s relaxation, "
+                                          "then 50 × 20 s sampled"),
+    "G1-bisection": dict(dim=1, eps=0.1, N=512, discard_s=20.0, sampled_s=200.0,
+                         source="§3.4: N = 2⁹ at ε = 0.1 (Fig. 3.16), after the 20 s relaxation "
+                                "and the ≈ 200 s the 1D temperature takes to settle (Fig. 2.8)"),
+}
+
+
+def plan_conditions(d):
+    """{sweep name: conditions} of DIR/plan.json, or None when the plan states none"""
+    try:
+        with open(os.path.join(d, "plan.json")) as f:
+            sweeps = json.load(f).get("sweeps", [])
+    except (OSError, ValueError):
+        return None
+    out = {s["name"]: s["conditions"] for s in sweeps
+           if isinstance(s, dict) and isinstance(s.get("conditions"), dict) and "name" in s}
+    return out or None
+
+
+def _fmt(x):
+    return f"{x:.3g}" if isinstance(x, float) else str(x)
+
+
+def _point_misses(t, c, q):
+    """what a plan point q of a sweep with conditions c lacks of the thesis' conditions t, as
+    (quantity, the point's value, the thesis') triples"""
+    out = []
+    dim = c.get("dimension")
+    if t.get("dim") is not None and dim != t["dim"]:
+        have = {1: "a 1D ring", 2: "a 2D fluid"}
+        return [("", have.get(dim, f"dimension {dim}"), have[t["dim"]])]
+    phi, n, e_n = q.get("phi", math.nan), q.get("N"), q.get("eps_n", math.nan)
+    if "phi" in t and not abs(phi - t["phi"]) <= PHI_TOL:
+        out.append(("φ", f"{phi:.3f}", f"{t['phi']:.3f}"))
+    if "phi_below" in t and not phi < t["phi_below"]:
+        out.append(("φ", f"{phi:.3f}", f"φ < {t['phi_below']:g}"))
+    if "eps" in t:
+        e = [e_n] + ([q.get("eps_t", math.nan)] if t["dim"] == 2 else [])
+        if not all(abs(x - t["eps"]) <= 1e-9 for x in e):
+            out.append(("ε", "/".join(f"{x:g}" for x in e), f"{t['eps']:g}"))
+    if "eps_below" in t and not e_n <= t["eps_below"]:
+        out.append(("ε", f"{e_n:g}", f"ε ≤ {t['eps_below']:g}"))
+    for key, name, unit in (("L", "L", "L"), ("L1", "L′", "reduced_length")):
+        if key in t and not abs(q.get(unit, math.nan) - t[key]) <= 1e-9 * t[key]:
+            out.append((name, f"{q.get(unit, math.nan):g} m", f"{t[key]:g} m"))
+    if "N" in t and n != t["N"]:
+        out.append(("N", str(n), str(t["N"])))
+    if "N_from" in t and not (n or 0) >= t["N_from"]:
+        out.append(("N", str(n), f"N ≥ {t['N_from']}"))
+    return out
+
+
+def _phrases(per):
+    """the misses of the points closest to the thesis', one phrase a quantity over its points"""
+    fewest = min(len(m) for m in per)
+    merged = {}
+    for m in per:
+        if len(m) == fewest:
+            for name, have, want in m:
+                haves = merged.setdefault((name, want), [])
+                if have not in haves:
+                    haves.append(have)
+    return [f"{name + ' = ' if name else ''}{', '.join(h)} where the thesis has {want}"
+            for (name, want), h in merged.items()]
+
+
+def misses(cid, c):
+    """what the runs of a sweep with plan conditions c lack of the thesis' conditions for claim
+    cid, as phrases ("N = 4000 where the thesis has 512"); [] when they meet them"""
+    t = THESIS.get(cid)
+    if t is None:
+        return []
+    points = c.get("points") or []
+    per = [_point_misses(t, c, q) for q in points]
+    ok = [q for q, m in zip(points, per) if not m]
+    out = []
+    if not points:
+        out.append("the plan lists no point")
+    elif "sizes" in t:
+        n = sorted({q.get("N") for q in ok})
+        if len(n) < t["sizes"]:
+            bad = [m for m in per if m]
+            out.append(f"{len(n)} ring size(s) at the thesis' parameters where the fit needs "
+                       f"{t['sizes']}" + (f" ({'; '.join(_phrases(bad))})" if bad else ""))
+    elif not ok:
+        out += _phrases(per)
+    if "starts" in t and len(c.get("starts") or []) < t["starts"]:
+        out.append(f"{len(c.get('starts') or [])} start(s) where the claim compares "
+                   f"{t['starts']} at least")
+    verb = "sampled" if t.get("sampled_as_run") else "needed"
+    for key, what, need in (("discard_s", "discarded", "the thesis discards"),
+                            ("sampled_s", "sampled", f"the thesis {verb}")):
+        have = c.get(key)
+        if key in t and not (isinstance(have, (int, float)) and have >= t[key] - 1e-6):
+            out.append(f"{_fmt(have)} s {what} where {need} ≈ {t[key]:g} s")
+    return out
+
+
+def sweep_for(d, cid, default):
+    """the sweep a claim reads: of those whose plan conditions list the claim, the first that
+    meets the thesis' conditions, else the first other sweep that meets them (eq. 5.2's φ < 0.1
+    in a sweep over φ), else the first listed; the default without plan conditions"""
+    conds = plan_conditions(d)
+    if not conds:
+        return default
+    listed = [n for n, c in conds.items() if cid in (c.get("claims") or [])]
+    good = [n for n in listed if not misses(cid, conds[n])]
+    good += [n for n, c in conds.items() if n not in listed and cid in THESIS and not misses(cid, c)]
+    return (good or listed or [default])[0]
+
+
+def gate(d, cid, sweep, v):
+    """the verdict v, or not resolved with what the sweep's runs lack of the thesis' conditions
+    (the verdict at face value kept in the reason); unchanged without plan conditions"""
+    conds = plan_conditions(d)
+    if conds is None:
+        return v, ""
+    c = conds.get(sweep)
+    miss = ([f"the plan states no conditions for sweep {sweep}"] if c is None
+            else misses(cid, c))
+    if not miss:
+        return v, ""
+    what = "; ".join(miss)
+    face = v.reason if v.verdict == UNRESOLVED else f"{v.verdict}, {v.reason}"
+    return (Verdict(UNRESOLVED, f"not at the thesis' conditions ({THESIS[cid]['source']}): "
+                    f"sweep {sweep} has {what}; at face value: {face}", v.null, v.alternative,
+                    v.power, math.nan), what)
