@@ -7,6 +7,7 @@ from them); no raw runs.
 usage: reproduce_publish.py RUN_DIR DOCS_DIR      (e.g. runs/reproduce-tapping-quick
                                                    docs/reproduction/tapping-quick)"""
 import glob
+import gzip
 import json
 import os
 import re
@@ -45,12 +46,19 @@ def main():
         p["command"] = re.sub(r" --out \S+| --out '[^']*'", "", p.get("command", ""))
         with open(plan, "w") as f:
             f.write(json.dumps(p, indent=2, ensure_ascii=False) + "\n")
-    # the analysis' summary tables, folder by folder (RFM: one per sweep)
+    # the analysis' summary tables, folder by folder (RFM: one per sweep); where the series
+    # hold a table, its copy there, whose paths the report already made relative to the folder
+    # it was written in (that folder may since have been copied elsewhere)
     for path in glob.glob(os.path.join(src, "analysis", "**", "*"), recursive=True):
         if os.path.basename(path) in SUMMARIES:
             rel = os.path.relpath(path, src)
             os.makedirs(os.path.join(dst, os.path.dirname(rel)), exist_ok=True)
-            shutil.copy2(path, os.path.join(dst, rel))
+            shipped = os.path.join(src, "series", rel + ".gz")
+            if os.path.exists(shipped):
+                with gzip.open(shipped, "rb") as z, open(os.path.join(dst, rel), "wb") as f:
+                    shutil.copyfileobj(z, f)
+            else:
+                shutil.copy2(path, os.path.join(dst, rel))
     # run directories are local paths of the machine that ran them: keep them relative to the
     # reproduction folder (the command line in the report stays as it was typed)
     for path in glob.glob(os.path.join(dst, "analysis", "**", "*"), recursive=True):
