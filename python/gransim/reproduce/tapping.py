@@ -224,6 +224,8 @@ def halves(st, budget):
         worst = max(verdicts, key=lambda t: t[2] + 2 * t[3])
         weakest = min(verdicts, key=lambda t: t[0].power)
         n_min = min(t[4] for t in verdicts)
+        # the runs that decide a disagreement, which need not be the one with the largest value
+        above = [f"{t[1]}: {t[2]:.3g} ± {t[3]:.2g}" for t in verdicts if t[0].verdict == DISAGREES]
         cond = (f"; the source's bound is on 2500-tap means, these runs have {n_min:.0f}+ taps"
                 if n_min < 2500 else "")
         fig, ax = _fig()
@@ -240,8 +242,9 @@ def halves(st, budget):
                          f"{len(rows)} runs", v,
                          f"{sum(t[0].verdict == AGREES for t in verdicts)} of {len(rows)} runs "
                          f"below the bound with power ≥ 0.8, "
-                         f"{sum(t[0].verdict == DISAGREES for t in verdicts)} above it at 99 %; "
-                         f"worst: {worst[0].reason}{cond}",
+                         f"{len(above)} above it at 99 %"
+                         + (f" ({'; '.join(above)})" if above else "")
+                         + f"; worst: {worst[0].reason}{cond}",
                          _need(weakest[0], weakest[4], "taps per value"),
                          chart, {"worst": worst[2], "worst_err": worst[3]},
                          null=f"{unit} = 0 in every run", alternative=f"{unit} at the bound "
