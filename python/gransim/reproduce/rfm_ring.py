@@ -143,7 +143,7 @@ def c_xim(d, sw="ring"):
                       fmt="{:.3g}")
     v.alternative = "no decrease of ξ_m/m (0.036 from the thesis' change)"
     v = outside(_gate(Verdict(v.verdict, "ξ₉/9 − ξ₁ : " + v.reason, v.null, v.alternative,
-                              v.power, v.scale), runs))
+                              v.power, v.scale_, v.power_at), runs))
 
     def draw(ax):
         m = np.arange(1, 13)
@@ -306,7 +306,7 @@ def c_zeta(d, sw="ring"):
         ax.plot(m, np.log(m + 1) / math.log(2), "k:", label="uniform bisection ln(m+1)/ln 2")
         _ax(ax, f"gap moments ⟨R^m⟩ ∝ N^−ζ_m, ε = {eps:g}, N = {sizes}", "m", "ζ_m")
     return dict(measured=", ".join(f"ζ{m} = {_ci(*z[m][:2])}" for m in range(1, 6))
-                + f" (95 %) over N = {sizes}" + _seeds(c), verdict=v,
+                + f" (95 %) over N = {sizes}" + _seeds(c).replace("⟨|v|^m⟩", "⟨R^m⟩"), verdict=v,
                 chart=_chart(d, "zeta-m", draw),
                 values={f"zeta{m}": z[m][0] for m in range(1, 6)})
 
@@ -392,7 +392,8 @@ def c_vpdf(d, sw="ring"):
             a2.plot(nn, (nn / g) ** sz, "--", color=a2.lines[-1].get_color() if a2.lines else None,
                     lw=0.8, label=f"thesis slope {sz:.3g}")
         a2.axhline(1, color="k", ls=":", label="a collapse")
-        _ax(a2, "⟨|v|^m⟩/⟨v²⟩^(m/2), each over its mean", "N", "relative value", True, True, 7)
+        _ax(a2, f"⟨|v|^m⟩/⟨v²⟩^(m/2), each over its mean (tested: m = {m})", "N",
+            "relative value", True, True, 7)
     return dict(measured=f"slope of ln(⟨|v|^{m}⟩/⟨v²⟩^{m / 2:g}) over ln N = {_ci(b, eb)} (95 %) "
                 f"over N = {sizes} at ε = {eps:g}; thesis {size:.3g}; m = {m} of "
                 f"{', '.join(map(str, XI_M))} has the most power", verdict=v,

@@ -10,7 +10,7 @@ import matplotlib
 matplotlib.use("Agg")
 import numpy as np  # noqa: E402
 
-from .rfm_conditions import gate  # noqa: E402
+from .rfm_conditions import THESIS, misses, plan_conditions  # noqa: E402
 from .rfm_data import Missing, _ax, _chart, _ci, _csv, _gate, _runs  # noqa: E402
 from .rfm_ring import _seeds, _two_sided, bonferroni, eps_values, exponents, moments  # noqa: E402
 from .verdicts import (UNRESOLVED, Verdict, chi2_sf, compare_value, decide,  # noqa: E402
@@ -41,11 +41,26 @@ def _ring_points(d, sw, other="ring"):
 
 def _others(d, cid, pts, sw, v):
     """v, or not resolved when a sweep other than sw that gave points misses the thesis'
-    conditions (the report gates sw itself)"""
+    conditions; when sw misses them too, the report's gate says so and the others' misses
+    are added to the reason"""
+    conds = plan_conditions(d)
+    if not conds:
+        return v
+    out = []
     for s in dict.fromkeys(x for x, _ in pts.values()):
-        if s != sw:
-            v, _ = gate(d, cid, s, v)
-    return v
+        m = (misses(cid, conds[s]) if s in conds else
+             [f"the plan states no conditions for sweep {s}"]) if s != sw else []
+        if m:
+            out.append(f"sweep {s} has " + "; ".join(m))
+    if not out:
+        return v
+    what = "; ".join(out)
+    if sw not in conds or misses(cid, conds[sw]):
+        return Verdict(v.verdict, f"{v.reason} (and {what})", v.null, v.alternative, v.power,
+                       v.scale_, v.power_at)
+    face = v.reason if v.verdict == UNRESOLVED else f"{v.verdict}, {v.reason}"
+    return Verdict(UNRESOLVED, f"not at the thesis' conditions ({THESIS[cid]['source']}): {what}; "
+                   f"at face value: {face}", v.null, v.alternative, v.power, math.nan)
 
 
 def xi2_fits(tables):
