@@ -381,6 +381,9 @@ def c_vpdf(d, sw="ring"):
             ok = h["P"] > 0
             a1.plot(h["v"][ok] / s, h["P"][ok] * s, ".", ms=2, color=f"C{k}",
                     label=f"N = {r['particles']:g}" + (" (seed 1)" if len(r["runs"]) > 1 else ""))
+        if not a1.lines:
+            a1.text(0.5, 0.5, "no velocity.csv of these runs in this folder", ha="center",
+                    transform=a1.transAxes)
         _ax(a1, f"rescaled velocity PDFs, ε = {eps:g} (thesis Fig. 3.6a)", "v/⟨v²⟩^½",
             "⟨v²⟩^½ P(v)", False, True, 7)
         for k in XI_M:
