@@ -11,10 +11,10 @@ matplotlib.use("Agg")
 import numpy as np  # noqa: E402
 
 from .rfm_conditions import THESIS, misses, plan_conditions  # noqa: E402
-from .rfm_data import Missing, _ax, _chart, _ci, _csv, _gate, _runs  # noqa: E402
+from .rfm_data import Missing, _ax, _chart, _ci, _csv, _gate, _runs, seed_mean  # noqa: E402
 from .rfm_ring import _seeds, _two_sided, bonferroni, eps_values, exponents, moments  # noqa: E402
-from .verdicts import (UNRESOLVED, Verdict, chi2_sf, compare_value, decide,  # noqa: E402
-                       groups_consistent, mean_err, phi, power_two_sided, t_sf2, tau_int)
+from .verdicts import (UNRESOLVED, Verdict, chi2_consistent, chi2_sf, compare_value,  # noqa: E402
+                       decide, mean_err, phi, power_two_sided, t_sf2, tau_int)
 
 XI2, XI2_TOL, XI2_ALT = 0.53, 0.005, 0.01  # "≃ 0.53" to two decimals; c_xi2's alternative
 PLATEAU = 0.5                              # "in the range 0 ≤ ε ≤ 0.5"
@@ -240,34 +240,43 @@ def _blocks(t, T, length):
 
 
 def drift(groups):
-    """a common linear trend of block means across seeds (each its own level): slope, its error,
-    the two-sided p (Student's t of Σ(n − 1) − 1 degrees of freedom); nan when too few blocks"""
-    tc, yc = [], []
+    """the linear trend of each seed's period means (y, mid-times t), merged over the seeds by
+    seed_mean (the larger of the runs' own errors and the seeds' scatter, which a slow wandering
+    that the periods share cannot hide): slope, its error, the two-sided p; nan when a seed has
+    fewer than three periods"""
+    b, e = [], []
     for y, t in groups:
-        tc.append(t - t.mean())
-        yc.append(y - y.mean())
-    tc, yc = np.concatenate(tc), np.concatenate(yc)
-    dof = len(tc) - len(groups) - 1
-    if dof < 1 or not (tc ** 2).sum() > 0:
-        return math.nan, math.nan, math.nan
-    b = float((tc * yc).sum() / (tc ** 2).sum())
-    s = math.sqrt(float(((yc - b * tc) ** 2).sum()) / dof / (tc ** 2).sum())
-    return b, s, (t_sf2(abs(b) / s, dof) if s > 0 else 0.0)
+        if len(y) < 3:
+            return math.nan, math.nan, math.nan
+        tc = t - t.mean()
+        bs = float((tc * (y - y.mean())).sum() / (tc ** 2).sum())
+        r = y - y.mean() - bs * tc
+        b.append(bs)
+        e.append(math.sqrt(float((r ** 2).sum()) / (len(y) - 2) / (tc ** 2).sum()))
+    s = seed_mean(b, e)
+    dof = s["dof"] if s["dof"] is not None else len(groups[0][0]) - 2
+    return s["value"], s["err"], (t_sf2(abs(s["value"]) / s["err"], dof) if s["err"] > 0 else 0.0)
 
 
-def settle_test(groups, length):
-    """no drift of the period means (length s) of every seed, and one mean for all seeds:
-    Bonferroni over the two; the thesis sizes neither, so it can disagree, never agree. The
-    verdict, the drift and its error"""
+def settle_test(groups, means):
+    """no drift of the period means of every seed (groups: (means, mid-times) per seed), and one
+    ⟨T⟩ for all seeds (means: (⟨T⟩, its error from τ_int) per seed, compared by independent
+    contrasts): Bonferroni over the two; the thesis sizes neither, so it can disagree, never
+    agree. The verdict, the drift and its error"""
     b, sb, pa = drift(groups)
     parts = [pa] if math.isfinite(pa) else []
+    length = float(groups[0][1][1] - groups[0][1][0]) if len(groups[0][1]) > 1 else math.nan
     text = f"drift of the {length:.3g}-s means {b:.2g} ± {sb:.2g} m²/s³ (p = {pa:.2g})"
-    if len(groups) > 1:
-        g, pb = groups_consistent([y for y, _ in groups], "seeds, each from its periods' means")
+    if len(means) > 1:
+        T, E = np.array([m for m, _ in means]), np.array([e for _, e in means])
+        w = 1 / E ** 2  # weighted Helmert contrasts: n − 1 independent unit normals
+        z = [(T[k] - (w[:k] * T[:k]).sum() / w[:k].sum()) / math.sqrt(E[k] ** 2 + 1 / w[:k].sum())
+             for k in range(1, len(T))]
+        g, pb = chi2_consistent(z, np.ones(len(z)), label="contrasts between the seeds' ⟨T⟩")
         parts.append(pb)
         text += "; " + g.reason.split(";")[0] + f" (p = {pb:.2g})"
     if not parts:
-        raise Missing("too few periods for a drift or a comparison of seeds")
+        raise Missing("too few periods for a drift and a single seed")
     return decide(min(1.0, len(parts) * min(parts)), math.nan,
                   "T is steady after the relaxation: its period means drift by zero and every "
                   "seed has one mean", "none sized by the thesis (“approximately 200 seconds”)",
@@ -289,9 +298,9 @@ def c_settle(d, sw="ring_n512"):
     span = min(float(t[-1] - t[0]) for _, t, _ in series)
     length = BLOCK if span >= 2 * BLOCK else span / 4
     groups = [_blocks(t, T, length) for _, t, T in series]
-    if min(len(y) for y, _ in groups) < 2:
-        raise Missing(f"analysis/{sw}: runs of {span:.3g} s sampled hold fewer than two periods")
-    v, b, sb = settle_test(groups, length)
+    if min(len(y) for y, _ in groups) < 3:
+        raise Missing(f"analysis/{sw}: runs of {span:.3g} s sampled hold fewer than three periods")
+    v, b, sb = settle_test(groups, [mean_err(T) for _, _, T in series])
     v = _gate(v, runs)
     settle, rel200, taus = [], [], []
     for q, t, T in series:
