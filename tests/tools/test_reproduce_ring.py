@@ -19,7 +19,7 @@ sys.path.insert(0, os.path.join(HERE, "..", "..", "python"))
 from gransim.reproduce import rfm  # noqa: E402
 from gransim.reproduce.rfm_conditions import misses, sweep_for  # noqa: E402
 from gransim.reproduce.rfm_ring import XI2_2, XI_M, ZETA  # noqa: E402
-from gransim.reproduce.verdicts import AGREES, DISAGREES, UNRESOLVED  # noqa: E402
+from gransim.reproduce.verdicts import AGREES, UNRESOLVED  # noqa: E402
 
 XI = {0.1: 0.53, 0.5: 0.53, 0.87: 0.6, 0.99: 0.65}
 

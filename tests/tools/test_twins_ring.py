@@ -164,6 +164,32 @@ class ElasticMoments(Twin):
                                                                      eps=0.99)), 0.99)[0])
 
 
+class Noiseless(unittest.TestCase):
+    """measured without noise, a true claim never disagrees and a false one never agrees"""
+
+    def check(self, true, false):
+        self.assertNotEqual(true.verdict, DISAGREES, true.reason)
+        self.assertNotEqual(false.verdict, AGREES, false.reason)
+
+    def test_claims(self):
+        r = np.random.default_rng(0)
+
+        def tiny(m):
+            return 1e-9
+        ex = VelocityCollapse.exps
+        self.check(vpdf_test(table(ex(True), r, tiny), 0.1)[0],
+                   vpdf_test(table(ex(False), r, tiny), 0.1)[0])
+        true = {0.1: 0.535, 0.5: 0.525, 0.87: 0.6, 0.99: 2 / 3}
+        self.check(xi2eps_test(Xi2OverEps.fits(r, true, 1e-9)),
+                   xi2eps_test(Xi2OverEps.fits(r, {**true, 0.5: 0.54}, 1e-9)))
+
+        def exps(drop):
+            return {m: m * (XI1_E - drop * (m - 1) / 8) for m in range(1, 10)}
+        self.check(xim_elastic_test(_by_size(table(exps(XI1_E - XI9_E), r, tiny, eps=0.99)),
+                                    0.99)[0],
+                   xim_elastic_test(_by_size(table(exps(0.0), r, tiny, eps=0.99)), 0.99)[0])
+
+
 class Settle(Twin):
     """T-ring-settle: stationary temperatures rarely disagree and never agree, also when the
     period means of a run share a slow wandering (an offset per seed that the periods do not

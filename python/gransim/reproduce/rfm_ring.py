@@ -11,7 +11,7 @@ import numpy as np  # noqa: E402
 
 from .rfm_conditions import THESIS  # noqa: E402
 from .verdicts import (DISAGREES, P_KEEP, P_REJECT, UNRESOLVED, Verdict, chi2_sf,  # noqa: E402
-                       compare_value, decide, phi, power_two_sided, t_sf2)
+                       compare_value, decide, phi, power_two_sided)
 
 from .rfm_data import (CUT, N_THESIS, Missing, _csv, _runs, _ci, _gate, _chart, _ax, _wfit,  # noqa: E402
                        seed_mean)
