@@ -40,9 +40,17 @@ def _by_size(c):
     return {k: np.array(v, float) for k, v in out.items()}
 
 
+def _table(d, sw):
+    """analysis/<sw>/moments_vs_N.csv as it is (every seed's rows)"""
+    p = os.path.join(d, "analysis", sw, "moments_vs_N.csv")
+    if not os.path.exists(p):  # the folder's own name, not this machine's path
+        raise Missing(f"analysis/{sw}/moments_vs_N.csv is missing")
+    return _csv(p)[0]
+
+
 def moments(d, sw):
     """analysis/<sw>/moments_vs_N.csv with each point's moments the mean over its seeds"""
-    return _by_size(_csv(os.path.join(d, "analysis", sw, "moments_vs_N.csv"))[0])
+    return _by_size(_table(d, sw))
 
 
 def exponents(c, eps, ms, col="v_moment", n_from=N_THESIS):
@@ -362,7 +370,7 @@ def vpdf_test(raw, eps):
 
 def c_vpdf(d, sw="ring"):
     runs = _runs(d, sw)
-    raw = _csv(os.path.join(d, "analysis", sw, "moments_vs_N.csv"))[0]
+    raw = _table(d, sw)
     eps = eps_values(raw)[0]
     v, m, fits = vpdf_test(raw, eps)
     b, eb, size, n = fits[m][:4]
