@@ -161,8 +161,9 @@ def c_collapse(d, sw="ring_eps"):
                     ys.append(c["v_moment"][r][0] * n ** f["xi"])
                     es.append(1.96 * c["v_err"][r][0] * n ** f["xi"])
             ax.errorbar(xs, ys, es, fmt="osd^<>v"[k % 7], capsize=2, label=f"N = {n:g}")
-        _ax(ax, "⟨v²⟩ compensated by N^ξ₂(ε) (thesis Fig. 3.3)", "1 − ε²",
-            "⟨v²⟩ N^ξ₂ (m²/s²)", True, True)
+        _ax(ax, "⟨v²⟩ compensated by the fitted N^ξ₂(ε); thesis Fig. 3.3: one curve\n"
+            "for N = 631…10⁴ (its ξ₂ ≃ 0.528 for ε ≤ 0.5)", "1 − ε²", "⟨v²⟩ N^ξ₂ (m²/s²)",
+            True, True)
     return dict(measured=f"χ² = {chi2:.3g} for {dof} (p = {p:.2g}) over ε = "
                 + ", ".join(f"{e:g}" for e in use), verdict=v,
                 chart=_chart(d, "collapse", draw), values=dict(chi2=chi2, dof=dof, p=p))
