@@ -1,11 +1,14 @@
 #!/usr/bin/env python3
 """The power of every claim's test against its source's alternative, by series length: the
 tapping claims recomputed from a published report's analysis tables, their errors scaled as
-1/√(taps). Writes docs/reproduction/power.md.
+1/√(taps), and the Random Force Model claims from a published report's shipped series, their
+errors scaled as 1/√(sampled seconds). Writes docs/reproduction/power.md.
 
 usage: power_table.py [REPORT_DIR] [OUT.md]   (defaults: docs/reproduction/tapping-standard,
-                                               docs/reproduction/power.md)
+                                               docs/reproduction/power.md; the RFM section from
+                                               docs/reproduction/rfm-quick)
 """
+import json
 import math
 import os
 import shutil
@@ -21,6 +24,7 @@ matplotlib.use("Agg")
 import numpy as np  # noqa: E402
 
 LENGTHS = (50, 200, 1000, 2500, 10000)
+SECONDS = (10, 40, 200, 1000)  # sampled seconds per run (the thesis' ring: 200–1000 s)
 
 
 def table(folder, budget="standard", lengths=LENGTHS):
@@ -57,6 +61,59 @@ def table(folder, budget="standard", lengths=LENGTHS):
     return "\n".join(lines) + "\n"
 
 
+def _sampled(d, sweep):
+    """the shortest sampled time (t_end − t_steady, s) of a sweep's runs, from their rfm.json"""
+    base = os.path.join(d, "analysis", sweep)
+    out = []
+    for run in sorted(os.listdir(base)) if os.path.isdir(base) else []:
+        p = os.path.join(base, run, "rfm.json")
+        if os.path.exists(p):
+            with open(p) as f:
+                i = json.load(f)
+            out.append(float(i.get("t_end", math.nan)) - float(i.get("t_steady", math.nan)))
+    return min(out) if out else math.nan
+
+
+def rfm_table(folder, lengths=SECONDS):
+    """Markdown: the Random Force Model claims' power at each sampled time per run, from the
+    series a report folder ships (report.json)"""
+    from gransim.reproduce import rfm, series
+    from gransim.reproduce.rfm_conditions import sweep_for
+    with open(os.path.join(folder, "report.json")) as f:
+        info = json.load(f)
+    name = os.path.basename(os.path.normpath(folder))
+    rows = []
+    with tempfile.TemporaryDirectory() as tmp:  # the claims draw charts: keep them out of folder
+        series.unpack(folder, info, tmp)
+        os.makedirs(os.path.join(tmp, "charts"), exist_ok=True)
+        _, _, claims, _ = rfm.claims(tmp, info["budget"])
+        for c in claims:
+            now = _sampled(tmp, sweep_for(tmp, c.id, rfm.SWEEP[c.id]))
+            cells = []
+            for s in lengths:
+                p = c.power_at(s / now) if c.power_at and math.isfinite(now) else float("nan")
+                cells.append(f"{p:.2f}" if p is not None and math.isfinite(p) else "–")
+            alt = (c.alternative or "–").replace("|", "\\|")
+            now_text = f"{now:.3g} s" if math.isfinite(now) else "–"
+            rows.append(f"| {c.id} | {alt} | {now_text} | " + " | ".join(cells) + " |")
+    return "\n".join([
+        "## Random Force Model",
+        "",
+        f"Computed by `tools/power_table.py` from the series shipped with `{name}`, every error "
+        "scaled as 1/√(sampled seconds per run) from the time each claim's runs sampled (the "
+        "*sampled* column). `–`: the source sizes no alternative, the report has none of the "
+        "claim's runs yet, or the claim's verdict gives its power at the runs' own length only.",
+        "",
+        "| claim | alternative | sampled | " + " | ".join(f"{n} s" for n in lengths) + " |",
+        "|---|---|---|" + "---|" * len(lengths)] + rows) + "\n"
+
+
+def document(root):
+    """power.md: the tapping table, then the Random Force Model's"""
+    return (table(os.path.join(root, "tapping-standard")) + "\n"
+            + rfm_table(os.path.join(root, "rfm-quick")))
+
+
 def main(argv=None):
     argv = sys.argv[1:] if argv is None else argv
     root = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "docs", "reproduction")
@@ -64,7 +121,7 @@ def main(argv=None):
     out = argv[1] if len(argv) > 1 else os.path.join(root, "power.md")
     if not os.path.isfile(os.path.join(folder, "analysis", "summary.csv")):
         sys.exit(f"power_table: {folder}/analysis/summary.csv: no analysis tables here")
-    text = table(folder)
+    text = table(folder) + "\n" + rfm_table(os.path.join(root, "rfm-quick"))
     with open(out, "w") as f:
         f.write(text)
 

@@ -30,7 +30,8 @@ CLAIMS = {
                 "one-curve", "quadron-a", "protocol-fits", "lnz", "sigma-phi", "rot-sigma",
                 "cross-references", "timestep", "stress", "segregation"],
     "rfm": ["T-start", "T-mean-field", "transient", "Df-Sk", "Df-freepath", "alpha-reference",
-            "alpha-structure", "xi2", "xi-m", "G1-bisection"],
+            "alpha-structure", "xi2", "xi-m", "G1-bisection", "T-ring-settle", "xi2-eps", "collapse",
+            "xi-m-elastic", "v-pdf", "zeta-m"],
 }
 VERDICTS = {"agrees", "disagrees", "not resolved"}
 

@@ -398,7 +398,7 @@ class PowerTable(unittest.TestCase):
         docs = os.path.join(ROOT, "docs", "reproduction")
         with open(os.path.join(docs, "power.md")) as f:
             shipped = f.read()
-        self.assertEqual(power_table.table(os.path.join(docs, "tapping-standard")), shipped)
+        self.assertEqual(power_table.document(docs), shipped)
 
 
 if __name__ == "__main__":
