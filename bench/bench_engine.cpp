@@ -26,10 +26,10 @@ SceneSpec pile_scene(IntegratorKind integ) {
   return s;
 }
 
-// the paper pile, settled: positions from bench/data (made by gransim run)
+// the paper pile, settled: positions from scenes/data (made by gransim run)
 World settled_pile(IntegratorKind integ) {
   World w = make_world(pile_scene(integ));
-  read_state_file(w, std::string(GS_SOURCE_DIR) + "/bench/data/paper_pile_settled.csv");
+  read_state_file(w, std::string(GS_SOURCE_DIR) + "/scenes/data/paper_pile_settled.csv");
   return w;
 }
 

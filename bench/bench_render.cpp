@@ -137,7 +137,7 @@ BENCHMARK(BM_RenderEncode720p)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->U
 #endif
 
 // ---------------------------------------------------------------------------------------------
-// the real thing: the settled paper pile (bench/data/paper_pile_settled.csv, 1184 decagons of
+// the real thing: the settled paper pile (scenes/data/paper_pile_settled.csv, 1184 decagons of
 // scenes/paper_pile.toml) through the World adapter (view/render_world.hpp), as `gransim render`
 // and the run's frame recorder draw it
 
@@ -145,7 +145,7 @@ const Snapshot& real_pile() {
   static const Snapshot s = [] {
     SnapshotRequest req;
     req.scene = std::string(GS_SOURCE_DIR) + "/scenes/paper_pile.toml";
-    return load_snapshot(std::string(GS_SOURCE_DIR) + "/bench/data/paper_pile_settled.csv", req);
+    return load_snapshot(std::string(GS_SOURCE_DIR) + "/scenes/data/paper_pile_settled.csv", req);
   }();
   return s;
 }

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Whole-scene tapping figures: wall seconds per tap (run.json's wall_time_per_tap_s, settling
 # excluded) of the paper pile and of the small pile, and the scaling of a small sweep over MPI.
-#   paper  scenes/paper_negative_g.toml started from the settled pile (bench/data/
+#   paper  scenes/paper_negative_g.toml started from the settled pile (scenes/data/
 #          paper_pile_settled.csv, as preparation.from_state; no settling), 1 and 2 threads:
 #          fixed period (Gear 6 at 5e-5 s, the paper's), and early rest with the recommended
 #          settings of scenes/paper_negative_g_fast.toml (velocity Verlet at 1/7500 s; Gear 6 at
@@ -89,7 +89,7 @@ PY
 
 cp scenes/paper_negative_g.toml "$tmp/paper.toml"
 cp scenes/paper_negative_g_fast.toml "$tmp/fast.toml"
-paper=(--set preparation.settle_time=0 --set "preparation.from_state=$PWD/bench/data/paper_pile_settled.csv")
+paper=(--set preparation.settle_time=0 --set "preparation.from_state=$PWD/scenes/data/paper_pile_settled.csv")
 printf '%-44s %10s %6s %8s %14s\n' "scene (wall s per tap, settling excluded)" "s/tap" "taps" "early" "particle-st/s"
 if [ "$quick" = 1 ]; then
   tap paper.fixed "$tmp/paper.toml" 1 10 "${paper[@]}" --set drive.taps=1 --set drive.period=0.3

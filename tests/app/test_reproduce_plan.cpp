@@ -198,3 +198,53 @@ TEST(ReproducePlan, FullBudgetPrintsItsClusterCommands) {
 
 }  // namespace
 }  // namespace gs
+
+namespace gs {
+namespace {
+
+TEST(ReproducePlan, TappingProjectionScalesWithTheCostMeasuredHere) {
+  // a clock that advances 0.6 s over the timed steps: cost = 0.6 s / (steps · grains)
+  const std::string src = GS_SOURCE_DIR;
+  int calls = 0;
+  auto clock = [&calls] { return calls++ == 0 ? 10.0 : 10.6; };
+  const PileCost c = measure_pile_cost(src + "/scenes/paper_negative_g_fast.toml",
+                                       src + "/scenes/data/paper_pile_settled.csv", 3, clock);
+  EXPECT_EQ(calls, 2);
+  EXPECT_TRUE(c.measured);
+  EXPECT_EQ(c.particles, 1184);
+  EXPECT_DOUBLE_EQ(c.seconds, 0.6 / (3.0 * 1184));
+  // every tapping run's projection is steps × grains × cost
+  const ReproducePlan ref = make_plan("tapping", Budget::Standard);
+  const ReproducePlan here = make_plan("tapping", Budget::Standard, c);
+  EXPECT_FALSE(ref.cost.measured);
+  EXPECT_NEAR(here.core_hours() / ref.core_hours(), c.seconds / kPileCostReference, 1e-12);
+  // a 250-tap run at g_p = 6: its taps and the 3 s of settling, in steps of the fast scenes
+  const double steps = (3.0 + 250 * neg_tap_seconds(6.0)) / kPaperDt;
+  const auto& neg = here.sweeps.front();
+  ASSERT_EQ(neg.params.front().rfind("drive.g_p=2,4,6", 0), 0u);
+  EXPECT_NEAR(neg.run_seconds[2], steps * 1184 * c.seconds, 1e-9 * neg.run_seconds[2]);
+  // plan.json says what the projection rests on
+  const auto j = nlohmann::json::parse(plan_json(here, "x", 2));
+  EXPECT_TRUE(j.at("cost").at("measured_here").get<bool>());
+  EXPECT_DOUBLE_EQ(j.at("cost").at("core_seconds_per_particle_step").get<double>(), c.seconds);
+  EXPECT_EQ(j.at("cost").at("steps_timed").get<int>(), 3);
+  // a clock that does not advance measures nothing: the reference cost stays
+  const PileCost none = measure_pile_cost(src + "/scenes/paper_negative_g_fast.toml",
+                                          src + "/scenes/data/paper_pile_settled.csv", 1,
+                                          [] { return 5.0; });
+  EXPECT_FALSE(none.measured);
+  EXPECT_EQ(none.seconds, kPileCostReference);
+}
+
+TEST(ReproducePlan, PileCostNamesAnUnreadableState) {
+  const std::string src = GS_SOURCE_DIR;
+  try {
+    measure_pile_cost(src + "/scenes/paper_negative_g_fast.toml", src + "/scenes/data/none.csv", 1);
+    FAIL() << "no error";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("none.csv"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace gs

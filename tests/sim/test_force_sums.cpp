@@ -82,7 +82,7 @@ TEST(ForceSums, SettledDecagonPileMatchesSerialLoop) {
   const std::string src = GS_SOURCE_DIR;
   const SceneSpec s = parse_scene_file(src + "/scenes/paper_pile.toml");
   World w = make_world(s);
-  read_state_file(w, src + "/bench/data/paper_pile_settled.csv");
+  read_state_file(w, src + "/scenes/data/paper_pile_settled.csv");
   expect_serial_sums(w, SimSettings::from(s), BroadPhaseKind::CellGrid);
   expect_serial_sums(w, SimSettings::from(s), BroadPhaseKind::Box2DTree);
 }

@@ -75,7 +75,7 @@ TEST(Determinism, SameHashForOneAndTwoThreads) {
     const int before = omp_get_max_threads();
     omp_set_num_threads(threads);
     World w = make_world(s);
-    read_state_file(w, src + "/bench/data/paper_pile_settled.csv");
+    read_state_file(w, src + "/scenes/data/paper_pile_settled.csv");
     Simulation sim(std::move(w), SimSettings::from(s));
     sim.run(100);
     omp_set_num_threads(before);

@@ -203,7 +203,7 @@ TEST(RunAhead, GearSixPredictsByRange) {
   auto settled = [&] {
     const SceneSpec s = parse_scene_file(src + "/scenes/paper_pile.toml");
     World w = make_world(s);
-    read_state_file(w, src + "/bench/data/paper_pile_settled.csv");
+    read_state_file(w, src + "/scenes/data/paper_pile_settled.csv");
     return Simulation(std::move(w), SimSettings::from(s));
   };
   auto column = [] { return make_sim(build::decagon_pile(40, 0.2, 0.4, 1)); };

@@ -23,7 +23,7 @@ Simulation pile_sim() {
   const std::string src = GS_SOURCE_DIR;
   const SceneSpec s = parse_scene_file(src + "/scenes/paper_pile.toml");
   World w = make_world(s);
-  read_state_file(w, src + "/bench/data/paper_pile_settled.csv");
+  read_state_file(w, src + "/scenes/data/paper_pile_settled.csv");
   return Simulation(std::move(w), SimSettings::from(s));
 }
 

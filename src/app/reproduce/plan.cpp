@@ -9,11 +9,10 @@
 
 namespace gs {
 
-namespace {
+// the excitation (pulse and flight 2g_p·t1) and a relaxation that ends ≈ 1.4–1.5 s after it
+double neg_tap_seconds(double g_p) { return 0.01 + 0.02 * g_p + 1.45; }
 
-// core-seconds per particle-step of the 1184-decagon pile (one thread a run); it only scales
-// the projections printed before a run
-constexpr double kPolygonCost = 1.1e-6;
+namespace {
 
 std::string join(const std::vector<double>& v) {
   std::ostringstream o;
@@ -21,15 +20,14 @@ std::string join(const std::vector<double>& v) {
   return o.str();
 }
 
-// simulated seconds of one tap with early rest and the quench: the excitation (pulse and
-// flight, or the turn) and a relaxation that ends ≈ 1.4–1.5 s after it
-double neg_tap_seconds(double g_p) { return 0.01 + 0.02 * g_p + 1.45; }  // flight 2g_p·t1
+// simulated seconds of a rotating-g tap with early rest and the quench: the turn and the
+// relaxation after it
 double rot_tap_seconds(double f) { return 1.0 / f + 1.5; }
 
 // a tapping sweep of `scene` over `values` of `key`, each run `taps` taps after `settle` s
 PlannedSweep tapping_sweep(const std::string& name, const std::string& scene,
                            const std::string& key, const std::vector<double>& values, int taps,
-                           double settle, int grains, double dt,
+                           double settle, int grains, double dt, double cost,
                            std::vector<std::string> extra_sets = {}) {
   PlannedSweep s;
   s.name = name;
@@ -40,26 +38,26 @@ PlannedSweep tapping_sweep(const std::string& name, const std::string& scene,
   for (double v : values) {
     const double one =
         settle + taps * (key == "drive.g_p" ? neg_tap_seconds(v) : rot_tap_seconds(v));
-    s.run_seconds.push_back(one / dt * grains * kPolygonCost);
+    s.run_seconds.push_back(one / dt * grains * cost);
   }
   return s;
 }
 
 // the paper's time-step check (section IV): Δt halved at two pulse strengths, as long as the
 // study's own runs, beside them in the pool and analysed apart (analysis/timestep)
-PlannedSweep timestep_sweep(const std::string& scene, int taps, double dt) {
+PlannedSweep timestep_sweep(const std::string& scene, int taps, double dt, double cost) {
   std::ostringstream half;
   half.precision(17);
   half << "integrator.dt=" << dt / 2;
   return tapping_sweep("timestep", scene, "drive.g_p", {6, 20}, taps, 3.0, 1184, dt / 2,
-                       {half.str()});
+                       cost, {half.str()});
 }
 
-ReproducePlan tapping_plan(Budget b) {
+ReproducePlan tapping_plan(Budget b, double cost) {
   ReproducePlan p;
   p.study = "tapping";
   p.budget = b;
-  const double dt = 1.0 / 7500.0;
+  const double dt = kPaperDt;
   const std::string neg = "paper_negative_g_fast.toml", rot = "paper_rotating_g_fast.toml";
   switch (b) {
     case Budget::Smoke: {
@@ -67,27 +65,27 @@ ReproducePlan tapping_plan(Budget b) {
       const std::vector<std::string> fast = {
           "output.discard_taps=1", "integrator.dt=1.3333333333333333e-4", "drive.quench=true"};
       p.sweeps.push_back(tapping_sweep("negative_g", "tap_small_negative_g.toml", "drive.g_p",
-                                       {2, 10, 20}, 21, 1.5, 250, dt, fast));
+                                       {2, 10, 20}, 21, 1.5, 250, dt, cost, fast));
       p.sweeps.push_back(tapping_sweep("rotating_g", "tap_small_rotating_g.toml", "drive.f", {1, 2},
-                                       21, 1.5, 250, dt, fast));
+                                       21, 1.5, 250, dt, cost, fast));
       p.purpose = "proves the pipeline on the 250-grain teaching pile; resolves no claim";
       p.resolves = false;
       break;
     }
     case Budget::Quick:
       p.sweeps.push_back(
-          tapping_sweep("negative_g", neg, "drive.g_p", {2, 6, 12, 20, 30}, 60, 3.0, 1184, dt));
-      p.sweeps.push_back(tapping_sweep("rotating_g", rot, "drive.f", {0.5, 2}, 50, 3.0, 1184, dt));
+          tapping_sweep("negative_g", neg, "drive.g_p", {2, 6, 12, 20, 30}, 60, 3.0, 1184, dt, cost));
+      p.sweeps.push_back(tapping_sweep("rotating_g", rot, "drive.f", {0.5, 2}, 50, 3.0, 1184, dt, cost));
       p.purpose =
           "the paper's pile, 50–60 taps per value: the shape of φ̄(g_p) and φ̄(f), the "
           "transient, the test square's halves";
       break;
     case Budget::Standard:
       p.sweeps.push_back(tapping_sweep("negative_g", neg, "drive.g_p",
-                                       {2, 4, 6, 9, 12, 16, 20, 25, 30}, 250, 3.0, 1184, dt));
+                                       {2, 4, 6, 9, 12, 16, 20, 25, 30}, 250, 3.0, 1184, dt, cost));
       p.sweeps.push_back(
-          tapping_sweep("rotating_g", rot, "drive.f", {0.5, 0.75, 1.25, 2}, 200, 3.0, 1184, dt));
-      p.sweeps.push_back(timestep_sweep(neg, 250, dt));
+          tapping_sweep("rotating_g", rot, "drive.f", {0.5, 0.75, 1.25, 2}, 200, 3.0, 1184, dt, cost));
+      p.sweeps.push_back(timestep_sweep(neg, 250, dt, cost));
       p.purpose =
           "the paper's pile, 200–250 taps per value: σ_φ, the overlapping histograms, "
           "the quadron fit and the time-step check";
@@ -95,11 +93,11 @@ ReproducePlan tapping_plan(Budget b) {
     case Budget::Full:
       p.sweeps.push_back(tapping_sweep("negative_g", neg, "drive.g_p",
                                        {2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30},
-                                       3000, 3.0, 1184, dt));
+                                       3000, 3.0, 1184, dt, cost));
       p.sweeps.push_back(tapping_sweep("rotating_g", rot, "drive.f",
                                        {0.25, 0.5, 0.75, 1, 1.25, 1.5, 1.75, 2}, 3000, 3.0, 1184,
-                                       dt));
-      p.sweeps.push_back(timestep_sweep(neg, 3000, dt));
+                                       dt, cost));
+      p.sweeps.push_back(timestep_sweep(neg, 3000, dt, cost));
       p.purpose = "the paper's own scale: 3000 taps per value (a cluster job)";
       break;
   }
@@ -222,6 +220,10 @@ std::string plan_json(const ReproducePlan& p, const std::string& command, int sl
   j["projected_core_hours"] = p.core_hours();
   j["projected_wall_hours"] = p.wall_hours(slots);
   j["projected_slots"] = slots;
+  if (p.study == "tapping")
+    j["cost"] = {{"core_seconds_per_particle_step", p.cost.seconds},
+                 {"measured_here", p.cost.measured},
+                 {"steps_timed", p.cost.steps}};
   j["sweeps"] = nlohmann::ordered_json::array();
   for (const auto& s : p.sweeps) {
     nlohmann::ordered_json w = {
@@ -232,8 +234,12 @@ std::string plan_json(const ReproducePlan& p, const std::string& command, int sl
   return j.dump(2);
 }
 
-ReproducePlan make_plan(const std::string& study, Budget budget) {
-  if (study == "tapping") return tapping_plan(budget);
+ReproducePlan make_plan(const std::string& study, Budget budget, const PileCost& pile_cost) {
+  if (study == "tapping") {
+    ReproducePlan p = tapping_plan(budget, pile_cost.seconds);
+    p.cost = pile_cost;
+    return p;
+  }
   if (study == "rfm") return plan_detail::rfm_plan(budget);
   throw InputError("", "STUDY", "'" + study + "' is not a study (tapping, rfm)");
 }

@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "app/reproduce/pile_cost.hpp"
+
 namespace gs {
 
 enum class Budget { Smoke, Quick, Standard, Full };
@@ -54,6 +56,7 @@ struct ReproducePlan {
   std::string purpose;               ///< what this budget resolves, and what it cannot reach
   bool resolves = true;              ///< false: its runs prove the pipeline only, and its
                                      ///< report gives no verdict
+  PileCost cost;                     ///< the tapping projections' cost per particle-step
   double core_hours() const;         ///< projected core-hours of every sweep
   double longest_run_hours() const;  ///< projected hours of the longest run (one core)
   int widest_sweep() const;          ///< runs in the largest sweep: ranks that can be busy
@@ -65,8 +68,15 @@ struct ReproducePlan {
   double sweep_by_sweep_wall_hours(int slots) const;
 };
 
-/// the plan of a study ("tapping", "rfm") at a budget; throws InputError for an unknown study
-ReproducePlan make_plan(const std::string& study, Budget budget);
+/// the plan of a study ("tapping", "rfm") at a budget; `pile_cost`: what a particle-step of the
+/// paper pile costs, which scales the tapping runs' projections; throws InputError for an
+/// unknown study
+ReproducePlan make_plan(const std::string& study, Budget budget, const PileCost& pile_cost = {});
+
+/// simulated seconds of a negative-g tap of the paper pile with early rest and the quench
+double neg_tap_seconds(double g_p);
+/// the fast paper scenes' time step, s
+inline constexpr double kPaperDt = 1.0 / 7500.0;
 
 /// DIR/plan.json: the plan, its projection at `slots` runs at a time, and each RFM sweep's
 /// conditions (src/app/reproduce/README.md)

@@ -28,6 +28,9 @@ using json = nlohmann::json;
 
 namespace {
 
+// steps timed for the tapping projections: ≈ 0.2–0.5 CPU-s of the paper pile
+constexpr int kCostSteps = 300;
+
 // the shipped scenes: $GS_SCENES_DIR, else beside the executable (build tree or install)
 // or in the source tree it was built from
 std::string find_scenes_dir(const std::string& scene) {
@@ -61,6 +64,15 @@ void print_plan(const ReproducePlan& p, const std::string& out, int cores, int s
       "longest run %.2g h); into %s\n",
       p.runs(), p.core_hours(), p.wall_hours(slots), cores, slots, p.longest_run_hours(),
       out.c_str());
+  if (p.study != "tapping") return;
+  if (p.cost.measured)
+    std::printf("  cost measured here: %.3g core-µs per grain-step (%d steps of the settled %d-grain "
+                "pile, CPU time, one thread): %.3g core-s a tap at g_p = 6\n",
+                p.cost.seconds * 1e6, p.cost.steps, p.cost.particles,
+                p.cost.seconds * p.cost.particles * neg_tap_seconds(6.0) / kPaperDt);
+  else
+    std::printf("  cost not measured here (the settled pile is not among the scenes): %.3g "
+                "core-µs per grain-step assumed\n", p.cost.seconds * 1e6);
 }
 
 // the cluster commands for a budget too large for one machine: one rank per run of the
@@ -137,14 +149,27 @@ int report_from_series(const ReproducePlan& plan, const std::string& out) {
   return kExitOk;
 }
 
+// the paper pile's cost per particle-step on this machine (kPileCostReference where the
+// settled pile is not among the shipped scenes)
+PileCost pile_cost_here() {
+  const std::string scene = "paper_negative_g_fast.toml", state = "data/paper_pile_settled.csv";
+  std::error_code ec;
+  const std::string dir = find_data_dir("scenes", state);
+  if (dir.empty() || !fs::exists(fs::path(dir) / scene, ec)) return {};
+  return measure_pile_cost(dir + "/" + scene, dir + "/" + state, kCostSteps);
+}
+
 }  // namespace
 
 int reproduce_command(const ReproduceOptions& opt) {
-  const ReproducePlan plan = make_plan(opt.study, parse_budget(opt.budget));
+  const Budget budget = parse_budget(opt.budget);
+  const bool root = mpi_rank() == 0;
+  // measured where projections are printed: before a run, not for a report from its series
+  const bool measure = opt.study == "tapping" && root && !opt.from_series && !opt.report_only;
+  const ReproducePlan plan = make_plan(opt.study, budget, measure ? pile_cost_here() : PileCost{});
   const std::string out =
       opt.out.empty() ? "runs/reproduce-" + opt.study + "-" + opt.budget : opt.out;
   const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  const bool root = mpi_rank() == 0;
   if (opt.from_series) return root ? report_from_series(plan, out) : kExitOk;
   const int slots = opt.jobs > 0 ? opt.jobs : cores;  // runs at a time, as the pool runs them
   if (root && !opt.quiet) print_plan(plan, out, cores, slots);
