@@ -1,7 +1,7 @@
 // the prepared overlap (PolyStore + overlap(PolyRef, PolyRef), the contact hot loop) against
 // the general clipping routine overlap(Poly, Poly): bit for bit on random decagon pairs from
 // tiny to deep overlaps, near misses, vertex–vertex, vertex–edge and edge–edge near-degenerate
-// placements, walls, and random convex polygons
+// placements, walls, random convex polygons and polygons on a grid (exact coincidences)
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -240,6 +240,34 @@ TEST(PreparedOverlap, RepeatedVertexBitwise) {
     if (HasFatalFailure()) return;
   }
   EXPECT_GT(t.touching, 2000);
+}
+
+// convex hulls of points on a grid of 1/8 (exact binary coordinates): side values exactly zero,
+// shared vertices, edges along each other, crossings that land on a vertex, containment. These
+// are the cases the clips merge (a vertex on the line, a repeated point), which rounding almost
+// never produces in the pile
+TEST(PreparedOverlap, LatticePolygonsBitwise) {
+  RngStream rng(20, 0);
+  Tally t;
+  for (int i = 0; i < 20000; ++i) {
+    const int half = (i & 1) ? 16 : 4;  // a coarse grid (many coincidences) or a finer one
+    auto draw = [&] { return std::floor(rng.uniform(-half, half + 1.0)); };
+    auto lattice = [&](double cx, double cy) {
+      for (;;) {
+        std::vector<Vec2> pts;
+        const int n = 3 + i % 7;
+        for (int k = 0; k < n; ++k) pts.push_back({(cx + draw()) * 0.125, (cy + draw()) * 0.125});
+        const Poly p = test::convex_hull(pts);
+        if (p.n >= 3) return p;
+      }
+    };
+    const Poly a = lattice(0.0, 0.0);
+    const Poly b = lattice(draw(), draw());
+    expect_same(a, b, t);
+    if (HasFatalFailure()) return;
+  }
+  EXPECT_GT(t.touching, 5000);
+  EXPECT_GT(t.other_crossings, 500);
 }
 
 // pairs pressed together along the line of centres by δ/r from 10⁻⁶ to 0.3 (from where they
