@@ -61,6 +61,57 @@ def table(folder, budget="standard", lengths=LENGTHS):
     return "\n".join(lines) + "\n"
 
 
+# the Random Force Model claims whose rules are functions of numbers alone: their power against
+# the thesis' alternative δ when the measurement's error σ is δ/k (normal errors; a mean over
+# three seeds' scatter, Student's t of 2 degrees of freedom, needs a smaller σ)
+RFM_K = (1, 2, 3, 4, 8)
+
+
+def rfm_rows():
+    """(claim, alternative, k ↦ power or None)"""
+    from gransim.reproduce import rfm_fluid as fl, rfm_models as mo
+    src = [fl.ALPHA_PHI[p] for p in (0.088, 0.177, 0.353, 0.707)]
+    vr, ratio = fl.CROSSOVER[(0.1, 0.1)]
+    df = (6 - mo.SPM_ALPHA) / (6 - 3 * mo.SPM_ALPHA)  # eq. 5.29 inverted at α = 0.972
+    return [
+        ("g-R", "a level 0.01 off Fig. 4.7's 0.98 (twice its rounding)",
+         lambda k: fl.gr_verdict(fl.GR_LEVEL, fl.GR_ALT / k).power),
+        ("moments-phi", "none sized by the thesis", None),
+        ("alpha-phi", "every φ = 0.088, 0.177, 0.353, 0.707 off by the tables' half-width δ there",
+         lambda k: fl.alpha_phi_verdict([(a, h / k) for a, h in src], src).power),
+        ("crossover", "v_r 0.009 or v_c/v_r 0.016 off Table 5.3's ε = 0.1 row (the step to the next "
+         "row; σ of each δ/k)",
+         lambda k: fl.crossover_verdict(vr, 0.009 / k, ratio, 0.016 / k).power),
+        ("spm-alpha", "α 0.06 off eq. 5.29's 0.972 (twice its ± 0.03)",
+         lambda k: mo.spm_verdict(df, 2 * mo.SPM_TOL / k / mo.dalpha(df))[2].power),
+        ("spm-pv", "none sized by the thesis (\"remarkably good over many decades\")", None),
+        ("cascade", "one process 2 × its Table 6.2 ± off (σ of each δ/k)",
+         lambda k: mo.cascade_verdict({n: (s, 2 * t / k, None)
+                                       for n, (s, t) in mo.TABLE_6_2.items()}).power),
+    ]
+
+
+def rfm_section(ks=RFM_K):
+    """Markdown: the RFM claims' power by the measurement's error relative to the alternative"""
+    lines = ["",
+             "## Random Force Model: power by the measurement's error",
+             "",
+             "For the 2D-fluid and model claims, whose runs the quick report lacks: each claim's "
+             "power against the thesis' alternative δ when its "
+             "measurement's standard error σ is δ/k (normal errors, from the rules in "
+             "gransim.reproduce.rfm_fluid and rfm_models; a claim's σ falls as 1/√(seconds "
+             "sampled × seeds), and a mean over three seeds judged on their scatter, Student's t of "
+             "2 degrees of freedom, needs a smaller σ for the same power). `–`: the thesis sizes no "
+             "alternative, so the claim can disagree but never agree.",
+             "",
+             "| claim | alternative δ | " + " | ".join(f"σ = δ/{k}" for k in ks) + " |",
+             "|---|---|" + "---|" * len(ks)]
+    for cid, alt, power in rfm_rows():
+        cells = [f"{power(k):.2f}" if power else "–" for k in ks]
+        lines.append(f"| {cid} | {alt} | " + " | ".join(cells) + " |")
+    return "\n".join(lines) + "\n"
+
+
 def _sampled(d, sweep):
     """the shortest sampled time (t_end − t_steady, s) of a sweep's runs, from their rfm.json"""
     base = os.path.join(d, "analysis", sweep)
@@ -111,7 +162,7 @@ def rfm_table(folder, lengths=SECONDS):
 def document(root):
     """power.md: the tapping table, then the Random Force Model's"""
     return (table(os.path.join(root, "tapping-standard")) + "\n"
-            + rfm_table(os.path.join(root, "rfm-quick")))
+            + rfm_table(os.path.join(root, "rfm-quick")) + rfm_section())
 
 
 def main(argv=None):
@@ -121,7 +172,7 @@ def main(argv=None):
     out = argv[1] if len(argv) > 1 else os.path.join(root, "power.md")
     if not os.path.isfile(os.path.join(folder, "analysis", "summary.csv")):
         sys.exit(f"power_table: {folder}/analysis/summary.csv: no analysis tables here")
-    text = table(folder) + "\n" + rfm_table(os.path.join(root, "rfm-quick"))
+    text = table(folder) + "\n" + rfm_table(os.path.join(root, "rfm-quick")) + rfm_section()
     with open(out, "w") as f:
         f.write(text)
 

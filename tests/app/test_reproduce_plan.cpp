@@ -164,6 +164,46 @@ TEST(ReproducePlan, PlanJsonCarriesTheConditions) {
   EXPECT_FALSE(t.at("sweeps")[0].contains("conditions"));
 }
 
+TEST(ReproducePlan, ModelsRunAfterTheSweeps) {
+  // Table 6.2's cascades at the thesis' 8 levels, at every RFM budget; none for tapping
+  for (Budget b : {Budget::Smoke, Budget::Quick, Budget::Standard, Budget::Full}) {
+    const ReproducePlan p = make_plan("rfm", b);
+    ASSERT_GE(p.models.size(), 1u) << budget_name(b);
+    const PlannedModel& m = p.models[0];
+    EXPECT_EQ(m.name, "cascade");
+    EXPECT_EQ(m.claims, std::vector<std::string>{"cascade"});
+    const auto at = std::find(m.args.begin(), m.args.end(), "--levels");
+    ASSERT_NE(at, m.args.end());
+    EXPECT_EQ(*(at + 1), "8");
+    EXPECT_GT(m.core_seconds, 0.0);
+    EXPECT_LT(m.core_seconds, 600.0);  // minutes: no budget's projection changes by more
+  }
+  const ReproducePlan p = make_plan("rfm", Budget::Standard);
+  double sweeps = 0.0, models = 0.0;
+  for (const auto& s : p.sweeps) sweeps += s.core_seconds();
+  for (const auto& m : p.models) models += m.core_seconds;
+  EXPECT_NEAR(p.core_hours() * 3600.0, sweeps + models, 1e-6);
+  EXPECT_LT(models, 600.0);
+  const auto j = nlohmann::json::parse(plan_json(p, "gransim reproduce rfm --budget standard", 2));
+  ASSERT_EQ(j.at("models").size(), 4u);
+  EXPECT_EQ(j.at("models")[0].at("command"),
+            "gransim model cascade --kind all --levels 8 --realisations 500 --quiet --out "
+            "DIR/models/cascade");
+  // the Single Particle Model on each seed's free paths of the L = 0.6 m fluid (Fig. 5.10)
+  const PlannedSweep* fp = find_sweep(p, "freepath");
+  ASSERT_NE(fp, nullptr);
+  for (int k = 1; k <= 3; ++k) {
+    const PlannedModel& m = p.models[static_cast<std::size_t>(k)];
+    EXPECT_EQ(m.name, "spm_seed" + std::to_string(k));
+    EXPECT_EQ(m.needs, "analysis/freepath/seed=" + std::to_string(k) + "/freepath.csv");
+    EXPECT_EQ(m.args[3], "DIR/" + m.needs);
+    EXPECT_EQ(fp->conditions.seeds[static_cast<std::size_t>(k - 1)], static_cast<unsigned>(k));
+  }
+  EXPECT_TRUE(make_plan("tapping", Budget::Standard).models.empty());
+  const auto t = nlohmann::json::parse(plan_json(make_plan("tapping", Budget::Quick), "x", 2));
+  EXPECT_FALSE(t.contains("models"));
+}
+
 TEST(ReproducePlan, RunsGetTheirPointFromTheSets) {
   // each run's scene keys give its point: φ, ε, L, N as the conditions say
   const ReproducePlan p = make_plan("rfm", Budget::Standard);

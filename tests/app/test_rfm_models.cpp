@@ -57,6 +57,18 @@ TEST(RfmModels, WalkAndInterval) {
             0);
   EXPECT_TRUE(fs::exists(w.p / "walk_l0.001.csv"));
   EXPECT_GT(w.json("l_0.001_mean_exit_time"), 0.0);
+  // --v-max sets the velocity histogram's half-range: bins of 2·v_max/bins centred inside it
+  Dir v("walk_vmax");
+  ASSERT_EQ(gransim("model walk --radius 0.001 --walks 100 --v-max 3 --bins 600 --no-heating "
+                    "--no-charts -q --out " +
+                    v.p.string()),
+            0);
+  const rfm::CsvTable t = rfm::read_csv(v.p / "walk_l0.001.csv");
+  const auto& vs = t.col("v");
+  ASSERT_EQ(vs.size(), 600u);
+  EXPECT_NEAR(vs.front(), -3.0 + 0.005, 1e-9);
+  EXPECT_NEAR(vs.back(), 3.0 - 0.005, 1e-9);
+  EXPECT_EQ(gransim("model walk --v-max -1 --no-charts -q --out " + v.p.string() + "_bad"), 2);
   Dir i("interval");
   ASSERT_EQ(
       gransim("model interval --length 0.01 --walks 2000 --no-charts -q --out " + i.p.string()), 0);

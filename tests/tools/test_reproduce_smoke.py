@@ -31,7 +31,8 @@ CLAIMS = {
                 "cross-references", "timestep", "stress", "segregation"],
     "rfm": ["T-start", "T-mean-field", "transient", "Df-Sk", "Df-freepath", "alpha-reference",
             "alpha-structure", "xi2", "xi-m", "G1-bisection", "T-ring-settle", "xi2-eps", "collapse",
-            "xi-m-elastic", "v-pdf", "zeta-m"],
+            "xi-m-elastic", "v-pdf", "zeta-m",
+            "g-R", "moments-phi", "alpha-phi", "crossover", "spm-alpha", "spm-pv", "cascade"],
 }
 VERDICTS = {"agrees", "disagrees", "not resolved"}
 

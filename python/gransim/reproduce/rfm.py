@@ -20,6 +20,7 @@ from .rfm_data import (ORDER, Missing, _csv, _runs, _ci, _gate, _chart, _ax, see
                        seed_text)
 from .rfm_ring import c_g1, c_vpdf, c_xi2, c_xim, c_zeta  # noqa: E402
 from .rfm_ring_eps import c_collapse, c_settle, c_xi2eps, c_xim_elastic  # noqa: E402
+from .rfm_models import fluid_claims  # noqa: E402
 
 
 def _temps(d, sweep="reference"):
@@ -296,13 +297,16 @@ def _alpha(d, sweep, cid, src, half, label, extra=()):
 
 
 T1, T2, T3, T4 = "2D reference fluid", "2D structure", "Velocity tails", "1D ring"
+T5 = "Auxiliary models"
 
 # the sweep each claim reads when the plan names none for it (plans without conditions)
 SWEEP = {"T-start": "reference", "T-mean-field": "reference", "transient": "reference",
          "Df-Sk": "structure", "Df-freepath": "structure", "alpha-reference": "reference",
          "alpha-structure": "structure", "xi2": "ring", "xi-m": "ring", "G1-bisection": "ring",
          "T-ring-settle": "ring_n512", "xi2-eps": "ring_eps", "collapse": "ring_eps",
-         "xi-m-elastic": "ring_eps", "v-pdf": "ring", "zeta-m": "ring"}
+         "xi-m-elastic": "ring_eps", "v-pdf": "ring", "zeta-m": "ring",
+         "g-R": "structure", "moments-phi": "moments_phi", "alpha-phi": "moments_phi",
+         "crossover": "structure", "spm-alpha": "structure", "spm-pv": "freepath", "cascade": ""}
 
 CLAIMS = [  # id, topic, quote, place, function, (budget that should resolve it, why)
     ("T-start", T1, "demonstrates that the initial conditions of the system do not affect the "
@@ -365,7 +369,7 @@ CLAIMS = [  # id, topic, quote, place, function, (budget that should resolve it,
      "2…5; \"It is not expected that the moments of separation between theoretical and model will "
      "agree.\"", "§3.4.3, Table 3.1 (ε = 0.1)", c_zeta,
      ("full", "the thesis' 50 × 20 s per size")),
-]
+] + fluid_claims(T2, T3, T5)  # the 2D fluid against φ and the auxiliary models
 
 NOTES = [
     "§2.3.3 puts the reference fluid's steady temperature at \"approximately equal to $12m^2s^{-2}$\". "
@@ -385,8 +389,8 @@ NOTES = [
     "G₁: the bisection has n = log₂N levels, not necessarily whole (T.3.38 keeps ⟨R⟩ = 1/N), "
     "averaged over each log bin; gh_bisection.csv's P_bisection takes round(log₂N) at the bin "
     "centre. Gaps below 10⁻⁷ L′ are overlaps of touching disks and are left out.",
-    "Not claimed here: Tables 4.2–4.3, 5.3–5.4 and A.1: they need other ε, φ or L than the "
-    "shipped scenes.",
+    "Not claimed here: Tables 4.2–4.3, 5.4 and A.1: they need other ε, φ or L than the shipped "
+    "scenes.",
 ]
 
 

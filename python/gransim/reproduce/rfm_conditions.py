@@ -60,6 +60,20 @@ THESIS = {
                    sampled_s=1000.0, sampled_as_run=True,
                    source="§3.3.1 and Table 3.1: ε = 0.1, L′ = 1 m, the velocity moments' runs "
                           "(20 s relaxation, then 50 × 20 s sampled)"),
+    # the 2D fluid against φ and the auxiliary models
+    "g-R": dict(dim=2, phi=0.530, eps=0.1, L=0.4, discard_s=1.0,
+                source="Fig. 4.7: φ = 0.530, L = 0.4 m, ε = 0.1"),
+    "moments-phi": dict(dim=2, phi_below=0.1, eps=0.1, discard_s=1.0,
+                        source="§5.1, Fig. 5.2: ε = 0.1, eq. 5.3 for φ < 0.1"),
+    "alpha-phi": dict(dim=2, eps=0.1, L=0.2, discard_s=1.0,
+                      source="Tables 5.1–5.2: L = 0.2 m, ε = 0.1"),
+    "crossover": dict(dim=2, phi=0.530, eps=0.1, L=0.4, discard_s=1.0,
+                      source="Table 5.3 at ε = 0.1, read as §5.1.3's system: φ = 0.530, "
+                             "L = 0.4 m, N = 12000 (Figs. 5.6–5.7, whose ε sets Fig. 5.14 repeats)"),
+    "spm-alpha": dict(dim=2, phi=0.530, eps=0.1, L=0.2, discard_s=1.0,
+                      source="eq. 5.29 on Table 4.1's D_f: φ = 0.530, L = 0.2 m, ε = 0.1"),
+    "spm-pv": dict(dim=2, phi=0.530, eps=0.1, L=0.6, discard_s=1.0,
+                   source="Fig. 5.10: L = 0.6 m, φ = 0.530 (N = 27000), ε = 0.1"),
 }
 
 
@@ -171,7 +185,7 @@ def gate(d, cid, sweep, v):
     """the verdict v, or not resolved with what the sweep's runs lack of the thesis' conditions
     (the verdict at face value kept in the reason); unchanged without plan conditions"""
     conds = plan_conditions(d)
-    if conds is None:
+    if conds is None or not sweep:  # no plan conditions, or a model run (no sweep) to check
         return v, ""
     c = conds.get(sweep)
     miss = ([f"the plan states no conditions for sweep {sweep}"] if c is None

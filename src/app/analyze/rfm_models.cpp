@@ -427,6 +427,9 @@ void add_model_command(CLI::App& app) {
   w->add_option("--noise", all->w.p.noise, "D, N² s")->capture_default_str();
   w->add_option("--mass", all->w.p.mass, "M, kg")->capture_default_str();
   w->add_option("--bins", all->w.p.bins, "velocity bins")->capture_default_str();
+  w->add_option("--v-max", all->w.p.v_max,
+                "velocity histogram half-range, m/s (0: 8 (D l/M²)^(1/3) of each region)")
+      ->capture_default_str();
   w->add_option("--paths", all->w.paths,
                 "a freepath.csv (columns l, P): Single Particle Model with l ~ P_l");
   w->add_flag(

@@ -137,6 +137,7 @@ double PlannedSweep::core_seconds() const {
 double ReproducePlan::core_hours() const {
   double s = 0.0;
   for (const auto& w : sweeps) s += w.core_seconds();
+  for (const auto& m : models) s += m.core_seconds;
   return s / 3600.0;
 }
 
@@ -197,7 +198,9 @@ double ReproducePlan::wall_hours(int slots) const {
   Slots pool(slots);
   for (const auto& w : sweeps)
     for (double r : w.run_seconds) pool.add(r);
-  return pool.end() / 3600.0;
+  double after = 0.0;  // the models run one after another once the pool is done
+  for (const auto& m : models) after += m.core_seconds;
+  return (pool.end() + after) / 3600.0;
 }
 
 double ReproducePlan::sweep_by_sweep_wall_hours(int slots) const {
@@ -230,6 +233,18 @@ std::string plan_json(const ReproducePlan& p, const std::string& command, int sl
         {"name", s.name}, {"scene", s.scene}, {"params", s.params}, {"sets", s.sets}};
     if (p.study == "rfm") w["conditions"] = conditions_json(s);
     j["sweeps"].push_back(w);
+  }
+  if (!p.models.empty()) {
+    j["models"] = nlohmann::ordered_json::array();
+    for (const auto& m : p.models) {
+      std::string cmd = "gransim";
+      for (const auto& a : m.args) cmd += " " + a;
+      j["models"].push_back({{"name", m.name},
+                             {"command", cmd + " --out DIR/models/" + m.name},
+                             {"claims", m.claims},
+                             {"needs", m.needs},
+                             {"projected_core_seconds", m.core_seconds}});
+    }
   }
   return j.dump(2);
 }

@@ -48,11 +48,24 @@ struct PlannedSweep {
   double core_seconds() const;      ///< projected core-seconds of the whole sweep
 };
 
+/// a run of one of the program's auxiliary models (`gransim model …`) into DIR/models/<name>,
+/// after the sweeps and their analyses; a folder with its model.json is done
+struct PlannedModel {
+  std::string name;                 ///< folder under DIR/models
+  std::vector<std::string> args;    ///< the arguments after `gransim`, without --out; a
+                                    ///< leading "DIR/" stands for the study's folder
+  std::vector<std::string> claims;  ///< the claims it serves
+  double core_seconds = 0.0;        ///< projected core-seconds (one thread)
+  std::string needs;                ///< a file under DIR it reads (an analysis' output): the
+                                    ///< model waits, skipped, until it exists; "" none
+};
+
 /// the study at one budget
 struct ReproducePlan {
   std::string study;  ///< "tapping" or "rfm"
   Budget budget = Budget::Quick;
   std::vector<PlannedSweep> sweeps;
+  std::vector<PlannedModel> models;  ///< model runs after the sweeps (RFM)
   std::string purpose;               ///< what this budget resolves, and what it cannot reach
   bool resolves = true;              ///< false: its runs prove the pipeline only, and its
                                      ///< report gives no verdict

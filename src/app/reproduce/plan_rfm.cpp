@@ -21,6 +21,11 @@ constexpr double kDenseCostPerParticle = 6.4e-13;
 constexpr double kRingCostBase = 1.33e-8;
 constexpr double kRingCostPerParticle = 4.3e-13;
 
+// core-seconds per realisation of the 8-level cascades, all seven kinds, and per walk of the
+// Single Particle Model (P_l of the φ = 0.53 fluid, with as many walks in a disc of 1 mm)
+constexpr double kCascadeCost = 0.17;
+constexpr double kSpmCost = 2.5e-4;
+
 constexpr double kDt = 1e-6;        // the scenes' time step
 constexpr double kRadius = 0.0015;  // the scenes' bead
 
@@ -122,6 +127,27 @@ PlannedSweep ring_sweep(const std::string& name, const std::vector<double>& eps,
   return s;
 }
 
+// Table 6.2's multiplicative cascades: every kind at the thesis' 8 levels (§6.2.2)
+PlannedModel cascade_model(int realisations) {
+  return {"cascade",
+          {"model", "cascade", "--kind", "all", "--levels", "8", "--realisations",
+           std::to_string(realisations), "--quiet"},
+          {"cascade"},
+          realisations * kCascadeCost};
+}
+
+// the Single Particle Model of §5.2.3 (Fig. 5.10) on the free paths of one run of a sweep (the
+// L = 0.6 m fluid), once its analysis has written them
+PlannedModel spm_model(const std::string& sweep, const std::string& run, int seed, int walks) {
+  const std::string paths = "analysis/" + sweep + "/" + run + "/freepath.csv";
+  return {"spm_seed" + std::to_string(seed),
+          {"model", "walk", "--paths", "DIR/" + paths, "--walks", std::to_string(walks), "--radius",
+           "0.001", "--v-max", "3", "--bins", "600", "--no-heating", "--quiet"},
+          {"spm-pv"},
+          walks * kSpmCost,
+          paths};
+}
+
 }  // namespace
 
 double rfm_cost_fluid() { return kFluidCost; }
@@ -151,6 +177,8 @@ ReproducePlan rfm_plan(Budget b) {
       p.sweeps.push_back(fluid_sweep("structure", "rfm2d_structure.toml", 0.2, 0.1, {3000},
                                      {"hexagonal"}, 1, 0.2, 0.1, true, sk_claims));
       p.sweeps.push_back(ring_sweep("ring", {0.1}, {100, 200}, 2, 1.0, 0.1, ring_claims));
+      p.models.push_back(cascade_model(20));
+      p.models.push_back(spm_model("structure", "seed=1", 1, 2000));  // proves the model step
       p.purpose = "proves the pipeline with runs of a fraction of a second; resolves no claim";
       p.resolves = false;
       break;
@@ -161,6 +189,7 @@ ReproducePlan rfm_plan(Budget b) {
                                      {"hexagonal"}, 1, 4.0, 1.0, true, sk_claims));
       p.sweeps.push_back(
           ring_sweep("ring", {0.1}, {400, 1000, 2500, 4000}, 1, 8.0, 1.0, ring_claims));
+      p.models.push_back(cascade_model(200));
       p.purpose =
           "seconds of simulated time from one seed: the steady temperature and its start, the "
           "velocity tails, S(k) of a young clustered fluid, ξ₂ over N = 400…4000 after 1 s "
@@ -186,14 +215,18 @@ ReproducePlan rfm_plan(Budget b) {
                                      {"moments-phi", "alpha-phi"}));
       p.sweeps.push_back(fluid_sweep("reference", "rfm2d_reference.toml", 0.2, 0.6, {2000}, starts,
                                      3, 10.0, 1.0, false, ref_claims));
+      p.models.push_back(cascade_model(500));
+      for (int k = 1; k <= 3; ++k)
+        p.models.push_back(spm_model("freepath", "seed=" + std::to_string(k), k, 50000));
       p.purpose =
           "the thesis' systems from three seeds each: the ring at N = 512 for 220 s (past the "
           "≈ 200 s the temperature takes to settle), ξ₂ and ξ_m over N = 398…2512 at ε = 0.1 "
           "and ξ₂ over N = 398…1585 at ε = 0.5, 0.87, 0.99 after the thesis' 20 s relaxation "
           "(20 s and 10 s sampled, not its 200–1000 s); S(k) at φ = 0.53 (L = 0.2 m) and "
-          "φ = 0.353 (L = 0.4 m); free paths at L = 0.6 m over 1.5 s; moments and tails "
-          "against φ = 0.088…0.707 at L = 0.2 m. Out of reach: N above 2512, φ = 0.177 at "
-          "L ≥ L_Eff = 0.48 m, the L = 0.8 m columns of Tables 4.1–4.3 and 5.2";
+          "φ = 0.353 (L = 0.4 m); free paths at L = 0.6 m over 1.5 s, and the Single Particle "
+          "Model on them; moments and tails against φ = 0.088…0.707 at L = 0.2 m; Table 6.2's "
+          "cascades. Out of reach: N above 2512, φ = 0.177 at L ≥ L_Eff = 0.48 m, the L = 0.8 m "
+          "columns of Tables 4.1–4.3 and 5.2, and Table 5.3's system (φ = 0.53 at L = 0.4 m)";
       break;
     case Budget::Full: {
       const std::vector<int> sizes = {100, 158, 251, 398, 631, 1000, 1585, 2512, 3981, 6310, 10000};
@@ -219,6 +252,10 @@ ReproducePlan rfm_plan(Budget b) {
                                      {"moments-phi", "alpha-phi"}));
       p.sweeps.push_back(fluid_sweep("reference", "rfm2d_reference.toml", 0.2, 0.6, {2000}, starts,
                                      3, 20.0, 1.0, false, ref_claims));
+      p.models.push_back(cascade_model(2000));
+      for (int k = 1; k <= 3; ++k)
+        p.models.push_back(
+            spm_model("freepath", "count=27000_seed=" + std::to_string(k), k, 200000));
       p.purpose =
           "the thesis' own run lengths from three seeds: the ring 1020 s per size up to "
           "N = 10⁴ and over ε, N = 512…4096 for the renormalisation, S(k) up to L = 0.8 m, "

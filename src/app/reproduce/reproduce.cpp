@@ -288,6 +288,30 @@ int reproduce_command(const ReproduceOptions& opt) {
   }
   if (code != kExitOk) return code;
 
+  // the auxiliary models, each once: a folder with its model.json is done (an interrupted one
+  // is written again); one that reads an analysis' output waits until it is there
+  if (!opt.report_only) {
+    for (const auto& m : plan.models) {
+      const fs::path mo = dir / "models" / m.name;
+      if (fs::exists(mo / "model.json", ec)) continue;
+      if (!m.needs.empty() && !fs::exists(dir / m.needs, ec)) {
+        std::fprintf(stderr, "reproduce: model %s waits for %s\n", m.name.c_str(),
+                     (dir / m.needs).c_str());
+        continue;
+      }
+      std::vector<std::string> argv = {self_executable()};
+      for (const auto& a : m.args)
+        argv.push_back(a.rfind("DIR/", 0) == 0 ? (dir / a.substr(4)).string() : a);
+      argv.insert(argv.end(), {"--out", mo.string(), "--force", "--no-charts"});
+      if (!opt.quiet) std::printf("reproduce: model %s into %s\n", m.name.c_str(), mo.c_str());
+      const std::string err = run_process(argv, opt.quiet);
+      if (!err.empty()) {
+        std::fprintf(stderr, "reproduce: model %s failed: %s\n", m.name.c_str(), err.c_str());
+        return kExitFailure;
+      }
+    }
+  }
+
   // the report
   check_report_package();
   char wall_text[32];
