@@ -269,9 +269,9 @@ TEST(ReproducePlan, TappingProjectionScalesWithTheCostMeasuredHere) {
   EXPECT_DOUBLE_EQ(j.at("cost").at("core_seconds_per_particle_step").get<double>(), c.seconds);
   EXPECT_EQ(j.at("cost").at("steps_timed").get<int>(), 3);
   // a clock that does not advance measures nothing: the reference cost stays
-  const PileCost none = measure_pile_cost(src + "/scenes/paper_negative_g_fast.toml",
-                                          src + "/scenes/data/paper_pile_settled.csv", 1,
-                                          [] { return 5.0; });
+  const PileCost none =
+      measure_pile_cost(src + "/scenes/paper_negative_g_fast.toml",
+                        src + "/scenes/data/paper_pile_settled.csv", 1, [] { return 5.0; });
   EXPECT_FALSE(none.measured);
   EXPECT_EQ(none.seconds, kPileCostReference);
 }

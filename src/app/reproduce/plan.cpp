@@ -49,8 +49,8 @@ PlannedSweep timestep_sweep(const std::string& scene, int taps, double dt, doubl
   std::ostringstream half;
   half.precision(17);
   half << "integrator.dt=" << dt / 2;
-  return tapping_sweep("timestep", scene, "drive.g_p", {6, 20}, taps, 3.0, 1184, dt / 2,
-                       cost, {half.str()});
+  return tapping_sweep("timestep", scene, "drive.g_p", {6, 20}, taps, 3.0, 1184, dt / 2, cost,
+                       {half.str()});
 }
 
 ReproducePlan tapping_plan(Budget b, double cost) {
@@ -73,9 +73,10 @@ ReproducePlan tapping_plan(Budget b, double cost) {
       break;
     }
     case Budget::Quick:
+      p.sweeps.push_back(tapping_sweep("negative_g", neg, "drive.g_p", {2, 6, 12, 20, 30}, 60, 3.0,
+                                       1184, dt, cost));
       p.sweeps.push_back(
-          tapping_sweep("negative_g", neg, "drive.g_p", {2, 6, 12, 20, 30}, 60, 3.0, 1184, dt, cost));
-      p.sweeps.push_back(tapping_sweep("rotating_g", rot, "drive.f", {0.5, 2}, 50, 3.0, 1184, dt, cost));
+          tapping_sweep("rotating_g", rot, "drive.f", {0.5, 2}, 50, 3.0, 1184, dt, cost));
       p.purpose =
           "the paper's pile, 50–60 taps per value: the shape of φ̄(g_p) and φ̄(f), the "
           "transient, the test square's halves";
@@ -83,8 +84,8 @@ ReproducePlan tapping_plan(Budget b, double cost) {
     case Budget::Standard:
       p.sweeps.push_back(tapping_sweep("negative_g", neg, "drive.g_p",
                                        {2, 4, 6, 9, 12, 16, 20, 25, 30}, 250, 3.0, 1184, dt, cost));
-      p.sweeps.push_back(
-          tapping_sweep("rotating_g", rot, "drive.f", {0.5, 0.75, 1.25, 2}, 200, 3.0, 1184, dt, cost));
+      p.sweeps.push_back(tapping_sweep("rotating_g", rot, "drive.f", {0.5, 0.75, 1.25, 2}, 200, 3.0,
+                                       1184, dt, cost));
       p.sweeps.push_back(timestep_sweep(neg, 250, dt, cost));
       p.purpose =
           "the paper's pile, 200–250 taps per value: σ_φ, the overlapping histograms, "

@@ -66,13 +66,16 @@ void print_plan(const ReproducePlan& p, const std::string& out, int cores, int s
       out.c_str());
   if (p.study != "tapping") return;
   if (p.cost.measured)
-    std::printf("  cost measured here: %.3g core-µs per grain-step (%d steps of the settled %d-grain "
-                "pile, CPU time, one thread): %.3g core-s a tap at g_p = 6\n",
-                p.cost.seconds * 1e6, p.cost.steps, p.cost.particles,
-                p.cost.seconds * p.cost.particles * neg_tap_seconds(6.0) / kPaperDt);
+    std::printf(
+        "  cost measured here: %.3g core-µs per grain-step (%d steps of the settled %d-grain "
+        "pile, CPU time, one thread): %.3g core-s a tap at g_p = 6\n",
+        p.cost.seconds * 1e6, p.cost.steps, p.cost.particles,
+        p.cost.seconds * p.cost.particles * neg_tap_seconds(6.0) / kPaperDt);
   else
-    std::printf("  cost not measured here (the settled pile is not among the scenes): %.3g "
-                "core-µs per grain-step assumed\n", p.cost.seconds * 1e6);
+    std::printf(
+        "  cost not measured here (the settled pile is not among the scenes): %.3g "
+        "core-µs per grain-step assumed\n",
+        p.cost.seconds * 1e6);
 }
 
 // the cluster commands for a budget too large for one machine: one rank per run of the
