@@ -105,23 +105,6 @@ def sigma_err(row):
     return (row["sigma_hi_tau"] - row["sigma_lo_tau"]) / (2 * 1.96)
 
 
-def block_bootstrap(x_cols, stat, reps=400, seed=7):
-    """standard error of stat(*columns) under a moving-block bootstrap over taps, blocks of
-    2τ_int of the first column"""
-    cols = [np.asarray(c, float) for c in x_cols]
-    n = len(cols[0])
-    if n < 4:
-        return float("nan")
-    block = max(1, int(round(2 * tau_int(cols[0]))))
-    rng = np.random.default_rng(seed)
-    vals = []
-    for _ in range(reps):
-        starts = rng.integers(0, n - block + 1, size=(n + block - 1) // block)
-        idx = np.concatenate([np.arange(s, s + block) for s in starts])[:n]
-        vals.append(stat(*(c[idx] for c in cols)))
-    return float(np.std(vals, ddof=1))
-
-
 def quadron_phi(beta, a, phi_rlp=0.81, phi_rcp=0.855):
     """(P.26): 1/φ̄ = 1/φ_rlp + a/β − Δ·coth(βΔ/a), Δ = 1/φ_rlp − 1/φ_rcp, a = N z̄/V_g"""
     d = 1 / phi_rlp - 1 / phi_rcp

@@ -198,31 +198,48 @@ def compare_value(measured, err, source, source_err=0.0, tolerance=0.0, alternat
     return decide(p, at(1.0), null, alt, text, float("nan"), power_at=at)
 
 
-def below_bound(measured, err, bound, ideal=0.0, fmt="{:.3g}"):
+def below_bound(measured, err, bound, ideal=0.0, fmt="{:.3g}", dof=None, family=1, folded=False):
     """A quantity the source says stays below `bound` (e.g. |Δφ|/φ < 1e-4). Null: the value
     is `ideal` (the claim holds with margin); alternative: the value is at the bound. Agrees when
     the one-sided 95 % upper limit is below the bound and the test of ideal against bound has
-    ≥ 80 % power; disagrees when the one-sided 99 % lower limit is above the bound."""
+    ≥ 80 % power; disagrees when the one-sided 99 % lower limit is above the bound.
+    dof: err estimated with dof degrees of freedom (Student's t, not normal); family: the number
+    of runs whose any disagreement makes the claim disagree (Bonferroni, so the claim's level stays
+    1 %); folded: the statistic is a modulus |x|, which exceeds a bound from both signs of x, so
+    the lower limit is two-sided."""
     if not _finite(measured, err) or err <= 0:
         return Verdict(UNRESOLVED, "no finite measurement", "", "", float("nan"))
-    upper = measured + z_of(P_KEEP) * err
-    lower = measured - z_of(P_REJECT) * err
+    a_rej = P_REJECT / family / (2 if folded else 1)
+
+    def quantile(a):  # one-sided
+        return z_of(a) if dof is None else t_of(2.0 * a, dof)
+    q_keep = quantile(P_KEEP)
+    upper = measured + q_keep * err
+    lower = measured - quantile(a_rej) * err
     gap = bound - ideal
+
     def at(k):
-        return power_one_sided(gap, err / math.sqrt(k))
+        return phi(gap / (err / math.sqrt(k)) - q_keep)
     pw, k = at(1.0), float("nan")
+    how = [f"Student's t, {dof} degrees of freedom"] if dof is not None else []
+    if family > 1:
+        how.append(f"Bonferroni over {family} runs")
+    if folded:
+        how.append("two-sided: the statistic is a modulus")
+    lim = f"{100 * (1 - a_rej):.4g} %" + (f" ({'; '.join(how)})" if how else "")
     text = (f"measured {fmt.format(measured)} ± {fmt.format(err)}, bound {fmt.format(bound)}; "
             f"one-sided 95 % upper limit {fmt.format(upper)}")
     null = f"value = {fmt.format(ideal)}"
     alt = f"a value at the bound {fmt.format(bound)}"
     pw_text = f"power {pw:.2f} against {alt}"
     if lower > bound:
-        return Verdict(DISAGREES, text + f"; the one-sided 99 % lower limit {fmt.format(lower)} "
+        return Verdict(DISAGREES, text + f"; the one-sided {lim} lower limit {fmt.format(lower)} "
                        f"exceeds the bound; {pw_text}", null, alt, pw, k, at)
     if upper < bound and pw >= POWER:
         return Verdict(AGREES, text + f" below the bound; {pw_text}", null, alt, pw, k, at)
     why = "above the bound" if upper >= bound else "below the bound, but"
-    return Verdict(UNRESOLVED, f"{text} {why}; {pw_text}", null, alt, pw, k, at)
+    return Verdict(UNRESOLVED, f"{text} {why}; {pw_text}" + (f" ({'; '.join(how)})" if how else ""),
+                   null, alt, pw, k, at)
 
 
 def _depths(y, kind):
