@@ -7,7 +7,7 @@ import numpy as np
 from .report import Claim, test_of
 from . import described
 from .batch import batch_err, normal_score
-from .tapping_data import (NEG, ROT, Study, _fig, _finish, _pm, _save, column,
+from .tapping_data import (NEG, ROT, Study, _fig, _finish, _pm, _save, column, phi_errors,
                           sigma_err, steady_window)
 from .tapping_protocols import protocol_claims
 from .tapping_edwards import (quadron_claims, q_linear, reference_overlap, sigma_peak_effect,
@@ -35,12 +35,13 @@ def transient(st, budget):
         lab = r["label"]
         if math.isfinite(r.get("discard", float("nan"))):
             cuts.append(f"{lab} {int(r['discard'])}" + ("" if r.get("steady", 1) else " (no steady part)"))
-        (w, ew), (m, em) = steady_window(lab, st, 6, 10)
-        if not (math.isfinite(w) and math.isfinite(m)):
+        d, e, dof = steady_window(lab, st, 6, 10)
+        if not math.isfinite(d):
             continue
-        rows.append((lab, w - m, math.hypot(ew, em)))
+        # the χ² below takes each run's t as the normal deviate of equal tail probability
+        rows.append((lab, normal_score(d / e, dof) * e, e))
         taps = st.taps(lab)
-        tap, phi = column(taps, "tap"), column(taps, "phi") - m
+        tap, phi = column(taps, "tap"), column(taps, "phi") - float(np.mean(st.used(lab, "phi")))
         line, = ax.plot(tap, phi, lw=0.8, label=lab)
         at = tap == st.cut(lab)  # where the analysis' steady part begins
         ax.plot(tap[at], phi[at], "o", ms=4, color=line.get_color())
@@ -122,9 +123,18 @@ def _plateau(y, e, i, j):
     return (y[i] - y[j]) / math.hypot(e[i], e[j])
 
 
+def _welch(e1, d1, e2, d2):
+    """Welch–Satterthwaite degrees of freedom of a difference of two estimates (None: normal)"""
+    if d1 is None or d2 is None:
+        return None
+    return (e1 ** 2 + e2 ** 2) ** 2 / (e1 ** 4 / d1 + e2 ** 4 / d2)
+
+
 def rot_crossover(st, budget):
     """Fig. 6a: φ̄(f) crosses over from ≈ 0.814 to ≈ 0.821"""
     x, y, e = _curve(st, ROT, "phi")
+    errs = [phi_errors(st, r) for r in st.runs(ROT)]
+    e, dofs = np.array([t[0] for t in errs], float), [t[2] for t in errs]
     n = _n_med(st.runs(ROT))
     fig, ax = _fig()
     ax.errorbar(x, y, yerr=1.96 * e, fmt="D-", capsize=3, label="gransim")
@@ -141,10 +151,11 @@ def rot_crossover(st, budget):
                       "its rotating-g runs are done", chart) for cid, q in
                 (("rot-crossover", quote), ("rot-levels", levels))]
     o = np.argsort(x)
-    x, y, e = x[o], y[o], e[o]
+    x, y, e, dofs = x[o], y[o], e[o], [dofs[i] for i in o]
     rnd = "both levels printed to three decimals, ± 0.0005 each"
     step = compare_value(float(y[-1] - y[0]), float(math.hypot(e[-1], e[0])), 0.007,
-                         tolerance=0.001, alternative=0.007, precision=rnd)
+                         tolerance=0.001, alternative=0.007, precision=rnd,
+                         dof=_welch(e[0], dofs[0], e[-1], dofs[-1]))
     step.alternative = "no crossover (a flat curve, 0.007 below the source's step)"
     rising = len(x) >= 3 and _plateau(y, e, -1, -2) > z_of(P_KEEP / 2)
     why = f"change from the lowest to the highest f: {step.reason}"
@@ -159,8 +170,9 @@ def rot_crossover(st, budget):
                   why, need, chart, **test_of(step))
     parts, vs, pws, need, ats = [], [], [], [], []
     for k, j, src, side in ((0, 1, 0.814, "low f"), (-1, -2, 0.821, "high f")):
+        # either level off makes the claim disagree: Bonferroni over the two
         c = compare_value(float(y[k]), float(e[k]), src, tolerance=0.0005, alternative=0.001,
-                          precision="printed to three decimals")
+                          precision="printed to three decimals", dof=dofs[k], family=2)
         z = _plateau(y, e, k, j) if len(x) >= 3 else 0.0
         if abs(z) > z_of(P_KEEP / 2):
             # the source's level is a plateau (section IV): a curve still moving at the end of
@@ -319,7 +331,7 @@ def stress(st, budget):
     grp = _groups(st)
     for r in st.runs():
         lab = r["label"]
-        comp = {k: mean_err(st.used(lab, k)) for k in ("S_xx", "S_yy", "S_xy")}
+        comp = {k: batch_err(st.used(lab, k))[:2] for k in ("S_xx", "S_yy", "S_xy")}
         if all(math.isfinite(v[0]) for v in comp.values()):
             pts.append((r["protocol"], r["phi_mean"], comp, grp[lab]))
     fig, ax = _fig()

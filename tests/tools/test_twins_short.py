@@ -1,0 +1,141 @@
+"""Falsification twins of the tapping claims that test short per-tap series: columns and runs
+that obey the paper exactly (independent columns of equal size, no transient, levels on the
+source's), drawn as AR(1) series of the quick budget's lengths (35–50 taps) and τ_int = 1.5,
+must disagree at most 1 % of the time, plus a binomial allowance of 3 standard deviations on
+REPS draws (1 % + 2.1 %); at the long lengths (2500 taps) the source's alternative is still
+detected with ≥ 80 % power (less the allowance 3·√(0.16/REPS) = 8.5 %).
+Run: python3 -m unittest tests/tools/test_twins_short.py"""
+import math
+import os
+import sys
+import unittest
+
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "..", "..", "python"))
+
+from gransim.reproduce.batch import batch_err, normal_score  # noqa: E402
+from gransim.reproduce.tapping import _sigma_ratio  # noqa: E402
+from gransim.reproduce.verdicts import (AGREES, DISAGREES, chi2_consistent, below_bound,  # noqa: E402
+                      compare_value)
+
+REPS = 200
+QUICK = (40, 35, 40, 50, 50, 50, 50)  # taps used by the quick runs
+TAU = 1.5
+FALSE_DISAGREE = 0.01 + 3 * math.sqrt(0.01 * 0.99 / REPS)
+POWER_MIN = 0.8 - 3 * math.sqrt(0.8 * 0.2 / REPS)
+
+
+def ar1(rng, shape, tau=TAU):
+    """AR(1) series of unit variance and integrated autocorrelation time tau along the last axis"""
+    a = (2 * tau - 1) / (2 * tau + 1)
+    e = rng.normal(size=shape) * math.sqrt(1 - a * a)
+    x = np.empty(shape)
+    x[..., 0] = rng.normal(size=shape[:-1])
+    for i in range(1, shape[-1]):
+        x[..., i] = a * x[..., i - 1] + e[..., i]
+    return x
+
+
+def draws(seed, lengths, k=1):
+    """REPS draws of k AR(1) series per run length, generated at once: draws[rep][run][j]"""
+    rng = np.random.default_rng(seed)
+    by_n = {n: ar1(rng, (REPS, k * lengths.count(n), n)) for n in set(lengths)}
+    used = {n: 0 for n in by_n}
+    runs = []
+    for n in lengths:
+        runs.append(by_n[n][:, k * used[n]:k * (used[n] + 1)])
+        used[n] += 1
+    return [[run[i] for run in runs] for i in range(REPS)]
+
+
+def halves_verdicts(series, shift=0.0, sig=0.0044):
+    """halves-mean and halves-sigma as the report decides them, for runs whose left column is
+    `shift` (relative) above an independent right column of the same size"""
+    out = {"mean": [], "sigma": []}
+    for pair in series:
+        left = 0.82 * (1 + shift) + sig * pair[0]
+        right = 0.82 + sig * pair[1]
+        whole = 0.5 * (left + right)
+        m, e, dof = batch_err((left - whole) / whole)
+        out["mean"].append((abs(m), e, dof))
+        r, re, rdof = batch_err([whole, left, right], _sigma_ratio)
+        out["sigma"].append((abs(r / math.sqrt(2) - 1), re / math.sqrt(2), rdof))
+    verdicts = {}
+    for key, bound in (("mean", 1e-4), ("sigma", 0.01)):
+        vs = [below_bound(q, e, bound, dof=d, family=len(series), folded=True).verdict
+              for q, e, d in out[key]]
+        verdicts[key] = DISAGREES if DISAGREES in vs else (AGREES if set(vs) == {AGREES} else "")
+    return verdicts
+
+
+class Halves(unittest.TestCase):
+    def test_true_columns_rarely_disagree_at_the_quick_lengths(self):
+        got = [halves_verdicts(d) for d in draws(1, QUICK, 2)]
+        for key in ("mean", "sigma"):
+            rate = sum(g[key] == DISAGREES for g in got) / REPS
+            self.assertLessEqual(rate, FALSE_DISAGREE, f"halves-{key} disagrees {rate:.3f}")
+
+    def test_a_mean_difference_at_twice_the_bound_is_detected_at_2500_taps(self):
+        # σ_φ small enough that the bound is resolved at 2500 taps: the mean error is then
+        # ≈ 2·10⁻⁵, a quarter of the bound
+        got = [halves_verdicts(d, shift=4e-4, sig=0.0009)["mean"] for d in draws(2, [2500], 2)]
+        self.assertGreaterEqual(got.count(DISAGREES) / REPS, POWER_MIN)
+        ok = [halves_verdicts(d, sig=0.0009)["mean"] for d in draws(3, [2500], 2)]
+        self.assertGreaterEqual(ok.count(AGREES) / REPS, POWER_MIN)
+
+
+class Levels(unittest.TestCase):
+    """rot-levels: two runs whose means lie at the edge of the source's printed precision"""
+
+    def test_levels_at_the_edge_rarely_disagree(self):
+        bad = 0
+        for d in draws(4, [40, 40]):
+            vs = []
+            for src, z in zip((0.814, 0.821), d):
+                x = src + 0.0005 + 0.003 * z[0]
+                m, e, dof = batch_err(x)
+                vs.append(compare_value(m, e, src, tolerance=0.0005, alternative=0.001, dof=dof,
+                                        family=2).verdict)
+            bad += DISAGREES in vs
+        self.assertLessEqual(bad / REPS, FALSE_DISAGREE)
+
+    def test_a_level_off_by_the_neighbouring_value_is_found_at_2500_taps(self):
+        hit = 0
+        for d in draws(5, [2500]):
+            x = 0.821 + 0.0015 + 0.003 * d[0][0]
+            m, e, dof = batch_err(x)
+            hit += compare_value(m, e, 0.821, tolerance=0.0005, alternative=0.001, dof=dof,
+                                 family=2).verdict == DISAGREES
+        self.assertGreaterEqual(hit / REPS, POWER_MIN)
+
+
+def steady(series, transient=0.0, sig=0.003):
+    """steady-state: taps 6–10 and the steady part of runs without (or with) a transient left"""
+    rows = []
+    for z in series:
+        x = sig * z[0]
+        n = len(x) - 5
+        x[:5] += transient
+        m, em, dof = batch_err(x[5:])
+        e = math.sqrt(n * em * em / 5 + em * em)
+        d = x[:5].mean() - m
+        rows.append((normal_score(d / e, dof) * e, e))
+    r, e = zip(*rows)
+    return chi2_consistent(r, e, alternative=[1e-3] * len(e))[0].verdict
+
+
+class Transient(unittest.TestCase):
+    def test_steady_runs_rarely_disagree(self):
+        bad = sum(steady(d) == DISAGREES for d in draws(6, [5 + n for n in QUICK]))
+        self.assertLessEqual(bad / REPS, FALSE_DISAGREE)
+
+    def test_a_transient_of_the_papers_resolution_is_found_at_2500_taps(self):
+        # σ_φ = 0.0005 (the weak taps' spread): the taps 6–10 window resolves 10⁻³
+        hit = sum(steady(d, 1e-3, 0.0005) == DISAGREES for d in draws(7, [2505] * 7))
+        self.assertGreaterEqual(hit / REPS, POWER_MIN)
+
+
+if __name__ == "__main__":
+    unittest.main()
