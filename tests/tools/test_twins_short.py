@@ -16,9 +16,10 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "..", "python"))
 
 from gransim.reproduce.batch import batch_err, normal_score  # noqa: E402
-from gransim.reproduce.tapping import _sigma_ratio  # noqa: E402
+from gransim.reproduce.tapping import _sigma_ratio, _welch, stress_test  # noqa: E402
+from gransim.reproduce.tapping_edwards import OVERLAP  # noqa: E402
 from gransim.reproduce.verdicts import (AGREES, DISAGREES, chi2_consistent, below_bound,  # noqa: E402
-                      compare_value)
+                      compare_value, t_sf2)
 
 REPS = 200
 QUICK = (40, 35, 40, 50, 50, 50, 50)  # taps used by the quick runs
@@ -135,6 +136,87 @@ class Transient(unittest.TestCase):
         # σ_φ = 0.0005 (the weak taps' spread): the taps 6–10 window resolves 10⁻³
         hit = sum(steady(d, 1e-3, 0.0005) == DISAGREES for d in draws(7, [2505] * 7))
         self.assertGreaterEqual(hit / REPS, POWER_MIN)
+
+
+class Crossover(unittest.TestCase):
+    """rot-crossover: the step between two runs at the edge of the source's 0.007 ± 0.001"""
+
+    def test_a_step_at_the_edge_rarely_disagrees(self):
+        bad = 0
+        for lo, hi in draws(8, [40, 40]):
+            (a, ea, da), (b, eb, db) = (batch_err(0.814 + 0.003 * lo[0]),
+                                        batch_err(0.820 + 0.003 * hi[0]))
+            bad += compare_value(b - a, math.hypot(ea, eb), 0.007, tolerance=0.001,
+                                 alternative=0.007, dof=_welch(ea, da, eb, db)).verdict == DISAGREES
+        self.assertLessEqual(bad / REPS, FALSE_DISAGREE)
+
+
+def overlap_verdict(series, apart):
+    """reference-overlap as the report decides it: a reference run and others whose 5 %-of-maximum
+    windows lie `apart` times their reach from it (1: they just touch)"""
+    sig = 0.003
+    ref = 0.8346 + sig * series[0][0]
+    e_ref = (batch_err(ref), batch_err([ref], lambda x: np.std(x, ddof=1)))
+    vs = []
+    for z in series[1:]:
+        x = 0.8346 + apart * OVERLAP * 2 * sig + sig * z[0]
+        (m, em, dof), (s, es, _) = batch_err(x), batch_err([x], lambda y: np.std(y, ddof=1))
+        reach = OVERLAP * (s + e_ref[1][0])
+        q = abs(m - e_ref[0][0]) - reach
+        e = math.hypot(math.hypot(em, e_ref[0][1]), OVERLAP * math.hypot(es, e_ref[1][1]))
+        vs.append(below_bound(q, e, 0.0, ideal=-reach, dof=min(dof, e_ref[0][2]),
+                              family=len(series) - 1, folded=True).verdict)
+    return DISAGREES if DISAGREES in vs else (AGREES if set(vs) == {AGREES} else "")
+
+
+class Overlap(unittest.TestCase):
+    def test_windows_that_just_touch_rarely_disagree(self):
+        bad = sum(overlap_verdict(d, 1.0) == DISAGREES for d in draws(9, list(QUICK)))
+        self.assertLessEqual(bad / REPS, FALSE_DISAGREE)
+
+    def test_windows_half_their_reach_apart_are_found_at_2500_taps(self):
+        hit = sum(overlap_verdict(d, 1.5) == DISAGREES for d in draws(10, [2500] * 3))
+        self.assertGreaterEqual(hit / REPS, POWER_MIN)
+
+
+PHI = (0.8146, 0.8380, 0.8193, 0.8346, 0.8233, 0.8196, 0.8201)  # the quick runs' φ̄
+GROUPS = ("rot", "neg ≤ 20", "rot", "neg ≤ 20", "neg ≤ 20", "neg ≤ 20", "neg > 20")
+
+
+def stress_verdict(series, offset):
+    """stress as the report decides it: three components of each quick run on one quadratic
+    S(φ̄) plus `offset` N·m per group (its index), AR(1) noise of 0.01 N·m a tap"""
+    names = sorted(set(GROUPS))
+    comps = {}
+    for j, k in enumerate(("S_xx", "S_yy", "S_xy")):
+        rows = [batch_err(0.1 + 2 * (p - 0.82) + offset * names.index(g) + 0.01 * z[j])
+                for p, g, z in zip(PHI, GROUPS, series)]
+        comps[k] = tuple(np.array(c) for c in zip(*rows))
+    return stress_test(PHI, GROUPS, comps).verdict
+
+
+class Stress(unittest.TestCase):
+    def test_offsets_of_the_papers_size_rarely_disagree_and_noise_rarely_agrees(self):
+        runs = draws(11, list(QUICK), 3)
+        bad = sum(stress_verdict(d, 0.01) == DISAGREES for d in runs)
+        self.assertLessEqual(bad / REPS, FALSE_DISAGREE)
+        agree = sum(stress_verdict(d, 0.01) == AGREES for d in runs)
+        self.assertGreaterEqual(agree / REPS, POWER_MIN)
+        # one curve for all (the claim false): the feature is found at most at the 5 % level
+        fake = sum(stress_verdict(d, 0.0) == AGREES for d in runs)
+        self.assertLessEqual(fake / REPS, 0.05 + 3 * math.sqrt(0.05 * 0.95 / REPS))
+
+
+class Segregation(unittest.TestCase):
+    """segregation: the drift's t across independent runs keeps its level on correlated taps"""
+
+    def test_no_drift_rarely_rejected(self):
+        bad = 0
+        for d in draws(12, [60] * 7):
+            drift = np.array([batch_err(z[0][10:])[0] - z[0][0] for z in d])
+            t = drift.mean() / (drift.std(ddof=1) / math.sqrt(len(drift)))
+            bad += t_sf2(abs(t), len(drift) - 1) < 0.01
+        self.assertLessEqual(bad / REPS, FALSE_DISAGREE)
 
 
 if __name__ == "__main__":

@@ -5,8 +5,7 @@ import math
 import numpy as np
 
 from .report import Claim, test_of
-from .tapping_data import (NEG, NEXT, ROT, _fig, _finish, column, phi_errors, quadron_phi,
-                           sigma_err)
+from .tapping_data import NEG, NEXT, ROT, _fig, _finish, column, phi_errors, quadron_phi
 from .verdicts import (AGREES, DISAGREES, UNRESOLVED, Verdict, below_bound, chi2_consistent,
                       chi2_power, chi2_sf, compare_value, cov_inverse, decide, offset_test,
                       without_covariance)
