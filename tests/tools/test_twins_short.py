@@ -1,6 +1,7 @@
-"""Falsification twins of the tapping claims that test short per-tap series: columns and runs
-that obey the paper exactly (independent columns of equal size, no transient, levels on the
-source's), drawn as AR(1) series of the quick budget's lengths (35–50 taps) and τ_int = 1.5,
+"""Falsification twins of the claims that test short correlated series: columns and runs that
+obey the paper exactly (independent columns of equal size, no transient, levels on the
+source's), drawn as AR(1) series of the quick budget's lengths (35–50 taps) and τ_int = 1.5
+(and the Random Force Model's steady temperature, 500 samples a window at τ_int = 25),
 must disagree at most 1 % of the time, plus a binomial allowance of 3 standard deviations on
 REPS draws (1 % + 2.1 %); at the long lengths (2500 taps) the source's alternative is still
 detected with ≥ 80 % power (less the allowance 3·√(0.16/REPS) = 8.5 %).
@@ -39,10 +40,10 @@ def ar1(rng, shape, tau=TAU):
     return x
 
 
-def draws(seed, lengths, k=1):
+def draws(seed, lengths, k=1, tau=TAU):
     """REPS draws of k AR(1) series per run length, generated at once: draws[rep][run][j]"""
     rng = np.random.default_rng(seed)
-    by_n = {n: ar1(rng, (REPS, k * lengths.count(n), n)) for n in set(lengths)}
+    by_n = {n: ar1(rng, (REPS, k * lengths.count(n), n), tau) for n in sorted(set(lengths))}
     used = {n: 0 for n in by_n}
     runs = []
     for n in lengths:
@@ -216,6 +217,23 @@ class Segregation(unittest.TestCase):
             drift = np.array([batch_err(z[0][10:])[0] - z[0][0] for z in d])
             t = drift.mean() / (drift.std(ddof=1) / math.sqrt(len(drift)))
             bad += t_sf2(abs(t), len(drift) - 1) < 0.01
+        self.assertLessEqual(bad / REPS, FALSE_DISAGREE)
+
+
+class RfmTransient(unittest.TestCase):
+    """the Random Force Model's transient: ⟨T⟩ over two half-second windows of 500 samples of a
+    steady T(t) with τ_int = 25 samples, three starts"""
+
+    def test_a_steady_temperature_rarely_disagrees(self):
+        bad = 0
+        for d in draws(13, [1000] * 3, tau=25):
+            rows = []
+            for z in d:
+                (ma, ea, da), (mb, eb, db) = batch_err(z[0][:500]), batch_err(z[0][500:])
+                e = math.hypot(ea, eb)
+                rows.append((normal_score((ma - mb) / e, e ** 4 / (ea ** 4 / da + eb ** 4 / db)) * e, e))
+            r, e = zip(*rows)
+            bad += chi2_consistent(r, e)[0].verdict == DISAGREES
         self.assertLessEqual(bad / REPS, FALSE_DISAGREE)
 
 
