@@ -355,7 +355,7 @@ def stress(st, budget):
     for r in st.runs():
         lab = r["label"]
         comp = {k: batch_err(st.used(lab, k)) for k in ("S_xx", "S_yy", "S_xy")}
-        if all(math.isfinite(v[0]) and math.isfinite(v[1]) for v in comp.values()):
+        if all(math.isfinite(v[0]) and v[1] > 0 for v in comp.values()):
             pts.append((r["protocol"], r["phi_mean"], comp, grp[lab]))
     fig, ax = _fig()
     for k, col in (("S_xx", "tab:blue"), ("S_yy", "tab:red"), ("S_xy", "tab:green")):
