@@ -9,7 +9,7 @@ import os
 import matplotlib.pyplot as plt
 import numpy as np
 
-from .verdicts import mean_err, tau_int
+from .batch import batch_err
 
 
 def read_csv(path):
@@ -100,26 +100,20 @@ class Study:
         return [r for r in self.beta if r.get("reference") == ref]
 
 
+def phi_errors(study, row):
+    """(error of φ̄, error of σ_φ, degrees of freedom) of a run: from batch means of its per-tap
+    series where they are shipped, else the analysis' τ-corrected errors (dof None: normal)"""
+    phi = study.used(row["label"], "phi") if study.taps(row["label"]) else []
+    if len(phi) >= 10:
+        _, em, dof = batch_err(phi)
+        _, es, _ = batch_err([phi], lambda x: np.std(x, ddof=1))
+        return em, es, dof
+    return row["phi_err"], sigma_err(row), None
+
+
 def sigma_err(row):
     """standard error of σ_φ from its τ-corrected 95 % chi-square interval"""
     return (row["sigma_hi_tau"] - row["sigma_lo_tau"]) / (2 * 1.96)
-
-
-def block_bootstrap(x_cols, stat, reps=400, seed=7):
-    """standard error of stat(*columns) under a moving-block bootstrap over taps, blocks of
-    2τ_int of the first column"""
-    cols = [np.asarray(c, float) for c in x_cols]
-    n = len(cols[0])
-    if n < 4:
-        return float("nan")
-    block = max(1, int(round(2 * tau_int(cols[0]))))
-    rng = np.random.default_rng(seed)
-    vals = []
-    for _ in range(reps):
-        starts = rng.integers(0, n - block + 1, size=(n + block - 1) // block)
-        idx = np.concatenate([np.arange(s, s + block) for s in starts])[:n]
-        vals.append(stat(*(c[idx] for c in cols)))
-    return float(np.std(vals, ddof=1))
 
 
 def quadron_phi(beta, a, phi_rlp=0.81, phi_rcp=0.855):
@@ -138,10 +132,17 @@ def taps_needed(n, err, target):
 
 
 def steady_window(label, study, lo, hi):
-    """mean ± error of φ over taps lo…hi and over the steady taps after the transient"""
+    """φ over taps lo…hi against the steady taps after the transient: (difference of the means,
+    its error, degrees of freedom). The window's taps are too few for their own error: it is the
+    steady part's long-run variance (n·err² from batch means) over the window's length, an upper
+    bound for positively correlated taps; the test is Student's t of the batches' dof."""
     rows = study.taps(label)
     phi = column([r for r in rows if lo <= r.get("tap", -1) <= hi], "phi")
-    return mean_err(phi), mean_err(study.used(label, "phi"))
+    steady = study.used(label, "phi")
+    m, em, dof = batch_err(steady)
+    if not (len(phi) and em > 0):  # nan or a constant series: no test
+        return float("nan"), float("nan"), 0
+    return float(phi.mean()) - m, math.sqrt(len(steady) * em * em / len(phi) + em * em), dof
 
 
 NEG, ROT = "negative_g", "rotating_g"

@@ -142,8 +142,9 @@ def scale_for(power_at, target=POWER):
 
 
 def decide(p, power, what_null, what_alt, text, scale, feature=False, fmt_p="{:.3g}",
-           power_at=None):
-    """the one rule (module docstring) from a p-value and a power"""
+           power_at=None, family=1):
+    """the one rule (module docstring) from a p-value and a power; family: the number of tests
+    whose any rejection makes the claim disagree (Bonferroni: each rejects at 1 %/family)"""
     pw = "no power (no alternative)" if not math.isfinite(power) else f"power {power:.2f}"
     if feature:  # the claim is the alternative: p tests "no feature"
         if p < P_KEEP and math.isfinite(power) and power >= POWER:
@@ -153,7 +154,7 @@ def decide(p, power, what_null, what_alt, text, scale, feature=False, fmt_p="{:.
         else:
             v = UNRESOLVED
     else:
-        if p < P_REJECT:
+        if p < P_REJECT / family:
             v = DISAGREES
         elif p > P_KEEP and math.isfinite(power) and power >= POWER:
             v = AGREES
@@ -164,14 +165,15 @@ def decide(p, power, what_null, what_alt, text, scale, feature=False, fmt_p="{:.
 
 
 def compare_value(measured, err, source, source_err=0.0, tolerance=0.0, alternative=None,
-                  precision="", fmt="{:.4g}", dof=None):
+                  precision="", fmt="{:.4g}", dof=None, family=1):
     """A number against the source's number.
 
     tolerance: the precision the source states (its ±, or the rounding of a printed value),
     quoted in `precision`; alternative: the smallest difference from the source that the
     source would call a failure (None: the source names none, so the test has no power and
     cannot agree); dof: err is a scatter estimated with dof degrees of freedom (the standard
-    error of a mean over dof + 1 seeds), so the test is Student's t, not normal.
+    error of a mean over dof + 1 seeds, or of batch means), so the test is Student's t, not
+    normal; family: decide's.
     """
     if not _finite(measured, err):
         return Verdict(UNRESOLVED, "no finite measurement", "", "", float("nan"))
@@ -187,42 +189,62 @@ def compare_value(measured, err, source, source_err=0.0, tolerance=0.0, alternat
             + (f" (± {fmt.format(tolerance)}: {precision})" if tolerance else "" if source_err else
                " (the source states no precision: the measurement's error alone)")
             + (f"; {excess / s:.1f}σ beyond it" if excess > 0 and s > 0 else "")
-            + (f" (Student's t, {dof} degrees of freedom)" if dof is not None else ""))
+            + (f" (Student's t, {dof:.3g} degrees of freedom)" if dof is not None else "")
+            + (f"; Bonferroni over {family} values: disagrees at p < {P_REJECT / family:.2g}"
+               if family > 1 else ""))
     null = f"true value = {fmt.format(source)}" + (f" ± {fmt.format(tolerance)}" if tolerance else "")
     if alternative is None:
-        return decide(p, float("nan"), null, "none named by the source", text, float("nan"))
+        return decide(p, float("nan"), null, "none named by the source", text, float("nan"),
+                      family=family)
     def at(k):
         return power_two_sided(alternative, math.hypot(err / math.sqrt(k), source_err), tolerance,
                                dof=dof)
     alt = f"a difference of {fmt.format(alternative)}"
-    return decide(p, at(1.0), null, alt, text, float("nan"), power_at=at)
+    return decide(p, at(1.0), null, alt, text, float("nan"), power_at=at, family=family)
 
 
-def below_bound(measured, err, bound, ideal=0.0, fmt="{:.3g}"):
+def below_bound(measured, err, bound, ideal=0.0, fmt="{:.3g}", dof=None, family=1, folded=False):
     """A quantity the source says stays below `bound` (e.g. |Δφ|/φ < 1e-4). Null: the value
     is `ideal` (the claim holds with margin); alternative: the value is at the bound. Agrees when
     the one-sided 95 % upper limit is below the bound and the test of ideal against bound has
-    ≥ 80 % power; disagrees when the one-sided 99 % lower limit is above the bound."""
+    ≥ 80 % power; disagrees when the one-sided 99 % lower limit is above the bound.
+    dof: err estimated with dof degrees of freedom (Student's t, not normal); family: the number
+    of runs whose any disagreement makes the claim disagree (Bonferroni, so the claim's level stays
+    1 %); folded: the statistic is a modulus |x|, which exceeds a bound from both signs of x, so
+    the lower limit is two-sided."""
     if not _finite(measured, err) or err <= 0:
         return Verdict(UNRESOLVED, "no finite measurement", "", "", float("nan"))
-    upper = measured + z_of(P_KEEP) * err
-    lower = measured - z_of(P_REJECT) * err
+    a_rej = P_REJECT / family / (2 if folded else 1)
+
+    def quantile(a):  # one-sided
+        return z_of(a) if dof is None else t_of(2.0 * a, dof)
+    q_keep = quantile(P_KEEP)
+    upper = measured + q_keep * err
+    lower = measured - quantile(a_rej) * err
     gap = bound - ideal
+
     def at(k):
-        return power_one_sided(gap, err / math.sqrt(k))
+        return phi(gap / (err / math.sqrt(k)) - q_keep)
     pw, k = at(1.0), float("nan")
+    how = [f"Student's t, {dof} degrees of freedom"] if dof is not None else []
+    if family > 1:
+        how.append(f"Bonferroni over {family} runs")
+    if folded:
+        how.append("two-sided: the statistic is a modulus")
+    lim = f"{100 * (1 - a_rej):.4g} %" + (f" ({'; '.join(how)})" if how else "")
     text = (f"measured {fmt.format(measured)} ± {fmt.format(err)}, bound {fmt.format(bound)}; "
             f"one-sided 95 % upper limit {fmt.format(upper)}")
     null = f"value = {fmt.format(ideal)}"
     alt = f"a value at the bound {fmt.format(bound)}"
     pw_text = f"power {pw:.2f} against {alt}"
     if lower > bound:
-        return Verdict(DISAGREES, text + f"; the one-sided 99 % lower limit {fmt.format(lower)} "
+        return Verdict(DISAGREES, text + f"; the one-sided {lim} lower limit {fmt.format(lower)} "
                        f"exceeds the bound; {pw_text}", null, alt, pw, k, at)
     if upper < bound and pw >= POWER:
         return Verdict(AGREES, text + f" below the bound; {pw_text}", null, alt, pw, k, at)
     why = "above the bound" if upper >= bound else "below the bound, but"
-    return Verdict(UNRESOLVED, f"{text} {why}; {pw_text}", null, alt, pw, k, at)
+    return Verdict(UNRESOLVED, f"{text} {why}; {pw_text}" + (f" ({'; '.join(how)})" if how else ""),
+                   null, alt, pw, k, at)
 
 
 def _depths(y, kind):
