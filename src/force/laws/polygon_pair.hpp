@@ -33,11 +33,10 @@ class PolygonPairEvaluator {
   void placed_ahead() { placed_.placed_ahead(); }
   static constexpr double common_radius() { return 0.0; }  // (radii are read per contact)
 
-  /// one candidate; `hint`: where this thread's last history lookup ended (ContactSet::history).
-  /// Inline: the pair loop keeps the contact's frame and force in registers
-  [[gnu::always_inline]] bool pair(const World& w, PairKey key, const ContactSet& cs,
-                                   std::size_t& hint, double dt, PairForce& pf,
-                                   PairResult& pr) const;
+  /// one candidate; `history`: this thread's cursor over the last step's contacts. Inline: the
+  /// pair loop keeps the contact's frame and force in registers
+  [[gnu::always_inline]] bool pair(const World& w, PairKey key, HistoryCursor& history, double dt,
+                                   PairForce& pf, PairResult& pr) const;
 
   /// the material constants of species a against b (b = species: a wall)
   const law::PolyLawParams& params(std::size_t a, std::size_t b) const {
@@ -64,32 +63,30 @@ class PolygonPairEvaluator {
   PlacedPolygons placed_;
 };
 
-inline bool PolygonPairEvaluator::pair(const World& w, PairKey key, const ContactSet& cs,
-                                       std::size_t& hint, double dt, PairForce& pf,
-                                       PairResult& pr) const {
+inline bool PolygonPairEvaluator::pair(const World& w, PairKey key, HistoryCursor& history,
+                                       double dt, PairForce& pf, PairResult& pr) const {
   const std::uint32_t N = static_cast<std::uint32_t>(w.size());
   const std::uint32_t i = key_i(key), j = key_j(key);
   const bool wall = j >= N;
   const Vec2 xi{w.s.x[i], w.s.y[i]};
-  const PolyRef pi = placed_.grain(i);
+  const PolyRef& pi = placed_.grain(i);
   const PlacedBody a{xi, 0.0, &pi, {}, nullptr};
   ContactGeom g;
   Vec2 xj;
   if (wall) {
-    const PolyRef pw = placed_.wall(j - N);
+    const PolyRef& pw = placed_.wall(j - N);
     g = narrow<kShape, BodyKind::Wall>(a, PlacedBody{{}, 0.0, &pw, {}, &w.walls[j - N]});
   } else {
     xj = image_pos(w, j, key_image(key));
-    const PolyRef pj = placed_.grain(j);
+    const PolyRef& pj = placed_.grain(j);
     // a periodic image: the shift from j's polygon to the image (else none)
     const Vec2 shift = key_image(key) == kNoImage ? Vec2{} : xj - Vec2{w.s.x[j], w.s.y[j]};
     g = narrow<kShape, kShape>(a, PlacedBody{xj, 0.0, &pj, shift, nullptr});
   }
   if (!g.touching) return false;
 
-  // the contact's history, if it touched last step: last step's keys are searched forward
-  // from the previous hit of this thread (candidates ascend), else by bisection
-  ContactState state = cs.history(key, hint);
+  // the contact's history, if it touched last step
+  ContactState state = history.find(key);
 
   // geometry of the pair (P.29–P.33): l, m⊥, m∥
   const std::size_t pk = pair_index(nsp_, w.sp[i], wall ? nsp_ : w.sp[j]);
