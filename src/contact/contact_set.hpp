@@ -32,26 +32,6 @@ struct ContactSet {
   std::vector<ContactRecord> records;  ///< the last step's contacts, parallel to keys
   std::size_t degenerate = 0;          ///< contacts seen with one polygon inside the other (total)
 
-  /// the history of `key` if it touched last step, else a fresh state. `hint`: where the last
-  /// lookup of this caller ended; candidates come in ascending order, so the next key is
-  /// usually a short forward scan away (else a bisection). Updated to this key's place
-  ContactState history(PairKey key, std::size_t& hint) const {
-    hint = lower_index(key, hint);
-    return hint < keys.size() && keys[hint] == key && hint < state.size() ? state[hint]
-                                                                          : ContactState{};
-  }
-  /// the first index of keys not below `key` (std::lower_bound), from `hint` when it lies at or
-  /// just before it
-  std::size_t lower_index(PairKey key, std::size_t hint) const {
-    const std::size_t n = keys.size();
-    if (hint <= n && (hint == 0 || keys[hint - 1] < key)) {
-      for (int step = 0; step < 4; ++step, ++hint)
-        if (hint == n || !(keys[hint] < key)) return hint;
-      return static_cast<std::size_t>(std::lower_bound(keys.begin() + hint, keys.end(), key) -
-                                      keys.begin());
-    }
-    return static_cast<std::size_t>(std::lower_bound(keys.begin(), keys.end(), key) - keys.begin());
-  }
   /// emptied, for the pair pass to fill in candidate order
   void clear() {
     keys.clear();
@@ -65,6 +45,39 @@ struct ContactSet {
     state.swap(next.state);
     records.swap(next.records);
   }
+};
+
+/// the last step's contacts as one pass over the candidates reads them: each candidate's
+/// history (its state if it touched last step, else a fresh one). Candidates come in ascending
+/// order, so the next key is usually a short forward scan from the last one (else a bisection);
+/// the set's arrays are read through pointers taken once, not reloaded per pair
+class HistoryCursor {
+ public:
+  explicit HistoryCursor(const ContactSet& cs)
+      : keys_(cs.keys.data()), n_(cs.keys.size()), state_(cs.state.data()), ns_(cs.state.size()) {}
+  /// the history of `key`; the cursor moves to its place
+  ContactState find(PairKey key) {
+    pos_ = lower_index(key);
+    return pos_ < n_ && keys_[pos_] == key && pos_ < ns_ ? state_[pos_] : ContactState{};
+  }
+
+ private:
+  /// the first index of the keys not below `key` (std::lower_bound), from the cursor when it
+  /// lies at or just before it
+  std::size_t lower_index(PairKey key) const {
+    std::size_t at = pos_;
+    if (at == 0 || keys_[at - 1] < key) {
+      for (int step = 0; step < 4; ++step, ++at)
+        if (at == n_ || !(keys_[at] < key)) return at;
+      return static_cast<std::size_t>(std::lower_bound(keys_ + at, keys_ + n_, key) - keys_);
+    }
+    return static_cast<std::size_t>(std::lower_bound(keys_, keys_ + n_, key) - keys_);
+  }
+  const PairKey* keys_;
+  std::size_t n_;
+  const ContactState* state_;
+  std::size_t ns_;
+  std::size_t pos_ = 0;  ///< where the last lookup ended (≤ n_)
 };
 
 }  // namespace gs

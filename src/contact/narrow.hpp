@@ -79,13 +79,54 @@ inline ContactGeom narrow<BodyKind::Disk, BodyKind::Wall>(const PlacedBody& a,
   return g;
 }
 
+/// the contact frame (docs/physics.md §2.1) from an exact polygon overlap; `toward` points from
+/// i to j (or into the wall). Inline, as the polygon functions below: they run once per candidate
+/// pair, and inlined into the pair loop their bodies and results stay in registers
+[[gnu::always_inline]] inline ContactGeom contact_from_overlap(const Overlap& ov, Vec2 toward) {
+  ContactGeom g;
+  if (ov.area <= 0.0) return g;
+  g.touching = true;
+  g.overlap = ov.area;
+  const Vec2 d = ov.c2 - ov.c1;
+  const double d2 = norm2(d);
+  if (ov.crossings >= 2 && d2 > 0.0) {
+    // contact line c1→c2: the point is its midpoint, the normal is perpendicular to it
+    // (1/|d|² beside |d|: the division does not wait for the square root)
+    g.s = 0.5 * (ov.c1 + ov.c2);
+    const double inv2 = 1.0 / d2;
+    g.chord = std::sqrt(d2);
+    g.n = perp(d) * (g.chord * inv2);
+    if (dot(g.n, toward) < 0.0) g.n = -g.n;
+  } else {
+    // one polygon inside the other: unphysical, use the centre direction (docs/physics.md §2.1)
+    g.degenerate = true;
+    g.s = ov.centroid;
+    const double d = norm(toward);
+    g.n = d > 0.0 ? toward / d : Vec2{1.0, 0.0};
+    g.chord = std::sqrt(ov.area);
+  }
+  return g;
+}
+
+/// a polygon against a periodic image of another: the image's polygon is b's shifted (out of
+/// line: rare, and it copies both polygons)
+ContactGeom polygon_image(const PlacedBody& a, const PlacedBody& b);
+
 /// polygons by their exact overlap (prepared: bounding circles reject separated pairs); a
 /// periodic image overlaps a shifted copy of b's polygon
 template <>
-ContactGeom narrow<BodyKind::Polygon, BodyKind::Polygon>(const PlacedBody& a, const PlacedBody& b);
+[[gnu::always_inline]] inline ContactGeom narrow<BodyKind::Polygon, BodyKind::Polygon>(
+    const PlacedBody& a, const PlacedBody& b) {
+  if (b.shift == Vec2{}) [[likely]]
+    return contact_from_overlap(overlap(*a.poly, *b.poly), b.c - a.c);
+  return polygon_image(a, b);
+}
 /// the wall's polygon is its slab; the normal points into the wall
 template <>
-ContactGeom narrow<BodyKind::Polygon, BodyKind::Wall>(const PlacedBody& a, const PlacedBody& b);
+[[gnu::always_inline]] inline ContactGeom narrow<BodyKind::Polygon, BodyKind::Wall>(
+    const PlacedBody& a, const PlacedBody& b) {
+  return contact_from_overlap(overlap(*a.poly, *b.poly), b.wall->normal);
+}
 
 /// the registry at run time: kNarrowPhase[A][B] is &narrow<A, B>, nullptr where A cannot meet B
 using NarrowFn = ContactGeom (*)(const PlacedBody&, const PlacedBody&);

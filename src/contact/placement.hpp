@@ -21,12 +21,15 @@ class PlacedPolygons {
   void place(const World& w, std::size_t b, std::size_t e);
   /// every grain has been placed (by place()) for the next pass, after this one's pairs
   void placed_ahead() { ahead_ = true; }
-  PolyRef grain(std::size_t i) const { return grains_.ref(i); }
-  PolyRef wall(std::size_t k) const { return walls_.ref(k); }
+  const PolyRef& grain(std::size_t i) const { return grain_refs_[i]; }
+  const PolyRef& wall(std::size_t k) const { return wall_refs_[k]; }
 
  private:
-  PolyStore grains_;                ///< world-frame polygons of this step
-  PolyStore walls_;                 ///< the walls' polygons
+  PolyStore grains_;  ///< world-frame polygons of this step
+  PolyStore walls_;   ///< the walls' polygons
+  /// each grain's and wall's view (PolyStore::ref), made where it is placed: a pair reads the
+  /// two it needs as they are, not assembled from the store's arrays
+  std::vector<PolyRef> grain_refs_, wall_refs_;
   bool ahead_ = false;              ///< grains_ already holds the next pass's polygons
   int max_sides_ = 0;               ///< most vertices of any species' polygon
   std::vector<BodyExtent> extent_;  ///< per species: its body's extent, for the placement

@@ -95,20 +95,24 @@ ForceStats PairLoop::serial(const Ev& ev, const World& w, const std::vector<Pair
   PairResult r;
   const double rc = ev.common_radius();
   const bool one_radius = rc > 0.0;
-  std::size_t hint = 0;
+  HistoryCursor history(cs);
+  // the sums' arrays by pointers taken once (the contact set's stores might alias the vectors)
+  double* const fx = f.fx.data();
+  double* const fy = f.fy.data();
+  double* const tq = f.tq.data();
   // `at(q)`: the q-th candidate the loop visits (inlined: the pair's force stays in registers)
   auto run = [&](std::size_t count, auto&& at) __attribute__((always_inline)) {
     for (std::size_t q = 0; q < count; ++q) {
       const PairKey key = at(q);
-      if (!ev.pair(w, key, cs, hint, dt, pf, r)) continue;
+      if (!ev.pair(w, key, history, dt, pf, r)) continue;
       const std::uint32_t i = key_i(key), j = key_j(key);
-      f.fx[i] -= pf.fx;
-      f.fy[i] -= pf.fy;
-      if constexpr (Ev::kTorque) f.tq[i] -= pf.ti;
+      fx[i] -= pf.fx;
+      fy[i] -= pf.fy;
+      if constexpr (Ev::kTorque) tq[i] -= pf.ti;
       if (j < N) {
-        f.fx[j] += pf.fx;
-        f.fy[j] += pf.fy;
-        if constexpr (Ev::kTorque) f.tq[j] += pf.tj;
+        fx[j] += pf.fx;
+        fy[j] += pf.fy;
+        if constexpr (Ev::kTorque) tq[j] += pf.tj;
       }
       next_.keys.push_back(key);
       next_.records.push_back({key, r.s, r.n, r.fn, r.ft, r.overlap});
@@ -211,9 +215,10 @@ ForceStats PairLoop::parallel(Ev& ev, const World& w, const std::vector<PairKey>
     double t_particles = 0.0;
     auto run_chunk = [&](std::size_t c) {
       const std::size_t k0 = c * chunk, k1 = std::min(ncand, k0 + chunk);
-      std::size_t hint = 0, touching = 0;
+      HistoryCursor history(cs);
+      std::size_t touching = 0;
       for (std::size_t k = k0; k < k1; ++k) {
-        const bool t = ev.pair(w, cand[k], cs, hint, dt, pair_f_[k], pair_r_[k]);
+        const bool t = ev.pair(w, cand[k], history, dt, pair_f_[k], pair_r_[k]);
         touch_[k] = t;
         touching += t;
       }

@@ -34,9 +34,8 @@ class DiskPairEvaluator {
   /// the radius every disk has, or NaN where they differ (found by begin())
   double common_radius() const { return common_radius_; }
 
-  [[gnu::always_inline]] bool pair(const World& w, PairKey key, const ContactSet& /*cs*/,
-                                   std::size_t& /*hint*/, double /*dt*/, PairForce& pf,
-                                   PairResult& pr) const {
+  [[gnu::always_inline]] bool pair(const World& w, PairKey key, HistoryCursor& /*history*/,
+                                   double /*dt*/, PairForce& pf, PairResult& pr) const {
     const std::uint32_t N = static_cast<std::uint32_t>(w.size());
     const std::uint32_t i = key_i(key), j = key_j(key);
     const bool wall = j >= N;

@@ -15,7 +15,8 @@
 //   begin(w, generation)        before a pass; returns how many grains the pass must place
 //                               (place(w, b, e) over [0, that), on the team), 0 for none
 //   common_radius()             the radius every grain has (> 0), else not positive or NaN
-//   pair(w, key, cs, hint, dt, pf, pr)  one candidate; false when it does not touch
+//   pair(w, key, history, dt, pf, pr)  one candidate (`history`: the last step's contacts,
+//                               a HistoryCursor over them); false when it does not touch
 #pragma once
 #include <cstdint>
 
