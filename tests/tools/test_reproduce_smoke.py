@@ -70,11 +70,13 @@ class ReproduceSmoke(unittest.TestCase):
             self.assertIn(f"[{i}](#{i})", md)
         self.check_html(os.path.join(out, "report.html"), ids)
         self.check_from_series(study, out)
-        # a second call continues the same directory: nothing to run, the report again
-        p = subprocess.run([BINARY, "reproduce", study, "--budget", "smoke", "--out", out, "-q"],
-                           capture_output=True, text=True, timeout=600)
-        self.assertEqual(p.returncode, 0, p.stderr[-3000:])
-        self.check_locks(study, out)
+        if study == "tapping":
+            # the pool and its locks are one piece of C++ for both studies: tested once
+            # a second call continues the same directory: nothing to run, the report again
+            p = subprocess.run([BINARY, "reproduce", study, "--budget", "smoke", "--out", out,
+                                "-q"], capture_output=True, text=True, timeout=600)
+            self.assertEqual(p.returncode, 0, p.stderr[-3000:])
+            self.check_locks(study, out)
         self.check_partial(study, out)
 
     def check_from_series(self, study, out):
