@@ -15,11 +15,15 @@ import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "..", "python"))
+sys.path.insert(0, HERE)
 
 from gransim.reproduce import rfm  # noqa: E402
 from gransim.reproduce.rfm_conditions import misses, sweep_for  # noqa: E402
 from gransim.reproduce.rfm_ring import XI2_2, XI_M, ZETA  # noqa: E402
-from gransim.reproduce.verdicts import AGREES, UNRESOLVED  # noqa: E402
+from gransim.reproduce.rfm_ring_eps import settle_test  # noqa: E402
+from gransim.reproduce.verdicts import AGREES, DISAGREES, UNRESOLVED, mean_err  # noqa: E402
+
+import temperature_blocks  # noqa: E402
 
 XI = {0.1: 0.53, 0.5: 0.53, 0.87: 0.6, 0.99: 0.65}
 
@@ -80,8 +84,7 @@ class RingFolder(unittest.TestCase):
                     if name == "ring_n512":
                         t = np.arange(20.0, duration, 0.01)
                         T = 0.3 + rng.normal(0, 0.01, len(t))
-                        with open(os.path.join(a, label, "temperature.csv"), "w") as f:
-                            f.write("t,T\n" + "".join(f"{x:.3f},{y:.6f}\n" for x, y in zip(t, T)))
+                        temperature_blocks.write(os.path.join(a, label), t, T, dt=0.01)
         with open(os.path.join(a, "moments_vs_N.csv"), "w") as f:
             f.write("dimension,eps_n,eps_t,N,m,v_moment,v_err,R_moment,R_err\n")
             f.write("".join(",".join(f"{x:.10g}" for x in r) + "\n" for r in rows))
@@ -127,6 +130,79 @@ class RingFolder(unittest.TestCase):
         eps = conditions([], [0.5, 0.87, 0.99], (398, 631, 1000, 1585), 30.0)
         self.assertIn("ε = 0.5, 0.87, 0.99 where the thesis has 0.999",
                       "; ".join(misses("xi-m-elastic", eps)))
+
+
+def ar1(rng, n, a, sigma):
+    """x_i = a x_{i−1} + N(0, σ²(1 − a²)): standard deviation σ, τ_int = (1 + a)/(2(1 − a))"""
+    e = rng.normal(0, sigma * math.sqrt(1 - a * a), n)
+    x = np.empty(n)
+    v = rng.normal(0, sigma)
+    for i in range(n):
+        v = a * v + e[i]
+        x[i] = v
+    return x
+
+
+class CoarseSeries(unittest.TestCase):
+    """T-ring-settle from the 50-ms blocks against the same claim computed on every sample (the
+    1-ms series of 200 s a report used to read): the same verdict, p, drift, τ_int and 200-s
+    error, because the 20-s periods are made of whole blocks and the blocks carry their spreads
+    and the samples' τ_int; only the settling time moves, to a block's start (≤ 50 ms)"""
+
+    def folder(self, trend):
+        d = tempfile.mkdtemp(prefix="gs-ring-blocks-")
+        self.addCleanup(shutil.rmtree, d, ignore_errors=True)
+        os.makedirs(os.path.join(d, "charts"))
+        rng = np.random.default_rng(5)
+        a, runs, fine = os.path.join(d, "analysis", "ring_n512"), [], []
+        for k in (1, 2, 3):
+            label = f"seed={k}"
+            os.makedirs(os.path.join(a, label))
+            steps = np.arange(0, 220_001)
+            t = steps * 1e-3  # every 1 ms from t = 0, steady from 20 s
+            T = 0.17 + trend * t + ar1(rng, len(t), 0.98, 0.02)  # τ_int = 49.5 samples
+            steady = t >= 20.0
+            temperature_blocks.write(os.path.join(a, label), t, T, steady, dt=1e-3)
+            with open(os.path.join(a, label, "rfm.json"), "w") as f:
+                json.dump(dict(t_steady=20.0, t_end=220.0, samples=int(steady.sum())), f)
+            runs.append(dict(label=label, dir=f"sweeps/ring_n512/{label}", dimension=1,
+                             particles=512, phi=0.6, eps_n=0.1, eps_t=1, samples=int(steady.sum()),
+                             T_mean=float(T[steady].mean()), T_err=0.001, notes=[]))
+            fine.append((t[steady], T[steady]))
+        with open(os.path.join(a, "rfm_summary.json"), "w") as f:
+            json.dump({"runs": runs}, f)
+        return d, fine
+
+    @staticmethod
+    def on_every_sample(fine):
+        """the claim as it read temperature.csv: 20-s period means of the samples, each seed's
+        ⟨T⟩ with mean_err, τ_int and Var T of the samples"""
+        groups = []
+        for t, T in fine:
+            n = int(math.floor((t[-1] - t[0]) / 20.0 + 1e-6))
+            k = np.floor((t - t[0]) / 20.0 + 1e-9).astype(int)
+            groups.append((np.array([T[k == j].mean() for j in range(n)]),
+                           np.array([t[0] + (j + 0.5) * 20.0 for j in range(n)])))
+        v, b, sb = settle_test(groups, [mean_err(T) for _, T in fine])
+        return v, b, sb
+
+    def test_same_verdict_from_blocks_as_from_every_sample(self):
+        for trend, want in ((0.0, UNRESOLVED), (2e-4, DISAGREES)):
+            with self.subTest(trend=trend):
+                d, fine = self.folder(trend)
+                r = rfm.c_settle(d)
+                v, b, sb = self.on_every_sample(fine)
+                self.assertEqual(v.verdict, want, v.reason)
+                self.assertEqual(r["verdict"].verdict, v.verdict)
+                self.assertEqual(r["verdict"].reason, v.reason)  # p and drift to the digits shown
+                self.assertAlmostEqual(r["values"]["drift"], b, delta=1e-12)
+                self.assertAlmostEqual(r["values"]["drift_err"], sb, delta=1e-12)
+                tau = np.mean([0.001 * temperature_blocks.tau_int(T) for _, T in fine])
+                self.assertAlmostEqual(r["values"]["tau_s"], tau, delta=1e-12)
+                self.assertIn(f"τ_int of T {tau:.2g} s", r["measured"])
+                rel = [T.std(ddof=1) * math.sqrt(2 * 0.001 * temperature_blocks.tau_int(T) / 200)
+                       / T.mean() for _, T in fine]
+                self.assertIn(", ".join(f"{100 * x:.2g} %" for x in rel), r["measured"])
 
 
 class ShippedQuick(unittest.TestCase):

@@ -14,11 +14,11 @@ from . import described  # noqa: E402
 from .report import Claim, test_of  # noqa: E402
 from .batch import batch_err, normal_score  # noqa: E402
 from .verdicts import (POWER, UNRESOLVED, Verdict, chi2_consistent, compare_value,  # noqa: E402
-                      groups_consistent, mean_err)
+                      groups_consistent)
 
 from .rfm_conditions import THESIS, gate, sweep_for  # noqa: E402
-from .rfm_data import (ORDER, Missing, _csv, _runs, _ci, _gate, _chart, _ax, seed_mean,  # noqa: E402
-                       seed_text)
+from .rfm_data import (ORDER, Missing, _csv, _runs, _ci, _gate, _chart, _ax, pooled,  # noqa: E402
+                       seed_mean, seed_text, t_blocks)
 from .rfm_ring import c_g1, c_vpdf, c_xi2, c_xim, c_zeta  # noqa: E402
 from .rfm_ring_eps import c_collapse, c_settle, c_xi2eps, c_xim_elastic  # noqa: E402
 from .rfm_models import fluid_claims  # noqa: E402
@@ -26,7 +26,7 @@ from .rfm_models import fluid_claims  # noqa: E402
 
 def _temps(d, sweep="reference"):
     """the reference points' ⟨T⟩ (each the mean over its seeds); a run's error: the larger of the
-    block error and the τ_int error of T(t); a point's: seed_mean's"""
+    block error and the τ_int error of T(t) (from its blocks); a point's: seed_mean's"""
     runs = _runs(d, sweep)
     T, E = [], []
     for r in runs:
@@ -34,7 +34,8 @@ def _temps(d, sweep="reference"):
         for q in r["runs"]:
             e = q["T_err"]
             try:
-                e = max(e, mean_err(_csv(os.path.join(q["adir"], "temperature.csv"))[0]["T"])[1])
+                b = t_blocks(q["adir"])
+                e = max(e, pooled(b, b["steady"])[1])
             except Missing:
                 pass
             ts.append(q["T_mean"])
@@ -136,23 +137,27 @@ def c_meanfield(d, sw="reference"):
 def c_transient(d, sw="reference"):
     runs, rows, curves = _runs(d, sw), [], []
     for r in [q for p in runs for q in p["runs"]]:  # every seed's run: each its own transient
-        p = os.path.join(d, "sweeps", sw, r["label"], "rfm_series.csv")
-        c = _csv(p if os.path.exists(p) else os.path.join(r["dir"], "rfm_series.csv"))[0]
+        b = t_blocks(r["adir"])  # T(t) from t = 0 in 50-ms blocks: the rise and its settling
+        # every steady sample for the halves' batches (batches of any length, not whole blocks);
+        # the halves are the same as in all samples when the steady part starts by 1 s
+        c = _csv(os.path.join(r["adir"], "temperature.csv"))[0]
         t, T = c["t"], c["T"]
         end, mid = float(t.max()), 0.5 * (1.0 + float(t.max()))
-        a, b = T[(t >= 1.0) & (t < mid)], T[t >= mid]
+        a, bb = T[(t >= 1.0) & (t < mid)], T[t >= mid]
         # batch means with Student's t: τ_int from a few hundred samples of a T(t) that wanders
         # over tens of them comes out low (a χ² on it rejects a steady T 5–16 % of the time at 1 %)
         (ma, ea, da), (mb, eb, db) = [batch_err(x) if len(x) > 3 else (math.nan, math.nan, 0)
-                                      for x in (a, b)]
+                                      for x in (a, bb)]
         e = math.hypot(ea, eb)
         welch = e ** 4 / (ea ** 4 / da + eb ** 4 / db) if da and db else math.nan
         z = normal_score((ma - mb) / e, welch) if da and db else math.nan
-        ts, sm = t[25:len(t) - 24], np.convolve(T, np.ones(50) / 50, "valid")  # 50-sample means
-        out = np.abs(sm / T[t >= 0.5 * end].mean() - 1) > 0.1
+        tb, h = b["t"], 0.5 * b["dt"]  # a block within h of a bound is past it
+        full = b["n"] >= 0.5 * b["n"].max()  # a last block of a few samples is no block mean
+        ts, sm = tb[full], b["T"][full]
+        out = np.abs(sm / pooled(b, tb >= 0.5 * end - h)[0] - 1) > 0.1
         settle = math.nan if out[-1] else float(ts[np.nonzero(out)[0][-1] + 1 if out.any() else 0])
-        curves.append((r["name"], ts, sm))
-        rows.append((r["name"], end, ma - mb, e, settle, 50e3 * np.median(np.diff(t)), z))
+        curves.append((r["name"], ts + 0.5 * b["block"], sm))
+        rows.append((r["name"], end, ma - mb, e, settle, 1e3 * b["block"], z))
     end = min(x[1] for x in rows)
     settle = (f"; {rows[0][5]:.3g}-ms means stay within 10 % of the last-half mean from "
               + ", ".join(f"{x[4]:.2f} s ({x[0]})" for x in rows))
@@ -167,7 +172,7 @@ def c_transient(d, sw="reference"):
 
     def draw(ax):
         for k, (n, t, T) in enumerate(curves):
-            ax.plot(t, T, lw=0.8, color=f"C{k}", label=f"{n} (means of 50 samples)")
+            ax.plot(t, T, lw=0.8, color=f"C{k}", label=f"{n} ({rows[0][5]:.3g}-ms means)")
         ax.axvline(1.0, color="k", ls="--", label="thesis: steady within the first second")
         ax.axvspan(0, runs[0]["info"].get("t_steady", 0), color="grey", alpha=0.15,
                    label="discarded by the analysis")

@@ -3,7 +3,6 @@ curve of ε (Fig. 3.3), ξ_m at the near-elastic extreme (Fig. 3.4a) and the rin
 settling (Figs. 2.7–2.8), against DIR/analysis/{ring,ring_eps,ring_n512} of `gransim reproduce
 rfm`."""
 import math
-import os
 
 import matplotlib
 
@@ -11,10 +10,11 @@ matplotlib.use("Agg")
 import numpy as np  # noqa: E402
 
 from .rfm_conditions import THESIS, misses, plan_conditions  # noqa: E402
-from .rfm_data import Missing, _ax, _chart, _ci, _csv, _gate, _runs, seed_mean  # noqa: E402
+from .rfm_data import (Missing, _ax, _chart, _ci, _gate, _runs, pooled, seed_mean,  # noqa: E402
+                       t_blocks)
 from .rfm_ring import _seeds, _two_sided, bonferroni, eps_values, exponents, moments  # noqa: E402
 from .verdicts import (UNRESOLVED, Verdict, chi2_consistent, chi2_sf, compare_value,  # noqa: E402
-                       decide, mean_err, phi, power_two_sided, t_sf2, tau_int)
+                       decide, phi, power_two_sided, t_sf2)
 
 XI2, XI2_TOL, XI2_ALT = 0.53, 0.005, 0.01  # "≃ 0.53" to two decimals; c_xi2's alternative
 PLATEAU = 0.5                              # "in the range 0 ≤ ε ≤ 0.5"
@@ -231,12 +231,14 @@ def c_xim_elastic(d, sw="ring_eps"):
 BLOCK = 20.0  # Fig. 2.8's periods (s)
 
 
-def _blocks(t, T, length):
-    """means of T over the whole periods of `length` from t[0], and their mid-times"""
-    n = int(math.floor((t[-1] - t[0]) / length + 1e-6))
+def _periods(t, T, n, end, length):
+    """means of T over the whole periods of `length` from t[0], and their mid-times: T the means
+    of blocks of n samples whose first sample is at t (exact when the periods are made of whole
+    blocks), end the time of the last sample"""
+    p = int(math.floor((end - t[0]) / length + 1e-6))
     k = np.floor((t - t[0]) / length + 1e-9).astype(int)
-    ks = [j for j in range(n) if (k == j).sum() > 1]
-    return (np.array([T[k == j].mean() for j in ks]),
+    ks = [j for j in range(p) if n[k == j].sum() > 1]
+    return (np.array([(n[k == j] * T[k == j]).sum() / n[k == j].sum() for j in ks]),
             np.array([t[0] + (j + 0.5) * length for j in ks]))
 
 
@@ -289,46 +291,49 @@ def settle_test(groups, means):
 def c_settle(d, sw="ring_n512"):
     runs = _runs(d, sw)
     seeds = [q for r in runs for q in r["runs"]]
-    series = []
+    series = []  # T(t) of each seed's steady samples in blocks: exact period means and spreads
     for q in seeds:
-        p = os.path.join(q["adir"], "temperature.csv")
-        if not os.path.exists(p):
-            raise Missing(f"analysis/{sw}/{q['label']}/temperature.csv is missing")
-        c = _csv(p)[0]
-        series.append((q, c["t"], c["T"]))
-    span = min(float(t[-1] - t[0]) for _, t, _ in series)
+        try:
+            b = t_blocks(q["adir"])
+        except Missing:
+            raise Missing(f"analysis/{sw}/{q['label']}/temperature_blocks.csv is missing")
+        s = b["steady"]
+        if s.sum() < 1:
+            raise Missing(f"analysis/{sw}/{q['label']}: no steady sample")
+        series.append((q, b, b["t"][s], b["T"][s], b["n"][s]))
+    span = min(float(b["end"] - t[0]) for _, b, t, _, _ in series)
     length = BLOCK if span >= 2 * BLOCK else span / 4
-    groups = [_blocks(t, T, length) for _, t, T in series]
+    groups = [_periods(t, T, n, b["end"], length) for _, b, t, T, n in series]
     if min(len(y) for y, _ in groups) < 3:
         raise Missing(f"analysis/{sw}: runs of {span:.3g} s sampled hold fewer than three periods")
-    v, b, sb = settle_test(groups, [mean_err(T) for _, _, T in series])
+    v, bs, sb = settle_test(groups, [pooled(b, b["steady"])[:2] for _, b, *_ in series])
     v = _gate(v, runs)
-    settle, rel200, taus = [], [], []
-    for q, t, T in series:
-        run = np.cumsum(T) / np.arange(1, len(T) + 1)
-        m, e = mean_err(T)
-        dt = float(np.median(np.diff(t)))
-        taus.append(tau_int(T) * dt)
+    settle, rel200, taus, curves = [], [], [], []
+    for q, b, t, T, n in series:
+        m, e, sd, _ = pooled(b, b["steady"])
+        run = np.cumsum(n * T) / np.cumsum(n)  # the running average at each block's last sample
+        curves.append(t + (n - 1) * b["dt"])
+        taus.append(b["tau"] * b["dt"])
         out = np.abs(run - m) > 1.96 * e
         settle.append(float(t[np.nonzero(out)[0][-1] + 1]) if out.any() and not out[-1] else
                       (float(t[0]) if not out.any() else math.nan))
         # the relative error a 200-s average would have: Var T and τ_int of this run
-        rel200.append(float(T.std(ddof=1) * math.sqrt(2 * taus[-1] / 200.0) / m))
+        rel200.append(float(sd * math.sqrt(2 * taus[-1] / 200.0) / m))
 
     def draw(ax):
-        for k, ((q, t, T), (y, tm)) in enumerate(zip(series, groups)):
+        for k, ((q, _, _, T, n), (y, tm), tr) in enumerate(zip(series, groups, curves)):
             ax.plot(tm, y, "o", color=f"C{k}", ms=4, label=f"{q['name']}: {length:.3g}-s means")
             step = max(1, len(T) // 2000)
-            run = np.cumsum(T) / np.arange(1, len(T) + 1)
-            ax.plot(t[::step], run[::step], "-", color=f"C{k}", lw=1)
+            run = np.cumsum(n * T) / np.cumsum(n)
+            ax.plot(tr[::step], run[::step], "-", color=f"C{k}", lw=1)
         ax.axvline(200.0, color="C3", ls="--", label="thesis Fig. 2.8: ≈ 200 s to settle")
         ax.plot([], [], "k-", lw=1, label="running average from the end of the relaxation")
         _ax(ax, f"1D ring, N = {runs[0]['particles']:g}, ε = {runs[0]['eps_n']:g}: T(t) "
             "(thesis Figs. 2.7–2.8)", "t (s)", "T (m²/s²)", fs=7)
-    return dict(measured=f"{len(series)} seed(s), {span:.3g} s sampled after {series[0][1][0]:.3g} s: "
+    return dict(measured=f"{len(series)} seed(s), {span:.3g} s sampled after {series[0][2][0]:.3g} s: "
                 f"τ_int of T {np.mean(taus):.2g} s; the running average stays inside its final 95 % "
                 "interval from t = " + ", ".join(f"{x:.3g}" for x in settle) + " s; a 200-s average's "
                 "relative error (from Var T and τ_int) " + ", ".join(f"{100 * x:.2g} %" for x in rel200),
                 verdict=v, chart=_chart(d, "T-ring-settle", draw),
-                values=dict(tau_s=float(np.mean(taus)), drift=b, drift_err=sb,
+                values=dict(tau_s=float(np.mean(taus)), drift=bs, drift_err=sb,
                             settle_s=float(np.nanmax(settle)) if np.isfinite(settle).any() else None))

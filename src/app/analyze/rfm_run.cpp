@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "analysis/rfm_blocks.hpp"
 #include "analysis/rfm_csv.hpp"
 #include "analysis/rfm_moments.hpp"
 #include "app/run/run_info.hpp"
@@ -36,6 +37,34 @@ void copy_if_there(const fs::path& from, const fs::path& to) {
   for (std::size_t i = 0; i < rows; ++i) {
     for (std::size_t c = 0; c < t.names.size(); ++c) row[c] = t.column.at(t.names[c])[i];
     w.row(row);
+  }
+}
+
+// T(t) in 50-ms blocks: the transient's means, and whole blocks of every longer period a
+// report averages over (the first second, halves of the run, the ring's 20-s periods)
+constexpr double kTemperatureBlock = 0.05;  // s
+
+// temperature_blocks.csv from every sample (rfm_series.csv: the transient too), or from the
+// steady ones (temperature.csv) where the run has no series
+void write_temperature_blocks(const RfmRun& r, const fs::path& out, RunResult& res) {
+  std::error_code ec;
+  const bool series = fs::exists(r.dir / "rfm_series.csv", ec);
+  if (!series && !fs::exists(r.dir / "temperature.csv", ec)) return;
+  try {
+    const rfm::CsvTable c = rfm::read_csv(r.dir / (series ? "rfm_series.csv" : "temperature.csv"));
+    const std::vector<double>& t = c.col("t");
+    const std::vector<double>& temp = c.col("T");
+    const std::vector<double> none;
+    const std::vector<double>& steady = series ? c.col("steady") : none;
+    std::vector<double> st;
+    for (std::size_t i = 0; i < temp.size(); ++i)
+      if (steady.empty() || steady[i] != 0.0) st.push_back(temp[i]);
+    rfm::write_temperature_blocks_csv(
+        csv_records(), out / "temperature_blocks.csv",
+        rfm::time_blocks(t, temp, steady, kTemperatureBlock), kTemperatureBlock,
+        r.get("dt") * r.get("sample_every"), st);
+  } catch (const InputError& e) {
+    res.notes.push_back(std::string("temperature blocks skipped: ") + e.what());
   }
 }
 
@@ -209,6 +238,7 @@ RunResult analyze_run(const RfmRun& r, const fs::path& out) {
   for (const char* f : {"temperature.csv", "moments.csv", "moments_components.csv", "gr.csv",
                         "gh.csv", "gap_moments.csv", "rfm.json"})
     copy_if_there(r.dir / f, out / f);
+  write_temperature_blocks(r, out, res);
   read_moments(r.dir / "moments.csv", res.v_moments, res.v_errors);
   read_moments(r.dir / "gap_moments.csv", res.r_moments, res.r_errors);
   std::error_code ec;
