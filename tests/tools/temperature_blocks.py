@@ -1,5 +1,5 @@
 """temperature_blocks.csv as `gransim analyze` writes it (src/analysis/rfm_blocks.cpp), made from
-a synthetic T(t) for the report's tests: blocks [kΔ, (k+1)Δ) split at the steady start, each
+a synthetic T(t) for the report's tests (ar1: a correlated one): blocks [kΔ, (k+1)Δ) split at the steady start, each
 with its count, mean and spread, and the steady samples' τ_int in the sidecar."""
 import json
 import math
@@ -35,3 +35,16 @@ def write(adir, t, T, steady=None, block=0.05, dt=None):
                 T_err=float(x.std(ddof=1) * math.sqrt(2 * tau / len(x))))
     with open(os.path.join(adir, "temperature_blocks.json"), "w") as f:
         json.dump(meta, f)
+
+
+def ar1(rng, n, a, sigma):
+    """x_i = a x_{i−1} + N(0, σ²(1 − a²)): standard deviation σ, τ_int = (1 + a)/(2(1 − a));
+    x_{s+i} = a^i (a x_{s−1} + Σ_{j≤i} a^{−j} e_{s+j}) over chunks short enough for a^{−j}"""
+    e = rng.normal(0, sigma * math.sqrt(1 - a * a), n)
+    x = np.empty(n)
+    v, p = rng.normal(0, sigma), a ** np.arange(200.0)
+    for s in range(0, n, 200):
+        c = e[s:s + 200]
+        x[s:s + len(c)] = p[:len(c)] * (a * v + np.cumsum(c / p[:len(c)]))
+        v = x[s + len(c) - 1]
+    return x

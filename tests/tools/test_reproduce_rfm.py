@@ -17,12 +17,16 @@ import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "..", "python"))
+sys.path.insert(0, HERE)
 
 from gransim.reproduce import rfm  # noqa: E402
 from gransim.reproduce.rfm_conditions import gate, misses, sweep_for  # noqa: E402
 from gransim.reproduce.rfm_data import _runs, seed_mean  # noqa: E402
 from gransim.reproduce.verdicts import (AGREES, DISAGREES, UNRESOLVED, Verdict,  # noqa: E402
-                                        compare_value, groups_consistent)
+                                        chi2_consistent, compare_value, groups_consistent,
+                                        mean_err)
+
+import temperature_blocks  # noqa: E402
 
 REPS = 400
 SLACK_AGREE = 3 * np.sqrt(0.2 * 0.8 / REPS)
@@ -171,6 +175,69 @@ class SeedGrouping(Folder):
         self.sweep("reference", [summary_run(f"placement={p}_seed={k + 1}", T_mean=v)
                                  for p, vs in t.items() for k, v in enumerate(vs)])
         self.assertEqual(rfm.c_start(self.d, "reference")["verdict"].verdict, DISAGREES)
+
+
+class CoarseReference(Folder):
+    """T-start and the transient from the 50-ms blocks of T(t) against the same claims on every
+    sample (rfm_series.csv and temperature.csv, which a report used to read): three starts of
+    11 s sampled every 1 ms, T rising over 50 ms, then correlated noise (τ_int 49.5 samples)"""
+
+    def folder(self, drift):
+        self.plan([dict(name="reference", conditions=dict(REFERENCE, seeds=[1]))])
+        rng, fine, runs = np.random.default_rng(3), {}, []
+        for k, p in enumerate(("square", "hexagonal", "uniform")):
+            t = np.arange(0, 11_001) * 1e-3
+            T = (0.25 + 0.004 * k) * (1 - np.exp(-t / 0.05)) + drift * t
+            T += temperature_blocks.ar1(rng, len(t), 0.98, 0.005)
+            a = os.path.join(self.d, "analysis", "reference", f"placement={p}")
+            os.makedirs(a, exist_ok=True)
+            temperature_blocks.write(a, t, T, t >= 1.0, dt=1e-3)
+            fine[p] = (t, T)
+            runs.append(summary_run(f"placement={p}", T_mean=float(T[t >= 1.0].mean()),
+                                    T_err=1e-4))
+        self.sweep("reference", runs)
+        return fine
+
+    def test_T_start_as_from_every_sample(self):
+        fine = self.folder(0.0)
+        r = rfm.c_start(self.d, "reference")
+        T, E = [], []
+        for t, x in fine.values():  # the run's error: mean_err of its steady samples
+            T.append(x[t >= 1.0].mean())
+            E.append(max(1e-4, mean_err(x[t >= 1.0])[1]))
+        T, E = np.array(T), np.array(E)
+        w = 1 / E ** 2
+        self.assertAlmostEqual(r["values"]["T_mean"], (w * T).sum() / w.sum(), delta=1e-14)
+        self.assertAlmostEqual(r["values"]["T_err"], w.sum() ** -0.5, delta=1e-14)
+        z = [(T[k] - (w[:k] * T[:k]).sum() / w[:k].sum()) / np.sqrt(E[k] ** 2 + 1 / w[:k].sum())
+             for k in range(1, len(T))]
+        v, p = chi2_consistent(z, np.ones(len(z)), label="independent contrasts between the starts")
+        self.assertAlmostEqual(r["values"]["p"], p, delta=1e-12)
+        self.assertEqual(r["verdict"].verdict, v.verdict)
+        self.assertEqual(r["verdict"].reason.split("; spread")[0], v.reason)
+
+    def test_transient_as_from_every_sample(self):
+        """the halves' means are exact (1 s and the middle are block bounds); their errors take
+        the τ_int of the whole steady part where every sample gave each half its own"""
+        for drift, want in ((0.0, UNRESOLVED), (0.002, DISAGREES)):
+            with self.subTest(drift=drift):
+                fine = self.folder(drift)
+                r = rfm.c_transient(self.d, "reference")
+                z, s = [], []
+                for p, (t, T) in fine.items():
+                    a, b = T[(t >= 1.0) & (t < 6.0)], T[t >= 6.0]
+                    self.assertAlmostEqual(r["values"][f"dT_{p}"], a.mean() - b.mean(),
+                                           delta=1e-13)
+                    z.append(a.mean() - b.mean())
+                    s.append(np.hypot(mean_err(a)[1], mean_err(b)[1]))
+                v, _ = chi2_consistent(z, s, label="differences")
+                self.assertEqual(v.verdict, want)
+                self.assertEqual(r["verdict"].verdict, want, r["verdict"].reason)
+                # the rise's end at the resolution of a block (T reaches 90 % at 0.115 s)
+                if not drift:
+                        self.assertIn("50-ms means stay within 10 % of the last-half mean from "
+                                  "0.10 s (square), 0.10 s (hexagonal), 0.10 s (uniform)",
+                                  r["measured"])
 
 
 class Conditions(Folder):

@@ -132,22 +132,12 @@ class RingFolder(unittest.TestCase):
                       "; ".join(misses("xi-m-elastic", eps)))
 
 
-def ar1(rng, n, a, sigma):
-    """x_i = a x_{i−1} + N(0, σ²(1 − a²)): standard deviation σ, τ_int = (1 + a)/(2(1 − a))"""
-    e = rng.normal(0, sigma * math.sqrt(1 - a * a), n)
-    x = np.empty(n)
-    v = rng.normal(0, sigma)
-    for i in range(n):
-        v = a * v + e[i]
-        x[i] = v
-    return x
-
-
 class CoarseSeries(unittest.TestCase):
     """T-ring-settle from the 50-ms blocks against the same claim computed on every sample (the
-    1-ms series of 200 s a report used to read): the same verdict, p, drift, τ_int and 200-s
-    error, because the 20-s periods are made of whole blocks and the blocks carry their spreads
-    and the samples' τ_int; only the settling time moves, to a block's start (≤ 50 ms)"""
+    series of 200 s a report used to read; every 5 ms here, every 1 ms in a run): the same
+    verdict, p, drift, τ_int and 200-s error, because the 20-s periods are made of whole blocks
+    and the blocks carry their spreads and the samples' τ_int; only the settling time moves, to
+    a block's start (≤ 50 ms)"""
 
     def folder(self, trend):
         d = tempfile.mkdtemp(prefix="gs-ring-blocks-")
@@ -158,11 +148,10 @@ class CoarseSeries(unittest.TestCase):
         for k in (1, 2, 3):
             label = f"seed={k}"
             os.makedirs(os.path.join(a, label))
-            steps = np.arange(0, 220_001)
-            t = steps * 1e-3  # every 1 ms from t = 0, steady from 20 s
-            T = 0.17 + trend * t + ar1(rng, len(t), 0.98, 0.02)  # τ_int = 49.5 samples
+            t = np.arange(0, 44_001) * 5e-3  # every 5 ms from t = 0, steady from 20 s
+            T = 0.17 + trend * t + temperature_blocks.ar1(rng, len(t), 0.9, 0.02)  # τ_int = 9.5 samples, 47.5 ms
             steady = t >= 20.0
-            temperature_blocks.write(os.path.join(a, label), t, T, steady, dt=1e-3)
+            temperature_blocks.write(os.path.join(a, label), t, T, steady, dt=5e-3)
             with open(os.path.join(a, label, "rfm.json"), "w") as f:
                 json.dump(dict(t_steady=20.0, t_end=220.0, samples=int(steady.sum())), f)
             runs.append(dict(label=label, dir=f"sweeps/ring_n512/{label}", dimension=1,
@@ -197,12 +186,21 @@ class CoarseSeries(unittest.TestCase):
                 self.assertEqual(r["verdict"].reason, v.reason)  # p and drift to the digits shown
                 self.assertAlmostEqual(r["values"]["drift"], b, delta=1e-12)
                 self.assertAlmostEqual(r["values"]["drift_err"], sb, delta=1e-12)
-                tau = np.mean([0.001 * temperature_blocks.tau_int(T) for _, T in fine])
+                taus = [5e-3 * temperature_blocks.tau_int(T) for _, T in fine]
+                tau = np.mean(taus)
                 self.assertAlmostEqual(r["values"]["tau_s"], tau, delta=1e-12)
                 self.assertIn(f"τ_int of T {tau:.2g} s", r["measured"])
-                rel = [T.std(ddof=1) * math.sqrt(2 * 0.001 * temperature_blocks.tau_int(T) / 200)
-                       / T.mean() for _, T in fine]
+                rel = [T.std(ddof=1) * math.sqrt(2 * x / 200) / T.mean()
+                       for (_, T), x in zip(fine, taus)]
                 self.assertIn(", ".join(f"{100 * x:.2g} %" for x in rel), r["measured"])
+                settle = []  # the running average of every sample inside its final 95 % from
+                for t, T in fine:
+                    m, e = mean_err(T)
+                    out = np.abs(np.cumsum(T) / np.arange(1, len(T) + 1) - m) > 1.96 * e
+                    settle.append(t[np.nonzero(out)[0][-1] + 1] if out.any() and not out[-1]
+                                  else (t[0] if not out.any() else math.nan))
+                if np.isfinite(settle).any():
+                    self.assertAlmostEqual(r["values"]["settle_s"], np.nanmax(settle), delta=0.05)
 
 
 class ShippedQuick(unittest.TestCase):
