@@ -2,6 +2,7 @@
 // a known series, exact means and variances of periods made of whole blocks, the split at the
 // steady start, and the table's metadata (τ_int and the error of the steady mean)
 #include <gtest/gtest.h>
+
 #include <cmath>
 #include <filesystem>
 #include <vector>

@@ -59,10 +59,9 @@ void write_temperature_blocks(const RfmRun& r, const fs::path& out, RunResult& r
     std::vector<double> st;
     for (std::size_t i = 0; i < temp.size(); ++i)
       if (steady.empty() || steady[i] != 0.0) st.push_back(temp[i]);
-    rfm::write_temperature_blocks_csv(
-        csv_records(), out / "temperature_blocks.csv",
-        rfm::time_blocks(t, temp, steady, kTemperatureBlock), kTemperatureBlock,
-        r.get("dt") * r.get("sample_every"), st);
+    rfm::write_temperature_blocks_csv(csv_records(), out / "temperature_blocks.csv",
+                                      rfm::time_blocks(t, temp, steady, kTemperatureBlock),
+                                      kTemperatureBlock, r.get("dt") * r.get("sample_every"), st);
   } catch (const InputError& e) {
     res.notes.push_back(std::string("temperature blocks skipped: ") + e.what());
   }
