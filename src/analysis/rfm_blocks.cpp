@@ -51,19 +51,29 @@ std::vector<TimeBlock> time_blocks(std::span<const double> t, std::span<const do
 
 void write_temperature_blocks_csv(const RecordSink& sink, const std::filesystem::path& path,
                                   const std::vector<TimeBlock>& blocks, double block,
-                                  double sample_interval, std::span<const double> steady_values) {
+                                  double sample_interval, std::span<const double> steady_t,
+                                  std::span<const double> steady_values) {
+  if (steady_t.size() != steady_values.size())
+    throw InputError(path.string(), "", "steady times and values differ in length");
   const double nan = std::numeric_limits<double>::quiet_NaN();
+  const auto tau_of = [&](const std::vector<double>& v) {
+    return v.size() >= 2 ? autocorr_time(v).tau_int : nan;
+  };
   const std::size_t n = steady_values.size();
-  double mean = nan, err = nan, tau = nan;
+  const std::vector<double> v(steady_values.begin(), steady_values.end());
+  double mean = nan, err = nan, tau = tau_of(v), tau_first = nan, tau_second = nan;
   if (n >= 2) {
-    const std::vector<double> v(steady_values.begin(), steady_values.end());
-    tau = autocorr_time(v).tau_int;
     mean = 0.0;
     for (double x : v) mean += x;
     mean /= static_cast<double>(n);
     double ss = 0.0;
     for (double x : v) ss += (x - mean) * (x - mean);
     err = std::sqrt(ss / static_cast<double>(n - 1) * 2.0 * tau / static_cast<double>(n));
+    const double mid = 0.5 * (steady_t.front() + steady_t.back());
+    std::vector<double> first, second;
+    for (std::size_t i = 0; i < n; ++i) (steady_t[i] < mid ? first : second).push_back(v[i]);
+    tau_first = tau_of(first);
+    tau_second = tau_of(second);
   }
   const auto w = sink.create(path.string(), {"t", "n", "T", "T_sd", "steady"},
                              {{"block", block},
@@ -71,7 +81,9 @@ void write_temperature_blocks_csv(const RecordSink& sink, const std::filesystem:
                               {"samples", static_cast<double>(n)},
                               {"tau_int", tau},
                               {"T_mean", mean},
-                              {"T_err", err}});
+                              {"T_err", err},
+                              {"tau_int_first", tau_first},
+                              {"tau_int_second", tau_second}});
   for (const TimeBlock& b : blocks) w->row({b.t, b.n, b.mean, b.sd, b.steady ? 1.0 : 0.0});
 }
 

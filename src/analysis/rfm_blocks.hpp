@@ -29,10 +29,13 @@ std::vector<TimeBlock> time_blocks(std::span<const double> t, std::span<const do
                                    std::span<const double> steady, double block);
 
 /// columns t, n, T, T_sd, steady; metadata: block (s), sample_interval (s), samples (steady),
-/// tau_int (samples, Sokal's window over the steady samples), T_mean, and
-/// T_err = sd·√(2τ_int/n) of the steady samples
+/// tau_int (samples, Sokal's window over the steady samples at times steady_t), T_mean,
+/// T_err = sd·√(2τ_int/n) of the steady samples, and tau_int_first / tau_int_second, the same
+/// over the steady samples before and from the middle time (t_first + t_last)/2: a trend
+/// across the halves inflates τ_int of the whole but not theirs
 void write_temperature_blocks_csv(const RecordSink& sink, const std::filesystem::path& path,
                                   const std::vector<TimeBlock>& blocks, double block,
-                                  double sample_interval, std::span<const double> steady_values);
+                                  double sample_interval, std::span<const double> steady_t,
+                                  std::span<const double> steady_values);
 
 }  // namespace gs::rfm

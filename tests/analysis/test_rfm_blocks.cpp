@@ -108,7 +108,7 @@ TEST(RfmBlocks, TableCarriesTheSteadyMeanWithItsAutocorrelationError) {
   const auto dir = std::filesystem::temp_directory_path() / "gs_rfm_blocks_test";
   std::filesystem::create_directories(dir);
   const auto path = dir / "temperature_blocks.csv";
-  write_temperature_blocks_csv(csv_records(), path, time_blocks(t, x, {}, 0.05), 0.05, 1e-3, x);
+  write_temperature_blocks_csv(csv_records(), path, time_blocks(t, x, {}, 0.05), 0.05, 1e-3, t, x);
   const CsvTable c = read_csv(path);
   std::filesystem::remove_all(dir);
   ASSERT_EQ(c.col("n").size(), n / 50);
@@ -122,6 +122,11 @@ TEST(RfmBlocks, TableCarriesTheSteadyMeanWithItsAutocorrelationError) {
   EXPECT_NEAR(c.meta.at("T_mean"), m, 1e-14);
   EXPECT_NEAR(c.meta.at("T_err"), sd * std::sqrt(2.0 * tau / static_cast<double>(n)), 1e-15);
   EXPECT_NEAR(c.col("T")[3], direct(x, 150, 200).first, 1e-13);
+  // the halves: before and from the middle time (t_first + t_last)/2 = 9.9995 s, i.e. the
+  // samples 0…9999 and 10 000…19 999
+  const std::vector<double> a(x.begin(), x.begin() + 10'000), z(x.begin() + 10'000, x.end());
+  EXPECT_EQ(c.meta.at("tau_int_first"), autocorr_time(a).tau_int);
+  EXPECT_EQ(c.meta.at("tau_int_second"), autocorr_time(z).tau_int);
 }
 
 }  // namespace

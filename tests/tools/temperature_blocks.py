@@ -28,11 +28,12 @@ def write(adir, t, T, steady=None, block=0.05, dt=None):
         f.write("t,n,T,T_sd,steady\n" + "".join(
             f"{a!r},{c},{x!r},{y!r},{int(z)}\n"
             for a, c, x, y, z in zip(t[starts], n, m, sd, steady[starts])))
-    x = T[steady]
-    tau = tau_int(x)
+    x, ts = T[steady], t[steady]
+    tau, mid = tau_int(x), 0.5 * (ts[0] + ts[-1])
     meta = dict(block=block, sample_interval=dt if dt else float(np.median(np.diff(t))),
                 samples=len(x), tau_int=tau, T_mean=float(x.mean()),
-                T_err=float(x.std(ddof=1) * math.sqrt(2 * tau / len(x))))
+                T_err=float(x.std(ddof=1) * math.sqrt(2 * tau / len(x))),
+                tau_int_first=tau_int(x[ts < mid]), tau_int_second=tau_int(x[ts >= mid]))
     with open(os.path.join(adir, "temperature_blocks.json"), "w") as f:
         json.dump(meta, f)
 

@@ -217,8 +217,9 @@ class CoarseReference(Folder):
         self.assertEqual(r["verdict"].reason.split("; spread")[0], v.reason)
 
     def test_transient_as_from_every_sample(self):
-        """the halves' means are exact (1 s and the middle are block bounds); their errors take
-        the τ_int of the whole steady part where every sample gave each half its own"""
+        """the halves' means are exact (1 s and the middle are block bounds), their errors take
+        each half's own τ_int: the same verdict, χ² and p; the settling time at a block's
+        resolution"""
         for drift, want in ((0.0, UNRESOLVED), (0.002, DISAGREES)):
             with self.subTest(drift=drift):
                 fine = self.folder(drift)
@@ -230,9 +231,10 @@ class CoarseReference(Folder):
                                            delta=1e-13)
                     z.append(a.mean() - b.mean())
                     s.append(np.hypot(mean_err(a)[1], mean_err(b)[1]))
-                v, _ = chi2_consistent(z, s, label="differences")
+                v, _ = chi2_consistent(z, s, label="differences ⟨T⟩[1 s, mid] − ⟨T⟩[mid, end]")
                 self.assertEqual(v.verdict, want)
                 self.assertEqual(r["verdict"].verdict, want, r["verdict"].reason)
+                self.assertEqual(r["verdict"].reason, v.reason)
                 # the rise's end at the resolution of a block (T reaches 90 % at 0.115 s)
                 if not drift:
                         self.assertIn("50-ms means stay within 10 % of the last-half mean from "

@@ -56,12 +56,16 @@ void write_temperature_blocks(const RfmRun& r, const fs::path& out, RunResult& r
     const std::vector<double>& temp = c.col("T");
     const std::vector<double> none;
     const std::vector<double>& steady = series ? c.col("steady") : none;
-    std::vector<double> st;
+    std::vector<double> st, sv;
     for (std::size_t i = 0; i < temp.size(); ++i)
-      if (steady.empty() || steady[i] != 0.0) st.push_back(temp[i]);
+      if (steady.empty() || steady[i] != 0.0) {
+        st.push_back(t[i]);
+        sv.push_back(temp[i]);
+      }
     rfm::write_temperature_blocks_csv(csv_records(), out / "temperature_blocks.csv",
                                       rfm::time_blocks(t, temp, steady, kTemperatureBlock),
-                                      kTemperatureBlock, r.get("dt") * r.get("sample_every"), st);
+                                      kTemperatureBlock, r.get("dt") * r.get("sample_every"), st,
+                                      sv);
   } catch (const InputError& e) {
     res.notes.push_back(std::string("temperature blocks skipped: ") + e.what());
   }
