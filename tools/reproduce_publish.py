@@ -72,6 +72,13 @@ def main():
               for d, _, fs in os.walk(os.path.join(dst, "series")) for f in fs)
     print(f"reproduce_publish: {src} → {dst} ({size / 1024:.0f} kB, of which series/ "
           f"{ser / 1024:.0f} kB)")
+    # a report folder is meant to stay a few MB: name the largest series when it does not
+    if size > 5 * 1024 ** 2:
+        big = sorted(((os.path.getsize(os.path.join(d, f)), os.path.relpath(os.path.join(d, f), dst))
+                      for d, _, fs in os.walk(os.path.join(dst, "series")) for f in fs),
+                     reverse=True)[:5]
+        print(f"reproduce_publish: warning: {dst} holds {size / 1024 ** 2:.1f} MB; the largest "
+              "series: " + ", ".join(f"{p} ({n / 1024:.0f} kB)" for n, p in big))
 
 
 if __name__ == "__main__":

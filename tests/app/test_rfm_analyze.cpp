@@ -143,6 +143,32 @@ TEST(RfmAnalyze, WritesThePerRunAnalysisAndExponents) {
   EXPECT_EQ(q.size(), 24u);  // ξ_m and ζ_m, m = 1…12
 }
 
+// T(t) in 50-ms blocks: every sample of rfm_series.csv in one block, the steady ones those of
+// temperature.csv, with the same mean
+TEST(RfmAnalyze, TemperatureBlocksHoldEverySample) {
+  const Runs& r = runs();
+  const fs::path out = r.root / "analysis_blocks";
+  analyze_rfm_runs({(r.root / "fluid").string()}, out.string(), /*charts=*/false, /*quiet=*/true);
+  const rfm::CsvTable b = rfm::read_csv(out / "fluid" / "temperature_blocks.csv");
+  const rfm::CsvTable series = rfm::read_csv(r.root / "fluid" / "rfm_series.csv");
+  const rfm::CsvTable temp = rfm::read_csv(r.root / "fluid" / "temperature.csv");
+  double all = 0.0, steady = 0.0, sum = 0.0;
+  for (std::size_t i = 0; i < b.col("n").size(); ++i) {
+    all += b.col("n")[i];
+    if (b.col("steady")[i] != 0.0) {
+      steady += b.col("n")[i];
+      sum += b.col("n")[i] * b.col("T")[i];
+    }
+  }
+  EXPECT_EQ(all, static_cast<double>(series.col("t").size()));
+  ASSERT_EQ(steady, static_cast<double>(temp.col("T").size()));
+  double direct = 0.0;
+  for (double x : temp.col("T")) direct += x;
+  EXPECT_NEAR(sum / steady, direct / steady, 1e-12 * std::abs(direct / steady));
+  EXPECT_NEAR(b.meta.at("T_mean"), direct / steady, 1e-12 * std::abs(direct / steady));
+  EXPECT_EQ(b.meta.at("block"), 0.05);
+}
+
 // the gransim binary dispatches analyze to the RFM analysis; charts when python can draw them
 // (both rings, so that the across-size chart moments_vs_N.png is drawn too)
 TEST(RfmAnalyze, BinaryAnalyzesAndDrawsCharts) {
