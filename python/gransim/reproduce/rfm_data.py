@@ -82,27 +82,24 @@ def _runs(d, sweep):
 def t_blocks(adir):
     """T(t) of a run in blocks of fixed duration (temperature_blocks.csv of its analysis folder):
     columns t (each block's first sample), n, T, T_sd, steady (bool); 'end', the time of the last
-    sample; 'tau', the steady samples' τ_int (samples), 'tau_halves' that of the steady samples
-    before and from their middle time; 'dt', the sample interval (s)"""
+    sample; 'tau', the steady samples' τ_int (samples); 'dt', the sample interval (s)"""
     c, meta = _csv(os.path.join(adir, "temperature_blocks.csv"))
     dt = meta.get("sample_interval", math.nan)
     return dict(c, steady=c["steady"] != 0, end=float(c["t"][-1] + (c["n"][-1] - 1) * dt),
-                tau=meta.get("tau_int", math.nan), dt=dt, block=meta.get("block", math.nan),
-                tau_halves=(meta.get("tau_int_first", math.nan),
-                            meta.get("tau_int_second", math.nan)))
+                tau=meta.get("tau_int", math.nan), dt=dt, block=meta.get("block", math.nan))
 
 
-def pooled(b, sel, tau=None):
-    """the samples of the blocks `sel` (a mask) pooled: their mean, its error sd·√(2τ/n) with
-    τ = tau, by default the steady samples' τ_int (verdicts.mean_err on those samples), their
-    standard deviation and count; nan below two samples"""
+def pooled(b, sel):
+    """the samples of the blocks `sel` (a mask) pooled: their mean, its error with the steady
+    samples' τ_int, sd·√(2τ/n) (verdicts.mean_err on those samples), their standard deviation
+    and count; nan below two samples"""
     n, T, sd = b["n"][sel], b["T"][sel], b["T_sd"][sel]
     N = float(n.sum())
     if N < 2:
         return math.nan, math.nan, math.nan, N
     m = float((n * T).sum() / N)
     s = math.sqrt(float(((n - 1) * sd ** 2 + n * (T - m) ** 2).sum()) / (N - 1))
-    return m, s * math.sqrt(2.0 * (b["tau"] if tau is None else tau) / N), s, N
+    return m, s * math.sqrt(2.0 * b["tau"] / N), s, N
 
 
 def seed_mean(values, errors):
