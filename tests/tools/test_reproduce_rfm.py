@@ -282,6 +282,30 @@ class Conditions(Folder):
                                                     "1 s discarded where the thesis discards ≈ 20 s",
                                                     "10 s sampled where the thesis needed ≈ 200 s"])
 
+    def test_conditions_from_the_scenes_where_the_plan_states_none(self):
+        """a plan written before it recorded conditions: the runs' scene.toml files give them,
+        so a claim made at another box size is still gated"""
+        agrees = Verdict(AGREES, "measured 1 ± 0.1", "null", "alt", 0.9)
+        self.plan([dict(name="structure", params=[], sets=[])])
+        self.assertIs(gate(self.d, "g-R", "structure", agrees)[0], agrees)  # no scene: as before
+        run = os.path.join(self.d, "sweeps", "structure", "seed=1")
+        os.makedirs(run)
+        with open(os.path.join(run, "scene.toml"), "w") as f:
+            f.write('[scene]\nduration = 4.0\n[box]\nwidth = 0.2\nheight = 0.2\n'
+                    '[rfm]\ndiscard_time = 1.0\n[preparation]\nseed = 1\n'
+                    'placement = "hexagonal"\n[[species]]\ncount = 3000\nradius = 0.0015\n'
+                    '[[material]]\neps_n = 0.1\neps_t = 0.1\n')
+        v, miss = gate(self.d, "g-R", "structure", agrees)
+        self.assertEqual(v.verdict, UNRESOLVED)
+        self.assertEqual(miss, "L = 0.2 m where the thesis has 0.4 m")
+        self.assertIn("at face value: agrees", v.reason)
+        # the same system at the thesis' box passes
+        with open(os.path.join(run, "scene.toml")) as f:
+            text = f.read().replace("0.2", "0.4").replace("3000", "12000")
+        with open(os.path.join(run, "scene.toml"), "w") as f:
+            f.write(text)
+        self.assertIs(gate(self.d, "g-R", "structure", agrees)[0], agrees)
+
     def test_gate_and_sweep_choice(self):
         agrees = Verdict(AGREES, "measured 1 ± 0.1", "null", "alt", 0.9)
         v, miss = gate(self.d, "G1-bisection", "ring", agrees)  # no plan: as before

@@ -7,6 +7,7 @@ import json
 import math
 import os
 
+from . import described
 from .verdicts import UNRESOLVED, Verdict
 
 PHI_TOL = 5e-4  # the thesis prints φ to three decimals
@@ -78,7 +79,9 @@ THESIS = {
 
 
 def plan_conditions(d):
-    """{sweep name: conditions} of DIR/plan.json, or None when the plan states none"""
+    """{sweep name: conditions} of DIR/plan.json; where the plan states none (a plan written
+    before it recorded them), the conditions its runs' scene.toml files give; None when
+    neither does"""
     try:
         with open(os.path.join(d, "plan.json")) as f:
             sweeps = json.load(f).get("sweeps", [])
@@ -86,7 +89,51 @@ def plan_conditions(d):
         return None
     out = {s["name"]: s["conditions"] for s in sweeps
            if isinstance(s, dict) and isinstance(s.get("conditions"), dict) and "name" in s}
+    if out:
+        return out
+    for s in sweeps:
+        c = _scene_conditions(os.path.join(d, "sweeps", s.get("name", "")))
+        if isinstance(s, dict) and c:
+            out[s["name"]] = c
     return out or None
+
+
+def _scene_conditions(sweep_dir):
+    """a sweep's conditions, as plan.json states them, from its runs' scene.toml files"""
+    import glob
+    runs = sorted(os.path.dirname(p) for p in glob.glob(os.path.join(sweep_dir, "*", "scene.toml")))
+    points, seeds, starts, durations, discards, dims = [], [], [], [], [], []
+    for s in described.scenes(runs):
+        try:
+            sp, box, mat = s["species"], s["box"], s["material"][0]
+            n = sum(int(x.get("count", 0)) for x in sp)
+            e_n = float(mat.get("eps_n", math.nan))
+            e_t = float(mat.get("eps_t", 1.0))
+            if "reduced_length" in box:
+                lr = float(box["reduced_length"])
+                d = sum(int(x.get("count", 0)) * 2 * float(x["radius"]) for x in sp)
+                q = {"phi": d / (lr + d), "eps_n": e_n, "eps_t": 1.0, "reduced_length": lr, "N": n}
+                dims.append(1)
+            else:
+                w, h = float(box["width"]), float(box.get("height", box["width"]))
+                a = sum(int(x.get("count", 0)) * math.pi * float(x["radius"]) ** 2 for x in sp)
+                q = {"phi": a / (w * h), "eps_n": e_n, "eps_t": e_t, "L": w, "N": n}
+                dims.append(2)
+            dur = float(s["scene"]["duration"])
+            dis = float(s.get("rfm", {}).get("discard_time", 0.0))
+        except (KeyError, TypeError, ValueError, IndexError, ZeroDivisionError):
+            continue
+        prep = s.get("preparation", {})
+        for lst, v in ((points, q), (seeds, prep.get("seed")), (starts, prep.get("placement")),
+                       (durations, dur), (discards, dis)):
+            if v is not None and v not in lst:
+                lst.append(v)
+    if not points or len(set(dims)) != 1:
+        return None
+    # every run must reach the thesis' time: the shortest run and the longest discard decide
+    dur, dis = min(durations), max(discards)
+    return {"dimension": dims[0], "points": points, "seeds": seeds, "starts": starts,
+            "duration_s": dur, "discard_s": dis, "sampled_s": dur - dis, "from_scenes": True}
 
 
 def _fmt(x):
