@@ -243,4 +243,4 @@ def gate(d, cid, sweep, v):
     face = v.reason if v.verdict == UNRESOLVED else f"{v.verdict}, {v.reason}"
     return (Verdict(UNRESOLVED, f"not at the thesis' conditions ({THESIS[cid]['source']}): "
                     f"sweep {sweep} has {what}; at face value: {face}", v.null, v.alternative,
-                    v.power, math.nan), what)
+                    v.power, math.nan, v.power_at), what)
