@@ -133,7 +133,8 @@ PlannedModel cascade_model(int realisations) {
           {"model", "cascade", "--kind", "all", "--levels", "8", "--realisations",
            std::to_string(realisations), "--quiet"},
           {"cascade"},
-          realisations * kCascadeCost};
+          realisations * kCascadeCost,
+          ""};
 }
 
 // the Single Particle Model of §5.2.3 (Fig. 5.10) on the free paths of one run of a sweep (the
