@@ -1,0 +1,219 @@
+#!/usr/bin/env python3
+"""The tapping study's open questions, decided from the runs kept in
+docs/reproduction/investigations/: is the weak-tap steady state (g_p = 2) history-dependent, does
+rotating g's φ̄(f) reach the paper's high-frequency level beyond 2 Hz, and do one long run's test
+columns obey the paper's halves bounds. Prints every number docs/reproduction/README.md quotes
+and draws the charts beside the series.
+
+  tools/reproduce_investigations.py [FOLDER]        (default docs/reproduction/investigations)
+
+FOLDER/runs.csv names each run (name, protocol, control, start, taps, note) and FOLDER/series/
+holds each run's per-tap φ, φ_left and φ_right (the runs' taps.csv columns, `gransim run` output).
+Errors are batch means with Student's t (python/gransim/reproduce/batch.py), the rule the reports
+use; a steady part starts at MSER-5's cut."""
+import csv
+import math
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(ROOT, "python"))
+from gransim.reproduce.batch import batch_err  # noqa: E402
+from gransim.reproduce.verdicts import below_bound, t_sf2  # noqa: E402
+
+HIGH_F_LEVEL = 0.821  # the paper's φ̄ at high rotation frequency (Fig. 6a), printed to 3 decimals
+HALVES_MEAN, HALVES_SIGMA = 1e-4, 0.01  # the paper's bounds on the test square's columns
+
+
+def mser(x, batch=5):
+    """MSER-5: the cut (in taps, a multiple of batch) that minimises the squared standard error
+    of the mean of what is left, searched over the first half"""
+    n = len(x) // batch
+    y = np.asarray(x[:n * batch], float).reshape(n, batch).mean(axis=1)
+    best, cut = math.inf, 0
+    for d in range(n // 2 + 1):
+        rest = y[d:]
+        s = float(np.var(rest)) / len(rest)  # the MSER statistic
+        if s < best:
+            best, cut = s, d
+    return cut * batch
+
+
+def compaction_many(Y):
+    """least squares φ_n = φ_∞ − A·e^(−n/τ) for each row of Y, τ over a log grid from 0.5 to
+    five times the series: arrays (φ_∞, A, τ), one entry a row"""
+    Y = np.atleast_2d(np.asarray(Y, float))
+    n = np.arange(Y.shape[1], dtype=float)
+    taus = np.geomspace(0.5, 5 * Y.shape[1], 160)
+    X = np.stack([np.stack([np.ones_like(n), -np.exp(-n / t)], axis=1) for t in taus])
+    coef = np.linalg.pinv(X) @ Y.T  # (grid, 2, rows)
+    sse = ((X @ coef - Y.T[None]) ** 2).sum(axis=1)  # (grid, rows)
+    k = sse.argmin(axis=0)
+    rows = np.arange(Y.shape[0])
+    return coef[k, 0, rows], coef[k, 1, rows], taus[k]
+
+
+def compaction(phi):
+    """the compaction fit of one run: dict(inf, A, tau, curve, a, sd), the curve the fit less
+    its plateau, a and sd the residuals' lag-one correlation and standard deviation"""
+    phi = np.asarray(phi, float)
+    inf, a, tau = (float(v[0]) for v in compaction_many(phi))
+    curve = -a * np.exp(-np.arange(len(phi)) / tau)
+    res = phi - inf - curve
+    r1 = float(np.corrcoef(res[:-1], res[1:])[0, 1])
+    return dict(inf=inf, A=a, tau=tau, curve=curve, a=min(max(r1, 0.0), 0.95),
+                sd=float(np.std(res, ddof=3)))
+
+
+def load(folder):
+    runs = {}
+    with open(os.path.join(folder, "runs.csv")) as f:
+        for r in csv.DictReader(f):
+            path = os.path.join(folder, "series", r["name"] + ".csv")
+            if not os.path.exists(path):
+                continue
+            with open(path) as g:
+                rows = list(csv.DictReader(g))
+            r["phi"] = np.array([float(x["phi"]) for x in rows])
+            r["left"] = np.array([float(x["phi_left"]) for x in rows])
+            r["right"] = np.array([float(x["phi_right"]) for x in rows])
+            runs[r["name"]] = r
+    return runs
+
+
+def steady(phi):
+    cut = mser(phi)
+    m, e, dof = batch_err(phi[cut:])
+    return cut, m, e, dof
+
+
+def weak_tap(runs, folder=None):
+    """g_p = 2 from the loose settled pile and from the pile annealed by decreasing g_p: the
+    difference of the two steady means (a chart in folder unless None)"""
+    print("## g_p = 2 from two starts")
+    chain = [r for r in runs.values() if r["start"].startswith("anneal (")]
+    for r in chain:
+        p = r["phi"]
+        print(f"  anneal {r['protocol']} {r['control']}: {len(p)} taps, φ from {p[0]:.4f} to "
+              f"{p[-1]:.4f}, last 10 taps {p[-10:].mean():.4f} ± {p[-10:].std(ddof=1) / math.sqrt(10):.4f}")
+    pair = [r for r in runs.values() if r["protocol"] == "negative_g" and r["control"] == "2"]
+    out = {}
+    fig, ax = plt.subplots(figsize=(6.4, 3.6), dpi=110) if folder else (None, None)
+    found = {}
+    for r in pair:
+        p = r["phi"]
+        cut, m, e, dof = steady(p)
+        fit = compaction(p)
+        found[r["start"]] = fit
+        h = (len(p) - cut) // 2  # drift: the steady part's second half against its first
+        (m1, e1, d1), (m2, e2, d2) = batch_err(p[cut:cut + h]), batch_err(p[cut + h:])
+        drift = f"{m2 - m1:+.5f} ± {math.hypot(e1, e2):.5f}" if d1 and d2 else "too short"
+        print(f"  {r['name']} ({r['start']} start): {len(p)} taps, first {p[0]:.4f}; MSER cut "
+              f"{cut}, mean after it {m:.5f} ± {e:.5f} ({dof} dof), drift (its second half − "
+              f"first) {drift}; compaction fit φ_∞ {fit['inf']:.5f}, A {fit['A']:.4f}, "
+              f"τ {fit['tau']:.1f} taps; residuals sd {fit['sd']:.5f}, lag-one correlation "
+              f"{fit['a']:.2f}")
+        if ax:
+            ax.plot(np.arange(len(p)), p, ".", ms=3, label=f"{r['start']} start")
+            ax.plot(np.arange(len(p)), fit["inf"] + fit["curve"], lw=1)
+            ax.axvline(cut, color=ax.lines[-1].get_color(), ls=":", lw=0.8)
+    if len(found) == 2:
+        # at the same taps: the loose run may still be compacting, so a difference here is the
+        # two histories' φ at equal tap counts, not yet two steady states
+        p1, p2 = pair[0]["phi"], pair[1]["phi"]
+        n = min(len(p1), len(p2))
+        w = slice(n - n // 3, n)
+        (m1, e1, d1), (m2, e2, d2) = batch_err(p1[w]), batch_err(p2[w])
+        d, de = m2 - m1, math.hypot(e1, e2)
+        dof = de ** 4 / (e1 ** 4 / max(d1, 1) + e2 ** 4 / max(d2, 1))  # Welch–Satterthwaite
+        pv = t_sf2(abs(d / de), dof)
+        out = dict(difference=d, err=de, dof=dof, p=pv, taps=(w.start, n))
+        print(f"  at taps {w.start}–{n - 1}: {pair[1]['name']} − {pair[0]['name']} = {d:+.5f} ± "
+              f"{de:.5f} (t = {d / de:+.2f}, {dof:.0f} dof, p = {pv:.2g}); fitted plateaus "
+              f"{found[pair[1]['start']]['inf'] - found[pair[0]['start']]['inf']:+.5f} apart")
+    if ax:
+        ax.set_xlabel("tap")
+        ax.set_ylabel("φ")
+        ax.set_title("g_p = 2 from a loose and an annealed pile (dotted: MSER cut)", fontsize=9)
+        ax.legend(fontsize=8)
+        fig.tight_layout()
+        fig.savefig(os.path.join(folder, "weak_tap.png"))
+        plt.close(fig)
+    return out
+
+
+def high_f(runs, folder):
+    """rotating g beyond the reports' 2 Hz"""
+    rot = sorted((r for r in runs.values() if r["protocol"] == "rotating_g"
+                  and r["start"] == "settled"), key=lambda r: float(r["control"]))
+    if not rot:
+        return []
+    print("## rotating g beyond 2 Hz")
+    xs, ms, es, dofs = [], [], [], []
+    for r in rot:
+        cut, m, e, dof = steady(r["phi"])
+        xs.append(float(r["control"]))
+        ms.append(m)
+        es.append(e)
+        dofs.append(dof)
+        z = (m - HIGH_F_LEVEL) / math.hypot(e, 0.0005)
+        print(f"  f = {r['control']} Hz: {len(r['phi'])} taps, cut {cut}, φ̄ {m:.5f} ± {e:.5f} "
+              f"({dof} dof); against {HIGH_F_LEVEL} ± 0.0005: {z:+.1f}σ")
+    for i in range(1, len(xs)):
+        d, de = ms[i] - ms[i - 1], math.hypot(es[i], es[i - 1])
+        print(f"  {xs[i - 1]:g} → {xs[i]:g} Hz: Δφ̄ {d:+.5f} ± {de:.5f} ({d / de:+.1f}σ)")
+    fig, ax = plt.subplots(figsize=(6.4, 3.6), dpi=110)
+    ax.errorbar(xs, ms, yerr=1.96 * np.array(es), fmt="o", capsize=3, label="gransim, 95 %")
+    ax.axhspan(HIGH_F_LEVEL - 0.0005, HIGH_F_LEVEL + 0.0005, color="tab:orange", alpha=0.3,
+               label="paper's high-f level 0.821")
+    ax.set_xlabel("f (Hz)")
+    ax.set_ylabel("φ̄")
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(os.path.join(folder, "high_f.png"))
+    plt.close(fig)
+    return list(zip(xs, ms, es, dofs))
+
+
+def halves(runs):
+    """one long run's columns against the whole test square"""
+    long = [r for r in runs.values() if r["start"] == "long"]
+    out = {}
+    for r in long:
+        p, pl, pr = r["phi"], r["left"], r["right"]
+        cut = mser(p)
+        print(f"## halves, {r['name']}: {len(p)} taps, cut {cut}")
+        for side, c in (("left", pl), ("right", pr)):
+            m, e, dof = batch_err(((c - p) / p)[cut:])
+            v = below_bound(abs(m), e, HALVES_MEAN, dof=dof, family=2, folded=True)
+            out[(r["name"], side)] = v
+            print(f"  relative difference {side} − whole: {m:+.2e} ± {e:.1e} ({dof} dof): "
+                  f"{v.verdict} (power {v.power:.2f}); {v.reason}")
+        def ratio(a, b, c):
+            return 0.5 * (np.std(b, ddof=1) + np.std(c, ddof=1)) / np.std(a, ddof=1) / math.sqrt(2)
+
+        m, e, dof = batch_err([p[cut:], pl[cut:], pr[cut:]], ratio)
+        v = below_bound(abs(m - 1), e, HALVES_SIGMA, dof=dof, folded=True)
+        out[(r["name"], "sigma")] = v
+        print(f"  σ ratio / √2: {m:.4f} ± {e:.4f} ({dof} dof): {v.verdict} (power {v.power:.2f}); "
+              f"{v.reason}")
+    return out
+
+
+def main():
+    folder = sys.argv[1] if len(sys.argv) > 1 else os.path.join(ROOT, "docs", "reproduction",
+                                                                 "investigations")
+    runs = load(folder)
+    weak_tap(runs, folder)
+    high_f(runs, folder)
+    halves(runs)
+
+
+if __name__ == "__main__":
+    main()
