@@ -60,6 +60,19 @@ def _seeds_note(runs, key):
             f"{k} of {len(s)})")
 
 
+def start_test(T, E, F):
+    """one ⟨T⟩ for every start, one run each: values T with errors E of F degrees of freedom
+    (None: exact), χ² of their Helmert contrasts (rfm_data.contrasts). Returns (Verdict, p)"""
+    v, p = chi2_consistent(contrasts(T, E, F), np.ones(len(T) - 1),
+                           label="contrasts between the starts")
+    if any(f is not None for f in F):
+        v = Verdict(v.verdict, v.reason + "; each run's error from batch means of its steady "
+                    "T(t) (" + ", ".join(f"{f} degrees of freedom" for f in F if f is not None)
+                    + "), each contrast's t taken to its normal score", v.null, v.alternative,
+                    v.power, v.scale)
+    return v, p
+
+
 def c_start(d, sw="reference"):
     runs, T, E, F, tm, em, _ = _temps(d, sw)
     if len(T) < 2:
@@ -70,13 +83,7 @@ def c_start(d, sw="reference"):
         v, p = groups_consistent([[q["T_mean"] for q in r["runs"]] for r in runs],
                                  label="starts, each from its seeds")
     else:
-        v, p = chi2_consistent(contrasts(T, E, F), np.ones(len(T) - 1),
-                               label="contrasts between the starts")
-        if any(f is not None for f in F):
-            v = Verdict(v.verdict, v.reason + "; each run's error from batch means of its steady "
-                        "T(t) (" + ", ".join(f"{f} degrees of freedom" for f in F if f is not None)
-                        + "), each contrast's t taken to its normal score", v.null,
-                        v.alternative, v.power, v.scale)
+        v, p = start_test(T, E, F)
 
     def draw(ax):
         _dots(ax, runs, T, E, "gransim steady ⟨T⟩, 95 %")
