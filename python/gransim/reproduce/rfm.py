@@ -14,7 +14,7 @@ from . import described  # noqa: E402
 from .report import Claim, test_of  # noqa: E402
 from .batch import batch_err, normal_score  # noqa: E402
 from .verdicts import (POWER, UNRESOLVED, Verdict, chi2_consistent, compare_value,  # noqa: E402
-                      groups_consistent)
+                      groups_consistent, t_of)
 
 from .rfm_conditions import THESIS, gate, sweep_for  # noqa: E402
 from .rfm_data import (ORDER, Missing, _csv, _runs, _ci, _gate, _chart, _ax, contrasts,  # noqa: E402
@@ -42,9 +42,21 @@ def _temps(d, sweep="reference"):
     return (runs, T, E, F) + mean_of(T, E, F)
 
 
-def _dots(ax, runs, T, E, label):
-    ax.errorbar(range(len(T)), T, 1.96 * E, fmt="o", capsize=4, label=label)
-    ax.set_xticks(range(len(T)), [r["name"] for r in runs])
+def _t95(e, dof):
+    """an error scaled so that _ci's ±1.96 of it is the 95 % interval of Student's t of dof
+    degrees of freedom (None: normal)"""
+    return e if dof is None else e * t_of(0.05, dof) / 1.96
+
+
+def _dots(ax, runs, T, E, label, F=None):
+    E = [_t95(e, f) for e, f in zip(E, F or [None] * len(E))]
+    ax.errorbar(range(len(T)), T, 1.96 * np.array(E), fmt="o", capsize=4, label=label)
+
+
+def _names(ax, runs):
+    """the starts' names under their dots, after _ax (setting the scale resets the ticks)"""
+    ax.set_xticks(range(len(runs)))
+    ax.set_xticklabels([r["name"] for r in runs])
 
 
 # ---- 2D reference fluid -----------------------------------------------------------------------
@@ -74,7 +86,7 @@ def start_test(T, E, F):
 
 
 def c_start(d, sw="reference"):
-    runs, T, E, F, tm, em, _ = _temps(d, sw)
+    runs, T, E, F, tm, em, dof = _temps(d, sw)
     if len(T) < 2:
         raise Missing("fewer than two starts in analysis/reference")
     if all(len(r["runs"]) > 1 for r in runs):
@@ -86,12 +98,15 @@ def c_start(d, sw="reference"):
         v, p = start_test(T, E, F)
 
     def draw(ax):
-        _dots(ax, runs, T, E, "gransim steady ⟨T⟩, 95 %")
-        ax.axhspan(tm - 1.96 * em, tm + 1.96 * em, color="C0", alpha=0.15, label="mean of the starts")
+        _dots(ax, runs, T, E, "gransim steady ⟨T⟩, 95 %", F)
+        h = 1.96 * _t95(em, dof)
+        ax.axhspan(tm - h, tm + h, color="C0", alpha=0.15, label="mean of the starts")
         _ax(ax, "2D reference from three starts (thesis Fig. 2.10b: one plateau;\n"
             "its 12 m²/s² is off this scale, see notes)", "start", "⟨T⟩ (m²/s²)")
-    return dict(measured=", ".join(f"{_ci(t, e)} ({r['name']})" for t, e, r in zip(T, E, runs))
-                + f" m²/s² (95 %); their mean {_ci(tm, em)}" + _seeds_note(runs, "T_seeds"),
+        _names(ax, runs)
+    return dict(measured=", ".join(f"{_ci(t, _t95(e, f))} ({r['name']})"
+                                   for t, e, f, r in zip(T, E, F, runs))
+                + f" m²/s² (95 %); their mean {_ci(tm, _t95(em, dof))}" + _seeds_note(runs, "T_seeds"),
                 verdict=_gate(Verdict(v.verdict, f"{v.reason}; spread {100 * np.ptp(T) / tm:.1f} % "
                                       "of ⟨T⟩", v.null, v.alternative, v.power, v.scale), runs),
                 chart=_chart(d, "T-start", draw), values=dict(T_mean=tm, T_err=em, p=p))
@@ -122,13 +137,14 @@ def c_meanfield(d, sw="reference"):
     reason = (f"{v.reason}; the §2.3.3 value 12 m²/s² would be {12 / tmf:.0f} × T_MF")
 
     def draw(ax):
-        _dots(ax, runs, T, E, "gransim ⟨T⟩, 95 %")
+        _dots(ax, runs, T, E, "gransim ⟨T⟩, 95 %", F)
         ax.axhline(tmf, color="k", label=f"eq. 5.2 with the measured C₁ = {c1:.3f}: {tmf:.3g}")
         ax.axhline(12, color="C3", ls="--", label="§2.3.3 text: 12 m²/s² (inconsistent)")
         ax.set_ylim(0.05, 30)
         _ax(ax, "steady temperature against the mean-field equation of state (§5.1)", "start",
             "⟨T⟩ (m²/s²)", ylog=True)
-    return dict(measured=f"⟨T⟩ = {_ci(tm, em)} m²/s² (95 %); eq. 5.2 gives T_MF = ⟨v⟩²/C₁ = "
+        _names(ax, runs)
+    return dict(measured=f"⟨T⟩ = {_ci(tm, _t95(em, dof))} m²/s² (95 %); eq. 5.2 gives T_MF = ⟨v⟩²/C₁ = "
                 f"{tmf:.3g} m²/s² with the measured C₁ = ⟨v⟩²/⟨v²⟩ = {c1:.3f}; ratio {tm / tmf:.2f}"
                 + _seeds_note(runs, "T_seeds"),
                 verdict=_gate(Verdict(v.verdict, reason, v.null, v.alternative), runs),
