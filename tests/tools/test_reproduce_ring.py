@@ -18,7 +18,6 @@ sys.path.insert(0, os.path.join(HERE, "..", "..", "python"))
 sys.path.insert(0, HERE)
 
 from gransim.reproduce import rfm  # noqa: E402
-from gransim.reproduce.batch import batch_err  # noqa: E402
 from gransim.reproduce.rfm_conditions import misses, sweep_for  # noqa: E402
 from gransim.reproduce.rfm_ring import XI2_2, XI_M, ZETA  # noqa: E402
 from gransim.reproduce.rfm_ring_eps import settle_test  # noqa: E402
@@ -166,16 +165,14 @@ class CoarseSeries(unittest.TestCase):
     @staticmethod
     def on_every_sample(fine):
         """the claim as it read temperature.csv: 20-s period means of the samples, each seed's
-        ⟨T⟩ with batch means of its 50-ms means (10 samples each; the last, lone sample left out),
-        τ_int and Var T of the samples"""
+        ⟨T⟩ with mean_err, τ_int and Var T of the samples"""
         groups = []
         for t, T in fine:
             n = int(math.floor((t[-1] - t[0]) / 20.0 + 1e-6))
             k = np.floor((t - t[0]) / 20.0 + 1e-9).astype(int)
             groups.append((np.array([T[k == j].mean() for j in range(n)]),
                            np.array([t[0] + (j + 0.5) * 20.0 for j in range(n)])))
-        blocks = [T[:len(T) // 10 * 10].reshape(-1, 10).mean(axis=1) for _, T in fine]
-        v, b, sb = settle_test(groups, [batch_err(x) for x in blocks])
+        v, b, sb = settle_test(groups, [mean_err(T) for _, T in fine])
         return v, b, sb
 
     def test_same_verdict_from_blocks_as_from_every_sample(self):

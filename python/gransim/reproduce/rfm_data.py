@@ -103,12 +103,12 @@ def pooled(b, sel):
     return m, s * math.sqrt(2.0 * b["tau"] / N), s, N
 
 
-def steady_series(adir, samples=True):
-    """a run's steady T(t): every steady sample (temperature.csv, when samples), else the means
-    of its steady blocks of full length (temperature_blocks.csv; batches of whole blocks are
-    batches of samples); None when the run has neither file"""
+def steady_series(adir):
+    """a run's steady T(t): every steady sample (temperature.csv), else the means of its steady
+    blocks of full length (temperature_blocks.csv; batches of whole blocks are batches of
+    samples); None when the run has neither file"""
     p = os.path.join(adir, "temperature.csv")
-    if samples and os.path.exists(p):
+    if os.path.exists(p):
         return _csv(p)[0]["T"]
     try:
         b = t_blocks(adir)
@@ -118,12 +118,11 @@ def steady_series(adir, samples=True):
     return b["T"][full]
 
 
-def run_mean(adir, value=math.nan, err=math.nan, samples=True):
-    """a run's steady ⟨T⟩ with its batch-means error and degrees of freedom (batch.batch_err;
-    from the 50-ms blocks unless samples): τ_int from a series only tens of τ long comes out
-    low, and a χ² on the error sd·√(2τ/n) rejects a steady T several times too often;
-    (value, err, None) when no T(t) is there"""
-    x = steady_series(adir, samples)
+def run_mean(adir, value=math.nan, err=math.nan):
+    """a run's steady ⟨T⟩ with its batch-means error and degrees of freedom (batch.batch_err):
+    τ_int from a series only tens of τ long comes out low, and a χ² on the error sd·√(2τ/n)
+    rejects a steady T several times too often; (value, err, None) when no T(t) is there"""
+    x = steady_series(adir)
     if x is None or len(x) < 10:
         return value, err, None
     m, e, dof = batch_err(x)

@@ -10,8 +10,8 @@ matplotlib.use("Agg")
 import numpy as np  # noqa: E402
 
 from .rfm_conditions import THESIS, misses, plan_conditions  # noqa: E402
-from .rfm_data import (Missing, _ax, _chart, _ci, _gate, _runs, contrasts, pooled,  # noqa: E402
-                       run_mean, seed_mean, t_blocks)
+from .rfm_data import (Missing, _ax, _chart, _ci, _gate, _runs, pooled, seed_mean,  # noqa: E402
+                       t_blocks)
 from .rfm_ring import _seeds, _two_sided, bonferroni, eps_values, exponents, moments  # noqa: E402
 from .verdicts import (UNRESOLVED, Verdict, chi2_consistent, chi2_sf, compare_value,  # noqa: E402
                        decide, phi, power_two_sided, t_sf2)
@@ -263,16 +263,18 @@ def drift(groups):
 
 def settle_test(groups, means):
     """no drift of the period means of every seed (groups: (means, mid-times) per seed), and one
-    ⟨T⟩ for all seeds (means: (⟨T⟩, its error[, its degrees of freedom]) per seed, compared by
-    Helmert contrasts, rfm_data.contrasts): Bonferroni over the two; the thesis sizes neither,
-    so it can disagree, never agree. The verdict, the drift and its error"""
+    ⟨T⟩ for all seeds (means: (⟨T⟩, its error from τ_int) per seed, compared by independent
+    contrasts): Bonferroni over the two; the thesis sizes neither, so it can disagree, never
+    agree. The verdict, the drift and its error"""
     b, sb, pa = drift(groups)
     parts = [pa] if math.isfinite(pa) else []
     length = float(groups[0][1][1] - groups[0][1][0]) if len(groups[0][1]) > 1 else math.nan
     text = f"drift of the {length:.3g}-s means {b:.2g} ± {sb:.2g} m²/s³ (p = {pa:.2g})"
     if len(means) > 1:
-        z = contrasts([m[0] for m in means], [m[1] for m in means],
-                      [m[2] if len(m) > 2 else None for m in means])
+        T, E = np.array([m for m, _ in means]), np.array([e for _, e in means])
+        w = 1 / E ** 2  # weighted Helmert contrasts: n − 1 independent unit normals
+        z = [(T[k] - (w[:k] * T[:k]).sum() / w[:k].sum()) / math.sqrt(E[k] ** 2 + 1 / w[:k].sum())
+             for k in range(1, len(T))]
         g, pb = chi2_consistent(z, np.ones(len(z)), label="contrasts between the seeds' ⟨T⟩")
         parts.append(pb)
         text += "; " + g.reason.split(";")[0] + f" (p = {pb:.2g})"
@@ -304,9 +306,7 @@ def c_settle(d, sw="ring_n512"):
     groups = [_periods(t, T, n, b["end"], length) for _, b, t, T, n in series]
     if min(len(y) for y, _ in groups) < 3:
         raise Missing(f"analysis/{sw}: runs of {span:.3g} s sampled hold fewer than three periods")
-    # each seed's ⟨T⟩ from batch means of its steady 50-ms blocks (rfm_data.run_mean): the τ_int
-    # of a T(t) that wanders over seconds comes out low
-    v, bs, sb = settle_test(groups, [run_mean(q["adir"], samples=False) for q, *_ in series])
+    v, bs, sb = settle_test(groups, [pooled(b, b["steady"])[:2] for _, b, *_ in series])
     v = _gate(v, runs)
     settle, rel200, taus, curves = [], [], [], []
     for q, b, t, T, n in series:
