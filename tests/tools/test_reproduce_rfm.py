@@ -23,8 +23,7 @@ from gransim.reproduce import rfm  # noqa: E402
 from gransim.reproduce.rfm_conditions import gate, misses, sweep_for  # noqa: E402
 from gransim.reproduce.rfm_data import _runs, seed_mean  # noqa: E402
 from gransim.reproduce.verdicts import (AGREES, DISAGREES, UNRESOLVED, Verdict,  # noqa: E402
-                                        chi2_consistent, compare_value, groups_consistent,
-                                        mean_err)
+                                        chi2_consistent, compare_value, groups_consistent)
 
 import temperature_blocks  # noqa: E402
 from gransim.reproduce.batch import batch_err, normal_score  # noqa: E402
@@ -206,20 +205,24 @@ class CoarseReference(Folder):
     def test_T_start_as_from_every_sample(self):
         fine = self.folder(0.0)
         r = rfm.c_start(self.d, "reference")
-        T, E = [], []
-        for t, x in fine.values():  # the run's error: mean_err of its steady samples
-            T.append(x[t >= 1.0].mean())
-            E.append(max(1e-4, mean_err(x[t >= 1.0])[1]))
-        T, E = np.array(T), np.array(E)
-        w = 1 / E ** 2
-        self.assertAlmostEqual(r["values"]["T_mean"], (w * T).sum() / w.sum(), delta=1e-14)
-        self.assertAlmostEqual(r["values"]["T_err"], w.sum() ** -0.5, delta=1e-14)
-        z = [(T[k] - (w[:k] * T[:k]).sum() / w[:k].sum()) / np.sqrt(E[k] ** 2 + 1 / w[:k].sum())
-             for k in range(1, len(T))]
-        v, p = chi2_consistent(z, np.ones(len(z)), label="independent contrasts between the starts")
+        T, E, F = [], [], []
+        for t, x in fine.values():  # the run's error: batch means of its steady samples
+            m, e, f = batch_err(x[t >= 1.0])
+            T.append(m)
+            E.append(e)
+            F.append(f)
+        self.assertAlmostEqual(r["values"]["T_mean"], np.mean(T), delta=1e-14)
+        self.assertAlmostEqual(r["values"]["T_err"], np.sqrt(np.sum(np.square(E))) / 3, delta=1e-14)
+        z = []  # Helmert contrasts of equal weights, each Welch–Satterthwaite t as a normal score
+        for k in (1, 2):
+            c = np.append(np.full(k, -1.0 / k), 1.0)
+            v = (c * E[:k + 1]) ** 2
+            t = (c * T[:k + 1]).sum() / np.sqrt(v.sum())
+            z.append(normal_score(t, v.sum() ** 2 / (v ** 2 / np.array(F[:k + 1])).sum()))
+        v, p = chi2_consistent(z, np.ones(2), label="contrasts between the starts")
         self.assertAlmostEqual(r["values"]["p"], p, delta=1e-12)
         self.assertEqual(r["verdict"].verdict, v.verdict)
-        self.assertEqual(r["verdict"].reason.split("; spread")[0], v.reason)
+        self.assertEqual(r["verdict"].reason.split("; each run")[0], v.reason)
 
     def test_transient_as_from_every_sample(self):
         """the halves' batch means from the steady samples (temperature.csv) as from every

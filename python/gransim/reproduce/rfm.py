@@ -14,45 +14,49 @@ from . import described  # noqa: E402
 from .report import Claim, test_of  # noqa: E402
 from .batch import batch_err, normal_score  # noqa: E402
 from .verdicts import (POWER, UNRESOLVED, Verdict, chi2_consistent, compare_value,  # noqa: E402
-                      groups_consistent)
+                      groups_consistent, t_of)
 
 from .rfm_conditions import THESIS, gate, sweep_for  # noqa: E402
-from .rfm_data import (ORDER, Missing, _csv, _runs, _ci, _gate, _chart, _ax, pooled,  # noqa: E402
-                       seed_mean, seed_text, t_blocks)
+from .rfm_data import (ORDER, Missing, _csv, _runs, _ci, _gate, _chart, _ax, contrasts,  # noqa: E402
+                       pooled, run_mean, seed_mean, seed_text, t_blocks, mean_of)
 from .rfm_ring import c_g1, c_vpdf, c_xi2, c_xim, c_zeta  # noqa: E402
 from .rfm_ring_eps import c_collapse, c_settle, c_xi2eps, c_xim_elastic  # noqa: E402
 from .rfm_models import fluid_claims  # noqa: E402
 
 
 def _temps(d, sweep="reference"):
-    """the reference points' ⟨T⟩ (each the mean over its seeds); a run's error: the larger of the
-    block error and the τ_int error of T(t) (from its blocks); a point's: seed_mean's"""
+    """the reference points' ⟨T⟩ (each the mean over its seeds) and their errors with degrees of
+    freedom: a run's from batch means of its steady T(t) (rfm_data.run_mean; the analysis' block
+    error where the run has no T(t)), a point's seed_mean's; and their plain mean (mean_of)"""
     runs = _runs(d, sweep)
-    T, E = [], []
+    T, E, F = [], [], []
     for r in runs:
-        ts, es = [], []
-        for q in r["runs"]:
-            e = q["T_err"]
-            try:
-                b = t_blocks(q["adir"])
-                e = max(e, pooled(b, b["steady"])[1])
-            except Missing:
-                pass
-            ts.append(q["T_mean"])
-            es.append(e)
-        r["T_seeds"] = seed_mean(ts, es)
+        ms = [run_mean(q["adir"], q["T_mean"], q["T_err"]) for q in r["runs"]]
+        r["T_seeds"] = seed_mean(*zip(*ms))
         T.append(r["T_seeds"]["value"])
         E.append(r["T_seeds"]["err"])
+        F.append(r["T_seeds"]["dof"])
     T, E = np.array(T, float), np.array(E, float)
     if not (np.all(np.isfinite(T)) and np.all(E > 0)):
         raise Missing("no steady temperature with an error in analysis/reference")
-    w = 1 / E ** 2
-    return runs, T, E, float((w * T).sum() / w.sum()), float(w.sum() ** -0.5)
+    return (runs, T, E, F) + mean_of(T, E, F)
 
 
-def _dots(ax, runs, T, E, label):
-    ax.errorbar(range(len(T)), T, 1.96 * E, fmt="o", capsize=4, label=label)
-    ax.set_xticks(range(len(T)), [r["name"] for r in runs])
+def _t95(e, dof):
+    """an error scaled so that _ci's ±1.96 of it is the 95 % interval of Student's t of dof
+    degrees of freedom (None: normal)"""
+    return e if dof is None else e * t_of(0.05, dof) / 1.96
+
+
+def _dots(ax, runs, T, E, label, F=None):
+    E = [_t95(e, f) for e, f in zip(E, F or [None] * len(E))]
+    ax.errorbar(range(len(T)), T, 1.96 * np.array(E), fmt="o", capsize=4, label=label)
+
+
+def _names(ax, runs):
+    """the starts' names under their dots, after _ax (setting the scale resets the ticks)"""
+    ax.set_xticks(range(len(runs)))
+    ax.set_xticklabels([r["name"] for r in runs])
 
 
 # ---- 2D reference fluid -----------------------------------------------------------------------
@@ -68,8 +72,21 @@ def _seeds_note(runs, key):
             f"{k} of {len(s)})")
 
 
+def start_test(T, E, F):
+    """one ⟨T⟩ for every start, one run each: values T with errors E of F degrees of freedom
+    (None: exact), χ² of their Helmert contrasts (rfm_data.contrasts). Returns (Verdict, p)"""
+    v, p = chi2_consistent(contrasts(T, E, F), np.ones(len(T) - 1),
+                           label="contrasts between the starts")
+    if any(f is not None for f in F):
+        v = Verdict(v.verdict, v.reason + "; each run's error from batch means of its steady "
+                    "T(t) (" + ", ".join(f"{f} degrees of freedom" for f in F if f is not None)
+                    + "), each contrast's t taken to its normal score", v.null, v.alternative,
+                    v.power, v.scale)
+    return v, p
+
+
 def c_start(d, sw="reference"):
-    runs, T, E, tm, em = _temps(d, sw)
+    runs, T, E, F, tm, em, dof = _temps(d, sw)
     if len(T) < 2:
         raise Missing("fewer than two starts in analysis/reference")
     if all(len(r["runs"]) > 1 for r in runs):
@@ -78,38 +95,37 @@ def c_start(d, sw="reference"):
         v, p = groups_consistent([[q["T_mean"] for q in r["runs"]] for r in runs],
                                  label="starts, each from its seeds")
     else:
-        w = 1 / E ** 2  # weighted Helmert contrasts: n − 1 independent unit normals, Σz² = Σ(T − T̄)²/σ²
-        z = [(T[k] - (w[:k] * T[:k]).sum() / w[:k].sum()) / math.sqrt(E[k] ** 2 + 1 / w[:k].sum())
-             for k in range(1, len(T))]
-        v, p = chi2_consistent(z, np.ones(len(z)), label="independent contrasts between the starts")
+        v, p = start_test(T, E, F)
 
     def draw(ax):
-        _dots(ax, runs, T, E, "gransim steady ⟨T⟩, 95 %")
-        ax.axhspan(tm - 1.96 * em, tm + 1.96 * em, color="C0", alpha=0.15, label="weighted mean")
+        _dots(ax, runs, T, E, "gransim steady ⟨T⟩, 95 %", F)
+        h = 1.96 * _t95(em, dof)
+        ax.axhspan(tm - h, tm + h, color="C0", alpha=0.15, label="mean of the starts")
         _ax(ax, "2D reference from three starts (thesis Fig. 2.10b: one plateau;\n"
             "its 12 m²/s² is off this scale, see notes)", "start", "⟨T⟩ (m²/s²)")
-    return dict(measured=", ".join(f"{_ci(t, e)} ({r['name']})" for t, e, r in zip(T, E, runs))
-                + f" m²/s² (95 %); weighted mean {_ci(tm, em)}" + _seeds_note(runs, "T_seeds"),
+        _names(ax, runs)
+    return dict(measured=", ".join(f"{_ci(t, _t95(e, f))} ({r['name']})"
+                                   for t, e, f, r in zip(T, E, F, runs))
+                + f" m²/s² (95 %); their mean {_ci(tm, _t95(em, dof))}" + _seeds_note(runs, "T_seeds"),
                 verdict=_gate(Verdict(v.verdict, f"{v.reason}; spread {100 * np.ptp(T) / tm:.1f} % "
                                       "of ⟨T⟩", v.null, v.alternative, v.power, v.scale), runs),
                 chart=_chart(d, "T-start", draw), values=dict(T_mean=tm, T_err=em, p=p))
 
 
 def c_meanfield(d, sw="reference"):
-    runs, T, E, tm, em = _temps(d, sw)
+    runs, T, E, F, tm, em, dof = _temps(d, sw)
     top = THESIS["T-mean-field"]["phi_below"]
     low = [k for k, r in enumerate(runs) if r["phi"] < top]
     if low and len(low) < len(runs):  # a sweep over φ: its points inside the thesis' φ < 0.1
-        runs, T, E = [runs[k] for k in low], T[low], E[low]
-        w = 1 / E ** 2
-        tm, em = float((w * T).sum() / w.sum()), float(w.sum() ** -0.5)
+        runs, T, E, F = [runs[k] for k in low], T[low], E[low], [F[k] for k in low]
+        tm, em, dof = mean_of(T, E, F)
     m = [_csv(os.path.join(q["adir"], "moments.csv"))[0]["moment"] for r in runs for q in r["runs"]]
     c1 = float(np.mean([x[0] ** 2 / x[1] for x in m]))  # ⟨v⟩² = C₁⟨v²⟩ of the 2D speeds
     i = runs[0]["info"]
     k = i["D"] * i["diameter"] * math.pi / (i["mass"] ** 2 * (2 - i["eps_n"] ** 2 - i["eps_t"] ** 2))
     tmf = (c1 * k / i["phi"]) ** (2 / 3) / c1
     # the thesis gives eq. 5.2 no precision and derives it for φ < 0.1; the run is at φ = 0.353
-    c = compare_value(tm, em, tmf, fmt="{:.3g}")
+    c = compare_value(tm, em, tmf, fmt="{:.3g}", dof=dof)
     top = THESIS["T-mean-field"]["phi_below"]
     if i["phi"] < top:  # inside its conditions: no precision, so it can disagree, never agree
         v = Verdict(c.verdict, c.reason, c.null, "none: the thesis gives eq. 5.2 no precision")
@@ -121,13 +137,14 @@ def c_meanfield(d, sw="reference"):
     reason = (f"{v.reason}; the §2.3.3 value 12 m²/s² would be {12 / tmf:.0f} × T_MF")
 
     def draw(ax):
-        _dots(ax, runs, T, E, "gransim ⟨T⟩, 95 %")
+        _dots(ax, runs, T, E, "gransim ⟨T⟩, 95 %", F)
         ax.axhline(tmf, color="k", label=f"eq. 5.2 with the measured C₁ = {c1:.3f}: {tmf:.3g}")
         ax.axhline(12, color="C3", ls="--", label="§2.3.3 text: 12 m²/s² (inconsistent)")
         ax.set_ylim(0.05, 30)
         _ax(ax, "steady temperature against the mean-field equation of state (§5.1)", "start",
             "⟨T⟩ (m²/s²)", ylog=True)
-    return dict(measured=f"⟨T⟩ = {_ci(tm, em)} m²/s² (95 %); eq. 5.2 gives T_MF = ⟨v⟩²/C₁ = "
+        _names(ax, runs)
+    return dict(measured=f"⟨T⟩ = {_ci(tm, _t95(em, dof))} m²/s² (95 %); eq. 5.2 gives T_MF = ⟨v⟩²/C₁ = "
                 f"{tmf:.3g} m²/s² with the measured C₁ = ⟨v⟩²/⟨v²⟩ = {c1:.3f}; ratio {tm / tmf:.2f}"
                 + _seeds_note(runs, "T_seeds"),
                 verdict=_gate(Verdict(v.verdict, reason, v.null, v.alternative), runs),

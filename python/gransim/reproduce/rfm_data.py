@@ -12,6 +12,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+from .batch import batch_err, normal_score  # noqa: E402
 from .rfm_conditions import THESIS  # noqa: E402
 from .verdicts import UNRESOLVED, Verdict  # noqa: E402
 
@@ -102,14 +103,74 @@ def pooled(b, sel):
     return m, s * math.sqrt(2.0 * b["tau"] / N), s, N
 
 
-def seed_mean(values, errors):
+def steady_series(adir):
+    """a run's steady T(t): every steady sample (temperature.csv), else the means of its steady
+    blocks of full length (temperature_blocks.csv; batches of whole blocks are batches of
+    samples); None when the run has neither file"""
+    p = os.path.join(adir, "temperature.csv")
+    if os.path.exists(p):
+        return _csv(p)[0]["T"]
+    try:
+        b = t_blocks(adir)
+    except Missing:
+        return None
+    full = b["steady"] & (b["n"] >= b["n"][b["steady"]].max()) if b["steady"].any() else b["steady"]
+    return b["T"][full]
+
+
+def run_mean(adir, value=math.nan, err=math.nan):
+    """a run's steady ⟨T⟩ with its batch-means error and degrees of freedom (batch.batch_err):
+    τ_int from a series only tens of τ long comes out low, and a χ² on the error sd·√(2τ/n)
+    rejects a steady T several times too often; (value, err, None) when no T(t) is there"""
+    x = steady_series(adir)
+    if x is None or len(x) < 10:
+        return value, err, None
+    m, e, dof = batch_err(x)
+    return m, e, dof
+
+
+def satterthwaite(coef, errors, dofs):
+    """the degrees of freedom of Σ c_k x_k whose errors are estimated with dofs (None: exact)
+    (Welch–Satterthwaite); None when every error is exact"""
+    terms = [(c * e) ** 2 for c, e in zip(coef, errors)]
+    if all(d is None for d in dofs):
+        return None
+    den = sum(t * t / d for t, d in zip(terms, dofs) if d is not None and d > 0)
+    return sum(terms) ** 2 / den if den > 0 else None
+
+
+def mean_of(T, E, dofs):
+    """the plain mean of values T with errors E: mean, error, degrees of freedom. Equal weights:
+    weights 1/E² from errors of a few degrees of freedom favour the runs whose error came out
+    low by chance, and a test on their mean rejects several times its level"""
+    T, E = np.asarray(T, float), np.asarray(E, float)
+    c = np.full(len(T), 1.0 / len(T))
+    return float(T.mean()), float(np.sqrt(((c * E) ** 2).sum())), satterthwaite(c, E, dofs)
+
+
+def contrasts(T, E, dofs):
+    """Helmert contrasts of values that the claim says are equal, each value less the mean of
+    those before it over its error (equal weights, as in mean_of): n − 1 unit normals under the
+    null, independent for equal errors; errors estimated with dofs give each contrast its
+    Welch–Satterthwaite t, turned into the normal score of the same tail"""
+    T, E, z = np.asarray(T, float), np.asarray(E, float), []
+    for k in range(1, len(T)):
+        coef = np.append(np.full(k, -1.0 / k), 1.0)
+        t = float((coef * T[:k + 1]).sum()) / math.sqrt(float(((coef * E[:k + 1]) ** 2).sum()))
+        nu = satterthwaite(coef, E[:k + 1], dofs[:k + 1])
+        z.append(t if nu is None else normal_score(t, nu))
+    return z
+
+
+def seed_mean(values, errors, dofs=None):
     """a point's value from its seeds: their mean; its error the larger of the within-run error
     (the runs' errors combined) and the scatter between seeds (the standard error of their mean),
-    which it was, and the degrees of freedom of a test on it (None: normal, one seed)"""
+    which it was, and the degrees of freedom of a test on it (one seed: the run's own, dofs[0],
+    None for normal)"""
     v, e = np.asarray(values, float), np.asarray(errors, float)
-    if len(v) == 1:  # one seed: the run's own value and error, untouched
+    if len(v) == 1:  # one seed: the run's own value, error and degrees of freedom, untouched
         return dict(value=float(v[0]), err=float(e[0]), within=float(e[0]), between=math.nan,
-                    seeds=1, which="within the run", dof=None)
+                    seeds=1, which="within the run", dof=None if dofs is None else dofs[0])
     within = float(np.sqrt((e ** 2).sum()) / len(v))
     between = float(v.std(ddof=1) / math.sqrt(len(v)))
     big = not (within >= between)  # a NaN within-run error gives way to the seeds' scatter
