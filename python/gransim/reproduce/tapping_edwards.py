@@ -490,7 +490,8 @@ def _lnz(st, budget):
                                    -v_g / r["phi_quadron"]))
         alt.append(gauss_dlnz_excess(r["phi_mean"], r["sigma"], rr["phi_mean"], rr["sigma"])
                    if rr else float("nan"))
-    v, _ = chi2_consistent(res, err, "runs", alternative=alt if rr else None,
+    v, _ = chi2_consistent(res, err, "runs' Δln Z − quadron residuals",
+                           alternative=alt if rr else None,
                            alt_text="the intercepts of Gaussian pairs with the measured φ̄ and "
                            "σ_φ (App. A, A6): " + ", ".join(f"{x:+.2g}" for x in alt))
     fig, ax = _fig()

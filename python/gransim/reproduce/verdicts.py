@@ -375,7 +375,7 @@ def chi2_consistent(residuals, errors, label="residuals", alternative=None, alt_
     dof = len(r)
     p = chi2_sf(chi2, dof)
     text = f"χ² = {chi2:.3g} for {dof} {label}"
-    null = f"every {label.rstrip('s')} is zero"
+    null = f"all {label} are zero"
     if alternative is None:
         return decide(p, float("nan"), null, alt_text or "none named by the source", text,
                        float("nan")), p
@@ -399,7 +399,7 @@ def chi2_cov(residuals, cov, label="residuals", alternative=None, alt_text=""):
     dof = len(r)
     p = chi2_sf(chi2, dof)
     text = f"χ² = {chi2:.3g} for {dof} {label} (with their covariance)"
-    null = f"every {label.rstrip('s')} is zero"
+    null = f"all {label} are zero"
     if alternative is None:
         return decide(p, float("nan"), null, alt_text or "none named by the source", text,
                       float("nan")), p
