@@ -80,11 +80,24 @@ def load(folder):
                 continue
             with open(path) as g:
                 rows = list(csv.DictReader(g))
+            if len(rows) < 20:  # a run only just started: nothing to say yet
+                continue
             r["phi"] = np.array([float(x["phi"]) for x in rows])
             r["left"] = np.array([float(x["phi_left"]) for x in rows])
             r["right"] = np.array([float(x["phi_right"]) for x in rows])
             runs[r["name"]] = r
     return runs
+
+
+def standard_summary():
+    """φ̄ and its error of each run of the standard tapping report, by protocol and control"""
+    path = os.path.join(ROOT, "docs", "reproduction", "tapping-standard", "analysis",
+                        "summary.csv")
+    if not os.path.exists(path):
+        return {}
+    with open(path) as f:
+        return {(r["protocol"], float(r["control"])): (float(r["phi_mean"]), float(r["phi_err"]))
+                for r in csv.DictReader(f)}
 
 
 def steady(phi):
@@ -98,10 +111,14 @@ def weak_tap(runs, folder=None):
     difference of the two steady means (a chart in folder unless None)"""
     print("## g_p = 2 from two starts")
     chain = [r for r in runs.values() if r["start"].startswith("anneal (")]
+    std = standard_summary()
     for r in chain:
         p = r["phi"]
+        ref = std.get((r["protocol"], float(r["control"])))
         print(f"  anneal {r['protocol']} {r['control']}: {len(p)} taps, φ from {p[0]:.4f} to "
-              f"{p[-1]:.4f}, last 10 taps {p[-10:].mean():.4f} ± {p[-10:].std(ddof=1) / math.sqrt(10):.4f}")
+              f"{p[-1]:.4f}, last 10 taps {p[-10:].mean():.4f} ± "
+              f"{p[-10:].std(ddof=1) / math.sqrt(10):.4f}"
+              + (f"; the standard report's steady φ̄ here {ref[0]:.4f} ± {ref[1]:.4f}" if ref else ""))
     pair = [r for r in runs.values() if r["protocol"] == "negative_g" and r["control"] == "2"]
     out = {}
     fig, ax = plt.subplots(figsize=(6.4, 3.6), dpi=110) if folder else (None, None)
@@ -116,13 +133,14 @@ def weak_tap(runs, folder=None):
         drift = f"{m2 - m1:+.5f} ± {math.hypot(e1, e2):.5f}" if d1 and d2 else "too short"
         print(f"  {r['name']} ({r['start']} start): {len(p)} taps, first {p[0]:.4f}; MSER cut "
               f"{cut}, mean after it {m:.5f} ± {e:.5f} ({dof} dof), drift (its second half − "
-              f"first) {drift}; compaction fit φ_∞ {fit['inf']:.5f}, A {fit['A']:.4f}, "
-              f"τ {fit['tau']:.1f} taps; residuals sd {fit['sd']:.5f}, lag-one correlation "
-              f"{fit['a']:.2f}")
+              f"first) {drift}; compaction fit τ {fit['tau']:.1f} taps, A {fit['A']:.4f}, "
+              + (f"φ_∞ {fit['inf']:.5f}" if fit["tau"] < len(p) / 3 else
+                 "no plateau within the run") + f"; residuals sd {fit['sd']:.5f}, lag-one "
+              f"correlation {fit['a']:.2f}")
         if ax:
-            ax.plot(np.arange(len(p)), p, ".", ms=3, label=f"{r['start']} start")
-            ax.plot(np.arange(len(p)), fit["inf"] + fit["curve"], lw=1)
-            ax.axvline(cut, color=ax.lines[-1].get_color(), ls=":", lw=0.8)
+            c = ax.plot(np.arange(len(p)), p, ".", ms=3, label=f"{r['start']} start")[0].get_color()
+            ax.plot(np.arange(len(p)), fit["inf"] + fit["curve"], lw=1, color=c)
+            ax.axvline(cut, color=c, ls=":", lw=0.8)
     if len(found) == 2:
         # at the same taps: the loose run may still be compacting, so a difference here is the
         # two histories' φ at equal tap counts, not yet two steady states
@@ -135,12 +153,16 @@ def weak_tap(runs, folder=None):
         pv = t_sf2(abs(d / de), dof)
         out = dict(difference=d, err=de, dof=dof, p=pv, taps=(w.start, n))
         print(f"  at taps {w.start}–{n - 1}: {pair[1]['name']} − {pair[0]['name']} = {d:+.5f} ± "
-              f"{de:.5f} (t = {d / de:+.2f}, {dof:.0f} dof, p = {pv:.2g}); fitted plateaus "
-              f"{found[pair[1]['start']]['inf'] - found[pair[0]['start']]['inf']:+.5f} apart")
+              f"{de:.5f} (t = {d / de:+.2f}, {dof:.0f} dof, p = {pv:.2g})")
+        ref = std.get(("negative_g", 2.0))
+        if ref:
+            print(f"  the standard report's g_p = 2 (250 taps from the loose pile, after its cut): "
+                  f"φ̄ {ref[0]:.5f} ± {ref[1]:.5f}")
     if ax:
         ax.set_xlabel("tap")
         ax.set_ylabel("φ")
-        ax.set_title("g_p = 2 from a loose and an annealed pile (dotted: MSER cut)", fontsize=9)
+        ax.set_title("g_p = 2 from a loose and an annealed pile (lines: compaction fits; "
+                     "dotted: MSER cuts)", fontsize=9)
         ax.legend(fontsize=8)
         fig.tight_layout()
         fig.savefig(os.path.join(folder, "weak_tap.png"))
@@ -155,6 +177,9 @@ def high_f(runs, folder):
     if not rot:
         return []
     print("## rotating g beyond 2 Hz")
+    std = sorted((k[1], v) for k, v in standard_summary().items() if k[0] == "rotating_g")
+    for f, (m, e) in std:
+        print(f"  standard report, f = {f:g} Hz: φ̄ {m:.5f} ± {e:.5f}")
     xs, ms, es, dofs = [], [], [], []
     for r in rot:
         cut, m, e, dof = steady(r["phi"])
@@ -165,10 +190,18 @@ def high_f(runs, folder):
         z = (m - HIGH_F_LEVEL) / math.hypot(e, 0.0005)
         print(f"  f = {r['control']} Hz: {len(r['phi'])} taps, cut {cut}, φ̄ {m:.5f} ± {e:.5f} "
               f"({dof} dof); against {HIGH_F_LEVEL} ± 0.0005: {z:+.1f}σ")
+    if std:
+        f, (m, e) = std[-1]
+        d, de = ms[0] - m, math.hypot(es[0], e)
+        print(f"  {f:g} (standard) → {xs[0]:g} Hz: Δφ̄ {d:+.5f} ± {de:.5f} ({d / de:+.1f}σ)")
     for i in range(1, len(xs)):
         d, de = ms[i] - ms[i - 1], math.hypot(es[i], es[i - 1])
         print(f"  {xs[i - 1]:g} → {xs[i]:g} Hz: Δφ̄ {d:+.5f} ± {de:.5f} ({d / de:+.1f}σ)")
     fig, ax = plt.subplots(figsize=(6.4, 3.6), dpi=110)
+    if std:
+        ax.errorbar([f for f, _ in std], [v[0] for _, v in std],
+                    yerr=[1.96 * v[1] for _, v in std], fmt="s", capsize=3, color="0.5",
+                    label="standard report (200 taps), 95 %")
     ax.errorbar(xs, ms, yerr=1.96 * np.array(es), fmt="o", capsize=3, label="gransim, 95 %")
     ax.axhspan(HIGH_F_LEVEL - 0.0005, HIGH_F_LEVEL + 0.0005, color="tab:orange", alpha=0.3,
                label="paper's high-f level 0.821")
@@ -188,7 +221,7 @@ def halves(runs):
     for r in long:
         p, pl, pr = r["phi"], r["left"], r["right"]
         cut = mser(p)
-        print(f"## halves, {r['name']}: {len(p)} taps, cut {cut}")
+        print(f"## halves, {r['name']}: {len(p)} of {r['taps']} taps, cut {cut}")
         for side, c in (("left", pl), ("right", pr)):
             m, e, dof = batch_err(((c - p) / p)[cut:])
             v = below_bound(abs(m), e, HALVES_MEAN, dof=dof, family=2, folded=True)

@@ -50,8 +50,8 @@ class Halves(unittest.TestCase):
         # each column: the whole plus independent noise of the same size, opposite in the other
         d = ar1(rng, n, 1.5, 0.0012)
         left, right = whole * (1 + rel_offset) + d, whole * (1 - rel_offset) - d
-        runs = {"h": dict(name="h", protocol="rotating_g", control="2", start="long", phi=whole,
-                          left=left, right=right)}
+        runs = {"h": dict(name="h", protocol="rotating_g", control="2", start="long", taps=n,
+                          phi=whole, left=left, right=right)}
         return quietly(inv.halves, runs)
 
     def test_equal_columns_do_not_disagree(self):
@@ -75,7 +75,7 @@ class Shipped(unittest.TestCase):
             out = subprocess.run([sys.executable, os.path.join(ROOT, "tools",
                                                                "reproduce_investigations.py"),
                                   folder], capture_output=True, text=True, check=True).stdout
-            self.assertIn("fitted plateaus", out)
+            self.assertIn("gp2-annealed − gp2-loose", out)
             self.assertTrue(os.path.exists(os.path.join(folder, "weak_tap.png")))
 
 
