@@ -210,7 +210,7 @@ def high_f(runs, folder):
                label="paper's high-f level 0.821")
     ax.set_xlabel("f (Hz)")
     ax.set_ylabel("φ̄")
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=8, loc="center right")
     fig.tight_layout()
     fig.savefig(os.path.join(folder, "high_f.png"))
     plt.close(fig)
