@@ -42,6 +42,7 @@ double Progress::now() const {
 double Progress::elapsed() const { return now() - start_; }
 
 void Progress::update(double done, const std::string& extra) {
+  if (std::isnan(first_done_)) first_done_ = done;
   if (quiet_) return;
   const double t = now();
   if (t - start_ < set_.delay) return;
@@ -60,7 +61,11 @@ void Progress::update(double done, const std::string& extra) {
 void Progress::draw(double done, const std::string& extra, bool final_line) {
   const double el = elapsed();
   const double frac = std::clamp(total_ > 0 ? done / total_ : 1.0, 0.0, 1.0);
-  const double eta = frac > 0 ? el * (1.0 - frac) / frac : NAN;
+  // the rate of this sitting: work resumed part done says nothing of how fast the rest goes
+  const double base =
+      std::min(std::max(std::isnan(first_done_) ? 0.0 : first_done_, carried_), done);
+  const double rate = el > 0 && done > base ? (done - base) / el : 0.0;
+  const double eta = rate > 0 ? std::max(total_ - done, 0.0) / rate : NAN;
   char head[160];
   std::snprintf(head, sizeof head, "%s %5.1f%% (%.4g/%.4g %s) elapsed %s ETA %s", label_.c_str(),
                 100.0 * frac, done, total_, unit_.c_str(), format_duration(el).c_str(),

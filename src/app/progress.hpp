@@ -1,6 +1,7 @@
 // progress on the terminal: a bar with rate and ETA on a TTY, plain lines otherwise
 #pragma once
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <functional>
 #include <string>
@@ -22,8 +23,13 @@ class Progress {
   /// total: the amount of work (simulated seconds, steps, taps); unit names it
   Progress(std::string label, double total, std::string unit, bool quiet = false,
            ProgressSettings settings = {});
-  /// report that `done` of total is finished (cheap to call often: it throttles itself)
+  /// report that `done` of total is finished (cheap to call often: it throttles itself); the
+  /// ETA is the rate since the first call's `done`, so work resumed half done is not counted
+  /// as done in no time
   void update(double done, const std::string& extra = "");
+  /// `work` of the total was done in earlier sittings (a job resumed part done): the ETA's rate
+  /// leaves it out
+  void carried(double work) { carried_ += work; }
   /// the final line (none when nothing was drawn and the work took less than the delay)
   void finish(const std::string& summary);
   double elapsed() const;
@@ -37,6 +43,8 @@ class Progress {
   ProgressSettings set_;
   std::FILE* out_;
   double start_, last_;
+  double first_done_ = NAN;  ///< the work done at the first update: a resumed job's earlier share
+  double carried_ = 0.0;     ///< work done in earlier sittings, as carried() reported it
   double last_fraction_ = -1.0;
   bool drawn_ = false;
 };

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
+#include <ctime>
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -75,6 +76,13 @@ inline double wall_seconds() {
 #else
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 #endif
+}
+
+/// this process' CPU time, all threads, s: a run's cost whatever else the machine was doing
+inline double process_cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
 /// a non-owning reference to a callable body(begin, end) over a range of items: no allocation,

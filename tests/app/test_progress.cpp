@@ -72,6 +72,32 @@ TEST(Progress, OneLineRewrittenOnATerminal) {
   EXPECT_EQ(count(out.text(), "\n"), 1);
 }
 
+// work resumed half done: the ETA comes from this sitting's rate (1 unit a second), not from
+// the half that was done before it started (which would say 10 s instead of 40 s)
+TEST(Progress, ResumedWorkTakesItsRateFromThisSitting) {
+  Captured out;
+  double now = 0.0;
+  Progress p("sweep", 100, "s", false, {[&] { return now; }, 0, out.f, 0.0, 5.0, 0.5});
+  p.update(50);  // the first look: half was done in earlier sittings
+  now = 10.0;
+  p.update(60);
+  EXPECT_NE(out.text().find("sweep  60.0% (60/100 s) elapsed 10.0s ETA 40.0s"), std::string::npos)
+      << out.text();
+}
+
+// a sweep learns what its resumed runs did before only as it starts them: carried() work is
+// left out of the rate as well
+TEST(Progress, CarriedWorkIsLeftOutOfTheRate) {
+  Captured out;
+  double now = 0.0;
+  Progress p("sweep", 100, "s", false, {[&] { return now; }, 0, out.f, 0.0, 5.0, 0.5});
+  p.update(0);
+  p.carried(50);  // a run resumed with half the work behind it
+  now = 10.0;
+  p.update(60);
+  EXPECT_NE(out.text().find("ETA 40.0s"), std::string::npos) << out.text();
+}
+
 TEST(Progress, NothingForShortWorkOrWhenQuiet) {
   for (bool quiet : {false, true}) {
     Captured out;

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <random>
 #include <sstream>
 #include <string>
@@ -214,9 +215,16 @@ TEST(Resume, SigintCheckpointsAndSaysHowToResume) {
   EXPECT_EQ(pic.code, 0) << pic.output;
   EXPECT_NE(pic.output.find("from the checkpoint"), std::string::npos) << pic.output;
   EXPECT_GT(fs::file_size(tmp / "ck.png"), 10000u);
+  const double cpu1 = nlohmann::json::parse(slurp(tmp / "run" / "run.json"))["cpu_time_s"];
   const Outcome r = run_binary({"resume", (tmp / "run").string(), "--quiet"}, tmp / "r.log");
   ASSERT_EQ(r.code, 0) << r.output;
   EXPECT_EQ(outputs(tmp / "run"), outputs(tmp / "ref"));
+  // the run's CPU time is carried over by the checkpoint: both sessions are in it
+  const auto rj = nlohmann::json::parse(slurp(tmp / "run" / "run.json"));
+  EXPECT_EQ(rj["sessions"], 2);
+  EXPECT_EQ(rj["cpu_time_sessions"], 2);
+  EXPECT_GT(cpu1, 0.0);
+  EXPECT_GT(rj["cpu_time_s"].get<double>(), 0.0);
   // a completed run has nothing to resume
   const Outcome again = run_binary({"resume", (tmp / "run").string()}, tmp / "again.log");
   EXPECT_EQ(again.code, 0);

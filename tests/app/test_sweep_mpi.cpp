@@ -37,7 +37,7 @@ std::string mpirun2(const std::string& args) {
 std::string without_wall_times(const std::string& text) {
   // (the step's profile too: its stages' wall times and the step loop's)
   static const std::regex wall(
-      R"re("(wall_time\w*|particle_steps_per_s|omp_\w+|step_loop_s|profile_timed_steps|drive|predict|broad_phase|pairs|accelerate|kick|correct|predict_next|place_next|health)": [-+.0-9e]+)re");
+      R"re("(wall_time\w*|cpu_time_s|particle_steps_per_s|omp_\w+|step_loop_s|profile_timed_steps|drive|predict|broad_phase|pairs|accelerate|kick|correct|predict_next|place_next|health)": [-+.0-9e]+)re");
   return std::regex_replace(text, wall, "\"$1\": -");
 }
 

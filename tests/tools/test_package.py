@@ -3,6 +3,7 @@ source tree and without the compiled module: the verdict engine on a synthetic A
 known answers, a chart drawn from the user's own CSV file, the chart module run as the command
 line runs it (python3 -m), and a clear error for what does need the compiled module.
 Run: python3 -m unittest tests/tools/test_package.py"""
+import json
 import os
 import subprocess
 import sys
@@ -116,6 +117,29 @@ class WithoutTheCompiledModule(unittest.TestCase):
                        cwd=d)
         self.assertEqual(p.returncode, 1, p.stdout + p.stderr)
         self.assertIn("no analysis here", p.stderr)
+
+class RunCost(unittest.TestCase):
+    """a report's run time: each run's CPU time where its run.json keeps it for every session,
+    its wall time (which counts whatever else ran beside it) where it does not"""
+
+    def test_cpu_time_where_every_session_has_it(self):
+        sys.path.insert(0, PACKAGE_DIR)
+        from gransim.reproduce.cli import run_cost
+        runs = {"a/s1": {"status": "completed", "sessions": 2, "wall_time_s": 900.0,
+                         "cpu_time_s": 300.0, "cpu_time_sessions": 2},
+                "a/s2": {"status": "completed", "sessions": 3, "wall_time_s": 800.0,
+                         "cpu_time_s": 100.0, "cpu_time_sessions": 1},  # two sessions without
+                "b/s1": {"status": "interrupted", "sessions": 1, "wall_time_s": 50.0}}
+        with tempfile.TemporaryDirectory() as d:
+            for name, rj in runs.items():
+                os.makedirs(os.path.join(d, "sweeps", name))
+                with open(os.path.join(d, "sweeps", name, "run.json"), "w") as f:
+                    json.dump(rj, f)
+            core_s, n, by_wall, unfinished = run_cost(d)
+        self.assertEqual(n, 3)
+        self.assertEqual(by_wall, 2)
+        self.assertAlmostEqual(core_s, 300.0 + 800.0 + 50.0)
+        self.assertEqual(unfinished, ["b/s1"])
 
 
 if __name__ == "__main__":

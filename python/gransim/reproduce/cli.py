@@ -88,6 +88,37 @@ def from_series(a):
           "report.html, claims.csv")
 
 
+def run_cost(folder):
+    """the runs' cost: (core-seconds, runs, runs counted by wall time, unfinished runs). A run
+    counts its CPU time (one thread each: the cost whatever the sittings were and whatever else
+    the machine ran) when its run.json keeps it for every session, else its wall time"""
+    core_s, runs, by_wall, unfinished = 0.0, 0, 0, []
+    taps = {}  # the taps each run has written, as the analysis counted them
+    try:
+        with open(os.path.join(folder, "analysis", "runs.csv"), newline="") as f:
+            taps = {os.path.realpath(r["dir"]): r["taps"] for r in csv.DictReader(f)}
+    except (OSError, KeyError):
+        pass
+    for path in sorted(glob.glob(os.path.join(folder, "sweeps", "*", "*", "run.json"))):
+        try:
+            with open(path) as f:
+                rj = json.load(f)
+            if "cpu_time_s" in rj and rj.get("cpu_time_sessions") == rj.get("sessions"):
+                core_s += float(rj["cpu_time_s"])
+            else:
+                core_s += float(rj.get("wall_time_s", 0.0))
+                by_wall += 1
+            runs += 1
+            if rj.get("status") != "completed":
+                name = os.path.relpath(os.path.dirname(path), os.path.join(folder, "sweeps"))
+                n = taps.get(os.path.realpath(os.path.dirname(path)), rj.get("taps_done"))
+                done = f": {n} of {rj['taps_requested']} taps" if "taps_requested" in rj else ""
+                unfinished.append(f"{name}{done}")
+        except (OSError, ValueError, KeyError):
+            pass
+    return core_s, runs, by_wall, unfinished
+
+
 def main(argv=None):
     """the command line (argv: its arguments; default sys.argv[1:])"""
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
@@ -109,27 +140,7 @@ def main(argv=None):
     title, intro, claims, notes, facts = study_claims(a.study, a.dir, a.budget)
     inputs = set(reads)  # what the verdicts read; the header's bookkeeping below is not shipped
     hours = a.wall / 3600.0
-    # the runs' own wall times (one thread each): the cost whatever the sittings were
-    core_s, runs, unfinished = 0.0, 0, []
-    taps = {}  # the taps each run has written, as the analysis counted them
-    try:
-        with open(os.path.join(a.dir, "analysis", "runs.csv"), newline="") as f:
-            taps = {os.path.realpath(r["dir"]): r["taps"] for r in csv.DictReader(f)}
-    except (OSError, KeyError):
-        pass
-    for sweep in sorted(glob.glob(os.path.join(a.dir, "sweeps", "*", "*", "run.json"))):
-        try:
-            with open(sweep) as f:
-                rj = json.load(f)
-            core_s += float(rj.get("wall_time_s", 0.0))
-            runs += 1
-            if rj.get("status") != "completed":
-                name = os.path.relpath(os.path.dirname(sweep), os.path.join(a.dir, "sweeps"))
-                n = taps.get(os.path.realpath(os.path.dirname(sweep)), rj.get("taps_done"))
-                done = f": {n} of {rj['taps_requested']} taps" if "taps_requested" in rj else ""
-                unfinished.append(f"{name}{done}")
-        except (OSError, ValueError, KeyError):
-            pass
+    core_s, runs, by_wall, unfinished = run_cost(a.dir)
     # sittings of `reproduce` that cannot have run half of the runs' cost did not make them
     tallied = not math.isfinite(a.wall) or a.wall * a.cores >= 0.5 * core_s
     command = a.command or f"gransim reproduce {a.study} --budget {a.budget}"
@@ -147,8 +158,11 @@ def main(argv=None):
                           f"not tallied ({a.wall:.0f} s): most runs were made outside `gransim "
                           "reproduce` (by `gransim sweep` into its folders) and adopted; the run "
                           "time below is their cost"),
-            ("run time", f"{core_s / 3600:.2f} core-hours: the wall times of its {runs} runs "
-                         "(one thread each) added up"),
+            ("run time", f"{core_s / 3600:.2f} core-hours: the CPU times of its {runs} runs "
+                         "(one thread each) added up" +
+                         (f"; {by_wall} of them by their wall times (no CPU time kept for "
+                          "every session), which count what else ran beside them"
+                          if by_wall else "")),
             ("written", datetime.datetime.now().strftime("%Y-%m-%d %H:%M"))]
     planned = planned_runs(a.dir)
     if unfinished or (planned and runs < planned):

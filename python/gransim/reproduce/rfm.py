@@ -393,7 +393,7 @@ CLAIMS = [  # id, topic, quote, place, function, (budget that should resolve it,
       "at 0.99 and 220 s)")),
     ("v-pdf", T4, "for the highest dissipations the velocity distributions cannot be collapsed by "
      "rescaling the velocity axis using a measured moment of velocity", "§3.2.3, Fig. 3.6 "
-     "(ε = 0.1, N = 100…1585)", c_vpdf, ("standard", "N = 398…2512 from three seeds")),
+     "(ε = 0.1, N = 100…1585)", c_vpdf, ("standard", "N = 398…1585 from three seeds")),
     ("zeta-m", T4, "ζ_m (Measured): 1.729 ± 0.008, 2.31 ± 0.03, 2.81 ± 0.06, 3.2 ± 0.1 for m = "
      "2…5; \"It is not expected that the moments of separation between theoretical and model will "
      "agree.\"", "§3.4.3, Table 3.1 (ε = 0.1)", c_zeta,

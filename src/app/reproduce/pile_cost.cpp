@@ -3,7 +3,6 @@
 
 #include <omp.h>
 
-#include <ctime>
 #include <utility>
 
 #include "scene/parse.hpp"
@@ -12,12 +11,6 @@
 #include "world/prepare.hpp"
 
 namespace gs {
-
-double process_cpu_seconds() {
-  timespec t{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
 
 PileCost measure_pile_cost(const std::string& scene, const std::string& state, int steps,
                            const std::function<double()>& cpu_seconds) {

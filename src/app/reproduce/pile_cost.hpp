@@ -4,6 +4,8 @@
 #include <functional>
 #include <string>
 
+#include "core/parallel.hpp"
+
 namespace gs {
 
 /// core-seconds per particle-step of the 1184-decagon pile when nothing has been measured
@@ -17,9 +19,6 @@ struct PileCost {
   int steps = 0;                        ///< steps timed
   int particles = 0;                    ///< grains of the pile
 };
-
-/// this process' CPU time, s
-double process_cpu_seconds();
 
 /// `steps` steps of `scene` (a scene of the paper pile) started from the settled pile in
 /// `state` (a state file), on one thread, timed by `cpu_seconds` after one untimed warm-up

@@ -192,6 +192,12 @@ int resume_command(const ResumeOptions& opt) {
   rs.wall_before = run.f64("wall time");
   rs.wall_settled = run.f64("settling wall time");
   rs.sessions = static_cast<int>(run.i64("sessions")) + 1;
+  // the CPU time of the sessions before (a checkpoint without it: this session's alone)
+  if (c.extras.entries.count("run/cpu")) {
+    ByteReader cpu = extra(c, "run/cpu");
+    rs.cpu_before = cpu.f64("CPU time");
+    rs.cpu_sessions = static_cast<int>(cpu.i64("sessions with CPU time")) + 1;
+  }
   const double ref = run.f64("energy reference"), slack = run.f64("energy slack");
   sim.set_energy_yardstick(ref, slack);
   rs.scene = scene;

@@ -7,6 +7,7 @@
 
 #include "app/run/run_session.hpp"
 #include "core/error.hpp"
+#include "core/parallel.hpp"
 
 namespace fs = std::filesystem;
 
@@ -63,6 +64,10 @@ std::vector<std::string> list_checkpoints(const std::string& dir) {
   return names;
 }
 
+double run_cpu_seconds(const RunSession& rs) {
+  return rs.cpu_before + process_cpu_seconds() - rs.cpu_start;
+}
+
 void write_run_checkpoint(const RunSession& rs, double wall) {
   CheckpointExtras ex;
   ByteWriter clock;
@@ -76,6 +81,10 @@ void write_run_checkpoint(const RunSession& rs, double wall) {
   run.f64(ref);
   run.f64(slack);
   ex.entries["run/session"] = run.out;
+  ByteWriter cpu;
+  cpu.f64(run_cpu_seconds(rs));
+  cpu.i64(rs.cpu_sessions);
+  ex.entries["run/cpu"] = cpu.out;
   ex.entries["run/scene_file"] = rs.scene_file;
   for (const auto& o : rs.observers) {
     ByteWriter w;

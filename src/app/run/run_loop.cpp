@@ -13,6 +13,7 @@
 #include "app/run/run_session.hpp"
 #include "app/version.hpp"
 #include "core/error.hpp"
+#include "core/parallel.hpp"
 #include "core/trigger.hpp"
 #include "output/run_dir.hpp"
 #include "scene/names.hpp"
@@ -56,6 +57,9 @@ void write_run_json(const RunSession& rs, int code, const std::string& failure, 
   j["simulated_time_s"] = sim.world().s.t;
   j["wall_time_s"] = wall;
   j["sessions"] = rs.sessions;
+  // the cost whatever else ran beside it; covers every session when the two counts agree
+  j["cpu_time_s"] = run_cpu_seconds(rs);
+  j["cpu_time_sessions"] = rs.cpu_sessions;
   j["particle_steps_per_s"] = rate;
   j["broad_phase"] = sim.broadphase().name();
   j["sort_every"] = sim.sort_every();
@@ -141,6 +145,7 @@ int run_session(RunSession& rs) {
     return is_tapping(scene.drive) && !p.settling ? p.tap : 0;
   };
   install_stop_handlers();
+  rs.cpu_start = process_cpu_seconds();
   Progress progress(rs.sessions > 1 ? "resume" : "run", nominal, "s", rs.quiet);
   using Clock = std::chrono::steady_clock;
   const auto t0 = Clock::now();

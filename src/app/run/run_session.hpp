@@ -26,11 +26,16 @@ struct RunSession {
   double step_loop = 0.0;  ///< wall time inside Simulation::run this session, s
   Simulation* sim = nullptr;
   ProtocolClock* clock = nullptr;
-  Observers observers;              ///< started or resumed
-  CsvWriter series;                 ///< series.csv, open
-  double wall_before = 0.0;         ///< wall time of earlier sessions of this run, s
-  double wall_settled = -1.0;       ///< wall time when settling ended (−1: not yet), s
-  int sessions = 1;                 ///< 1 + number of resumes
+  Observers observers;         ///< started or resumed
+  CsvWriter series;            ///< series.csv, open
+  double wall_before = 0.0;    ///< wall time of earlier sessions of this run, s
+  double wall_settled = -1.0;  ///< wall time when settling ended (−1: not yet), s
+  int sessions = 1;            ///< 1 + number of resumes
+  /// CPU time of the earlier sessions whose checkpoints kept it, and how many of the sessions,
+  /// this one included, cpu_before + this session's CPU time covers (sessions when all)
+  double cpu_before = 0.0;
+  int cpu_sessions = 1;
+  double cpu_start = 0.0;           ///< process_cpu_seconds() when this session began
   OpenMpTeam team = openmp_team();  ///< the threads and CPUs this session runs on
   /// a replaced run's files (run --force), discarded once the first health check has passed
   SetAside* replaced = nullptr;
@@ -55,6 +60,8 @@ std::vector<std::string> list_checkpoints(const std::string& dir);
 /// write a checkpoint of the session (files flushed, sizes recorded) and keep the newest two
 /// `wall` is the run's wall time so far (all sessions), s
 void write_run_checkpoint(const RunSession& rs, double wall);
+/// the run's CPU time so far: cpu_before and this session's, s
+double run_cpu_seconds(const RunSession& rs);
 /// the newest checkpoint of DIR that reads back cleanly and whose recorded files are all
 /// still there and long enough; InputError naming DIR when there is none
 Checkpoint newest_valid_checkpoint(const std::string& dir);

@@ -183,6 +183,11 @@ SweepPlan plan_sweep(const SweepOptions& opt, bool check_dirs) {
       if (opt.allow_unstable) s.health.allow_unstable = true;  // as run_command writes it
       const double T = drive_period(s.drive);
       j.nominal = s.prep.settle_time + (s.drive.taps > 0 && T > 0 ? s.drive.taps * T : s.duration);
+      // a run's cost goes with its particle-steps: a second of a 27 000-disk fluid is not one
+      // of a 512-disk ring
+      long grains = 0;
+      for (const SpeciesSpec& sp : s.species) grains += std::max(sp.count, 0);
+      j.work = static_cast<double>(std::max(grains, 1L)) / s.integrator.dt;
       j.expected = scene_to_toml(s);  // compared with an existing run's scene.toml below
       plan.jobs.push_back(std::move(j));
     }

@@ -21,6 +21,7 @@ struct Job {
   int replica = 0;                ///< 0: the seed of the scene; r > 0: a derived seed
   std::string dir;                ///< OUT/<name>
   double nominal = 0.0;           ///< simulated time it needs, s
+  double work = 1.0;              ///< particle-steps per simulated second: its progress' weight
   std::string expected;           ///< the scene.toml the run writes (scene_to_toml)
   std::string state = "pending";  ///< pending, skipped, running, completed, interrupted, failed
   bool resume = false;            ///< an interrupted run with a checkpoint: `gransim resume` it

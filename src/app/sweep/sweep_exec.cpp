@@ -170,7 +170,7 @@ int run_jobs(const std::vector<SweepPlan*>& plans, int width, int threads, Remot
   for (const Slot& s : jobs)
     if (s.job->state == "pending") {
       ++pending;
-      total += s.job->nominal;
+      total += s.job->nominal * s.job->work;
     }
   const int slots = width + (remote ? remote->open() : 0);
   for (SweepPlan* p : plans) {
@@ -184,7 +184,7 @@ int run_jobs(const std::vector<SweepPlan*>& plans, int width, int threads, Remot
   }
   std::vector<std::string> env = child_environment(threads);
   install_stop_handlers();
-  Progress progress("sweep", std::max(total, 1e-9), "s", quiet);
+  Progress progress("sweep", std::max(total, 1e-9), "particle-steps", quiet);
   int worst = kExitOk;
   bool stopping = false;
   double done_work = 0.0;
@@ -198,7 +198,7 @@ int run_jobs(const std::vector<SweepPlan*>& plans, int width, int threads, Remot
     j.pid = -1;
     // a run stopped by a signal has checkpointed and resumes: it has not failed
     j.state = code == kExitOk ? "completed" : code == kExitInterrupted ? "interrupted" : "failed";
-    done_work += j.nominal;
+    done_work += j.nominal * j.work;
     worst = worse_exit(worst, code);
     if (!quiet || code != kExitOk)
       std::fprintf(
@@ -213,6 +213,10 @@ int run_jobs(const std::vector<SweepPlan*>& plans, int width, int threads, Remot
     for (std::size_t i = 0; i < jobs.size(); ++i)
       if (jobs[i].job->state == "pending") {
         Job& j = *jobs[i].job;
+        // a resumed run's simulated time so far was done in earlier sittings
+        if (j.resume)
+          progress.carried(std::min(last_series_time(j.dir, fs::file_time_type::min()), j.nominal) *
+                           j.work);
         j.state = "running";
         j.rank = rank;
         j.started = std::chrono::steady_clock::now();
@@ -273,7 +277,7 @@ int run_jobs(const std::vector<SweepPlan*>& plans, int width, int threads, Remot
     for (const Slot& s : jobs) {
       const Job& j = *s.job;
       if (j.state == "running") {
-        now += std::min(last_series_time(j.dir, j.spawned), j.nominal);
+        now += std::min(last_series_time(j.dir, j.spawned), j.nominal) * j.work;
         ++active;
       }
       finished += j.state == "completed" || j.state == "failed" || j.state == "interrupted";
