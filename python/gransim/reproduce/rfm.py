@@ -493,7 +493,8 @@ def claims(d, budget):
     for cid, topic, source, where, fn, (need, why) in CLAIMS:
         nxt = ORDER[min(ORDER.index(budget) + 1, 3)] if budget in ORDER else "full"
         resolve = (f"the {need} budget ({why})" if budget not in ORDER or ORDER.index(budget) <
-                   ORDER.index(need) else f"the {nxt} budget: longer runs ({why})")
+                   ORDER.index(need) else
+                   f"the {nxt} budget, its runs longer than the {need} budget's ({why})")
         sw = sweep_for(d, cid, SWEEP[cid])
         try:
             r = fn(d, sw)
