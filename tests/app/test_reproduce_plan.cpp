@@ -70,6 +70,18 @@ TEST(ReproducePlan, RunCostsFollowTheMeasuredCostModel) {
   }
 }
 
+TEST(ReproducePlan, TheRingMeasuredHereScalesTheRfmProjections) {
+  // a machine whose ring steps cost twice the reference projects twice the core-hours
+  PileCost slow;
+  slow.measured = true;
+  slow.seconds = 2.0 * kRingCostReference;
+  for (Budget b : {Budget::Quick, Budget::Standard}) {
+    const ReproducePlan ref = make_plan("rfm", b), here = make_plan("rfm", b, slow);
+    EXPECT_NEAR(here.core_hours(), 2.0 * ref.core_hours(), 1e-9 * ref.core_hours());
+    EXPECT_NEAR(here.wall_hours(2), 2.0 * ref.wall_hours(2), 1e-9 * ref.wall_hours(2));
+  }
+}
+
 TEST(ReproducePlan, StandardFitsOneNightOnTwoCores) {
   const ReproducePlan p = make_plan("rfm", Budget::Standard);
   EXPECT_TRUE(p.resolves);

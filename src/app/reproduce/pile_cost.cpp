@@ -1,4 +1,4 @@
-// the tapping study's cost per particle-step, measured on the machine that will run it
+// a study's cost per particle-step, measured on the machine that will run it
 #include "app/reproduce/pile_cost.hpp"
 
 #include <omp.h>
@@ -16,7 +16,10 @@ PileCost measure_pile_cost(const std::string& scene, const std::string& state, i
                            const std::function<double()>& cpu_seconds) {
   const SceneSpec s = parse_scene_file(scene);
   World w = make_world(s);
-  read_state_file(w, state);
+  if (state.empty())
+    place_particles(w, s);
+  else
+    read_state_file(w, state);
   const int particles = static_cast<int>(w.size());
   // one thread: the study runs each run on one core, and CPU time adds up over threads
   const int before = omp_get_max_threads();

@@ -1,5 +1,5 @@
-// what a tap of the paper's pile costs on this machine: a few steps of the settled pile, timed
-// in CPU seconds, scale the tapping study's projections (plan.cpp)
+// what a step costs on this machine: a few steps of the paper's settled pile, timed in CPU
+// seconds, scale the tapping study's projections; a few of the ring's, the RFM study's (plan.cpp)
 #pragma once
 #include <functional>
 #include <string>
@@ -11,6 +11,10 @@ namespace gs {
 /// core-seconds per particle-step of the 1184-decagon pile when nothing has been measured
 /// (a 2021 server core; it only scales printed projections)
 inline constexpr double kPileCostReference = 1.1e-6;
+/// core-seconds per particle-step of the 1000-disk ring of rfm1d_reference.toml from its start
+/// (the simulation alone) on the core that measured the RFM study's costs (plan_rfm.cpp): the
+/// ring measured here over this gives the factor on them
+inline constexpr double kRingCostReference = 1.9e-8;
 
 /// a measured cost and how it was measured
 struct PileCost {
@@ -20,9 +24,9 @@ struct PileCost {
   int particles = 0;                    ///< grains of the pile
 };
 
-/// `steps` steps of `scene` (a scene of the paper pile) started from the settled pile in
-/// `state` (a state file), on one thread, timed by `cpu_seconds` after one untimed warm-up
-/// step; throws InputError when either file is unreadable
+/// `steps` steps of `scene` started from the state file `state` (the paper pile's settled
+/// state), or as the scene prepares its grains when `state` is empty, on one thread, timed by
+/// `cpu_seconds` after one untimed warm-up step; throws InputError when a file is unreadable
 PileCost measure_pile_cost(const std::string& scene, const std::string& state, int steps,
                            const std::function<double()>& cpu_seconds = process_cpu_seconds);
 

@@ -224,10 +224,11 @@ std::string plan_json(const ReproducePlan& p, const std::string& command, int sl
   j["projected_core_hours"] = p.core_hours();
   j["projected_wall_hours"] = p.wall_hours(slots);
   j["projected_slots"] = slots;
-  if (p.study == "tapping")
-    j["cost"] = {{"core_seconds_per_particle_step", p.cost.seconds},
-                 {"measured_here", p.cost.measured},
-                 {"steps_timed", p.cost.steps}};
+  // what a particle-step of the paper's pile (tapping) or of the ring (RFM) costs here
+  j["cost"] = {{"core_seconds_per_particle_step", p.cost.seconds},
+               {"measured_here", p.cost.measured},
+               {"steps_timed", p.cost.steps},
+               {"particles", p.cost.particles}};
   j["sweeps"] = nlohmann::ordered_json::array();
   for (const auto& s : p.sweeps) {
     nlohmann::ordered_json w = {
@@ -256,7 +257,12 @@ ReproducePlan make_plan(const std::string& study, Budget budget, const PileCost&
     p.cost = pile_cost;
     return p;
   }
-  if (study == "rfm") return plan_detail::rfm_plan(budget);
+  if (study == "rfm") {
+    ReproducePlan p = plan_detail::rfm_plan(
+        budget, pile_cost.measured ? pile_cost.seconds / kRingCostReference : 1.0);
+    p.cost = pile_cost;
+    return p;
+  }
   throw InputError("", "STUDY", "'" + study + "' is not a study (tapping, rfm)");
 }
 

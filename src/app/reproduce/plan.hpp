@@ -69,7 +69,7 @@ struct ReproducePlan {
   std::string purpose;               ///< what this budget resolves, and what it cannot reach
   bool resolves = true;              ///< false: its runs prove the pipeline only, and its
                                      ///< report gives no verdict
-  PileCost cost;                     ///< the tapping projections' cost per particle-step
+  PileCost cost;  ///< the measured cost a particle-step (tapping: the pile; RFM: the ring)
   double core_hours() const;         ///< projected core-hours of every sweep
   double longest_run_hours() const;  ///< projected hours of the longest run (one core)
   int widest_sweep() const;          ///< runs in the largest sweep: ranks that can be busy
@@ -102,7 +102,8 @@ double rfm_cost_dense(int particles);
 double rfm_cost_ring(int particles);
 
 namespace plan_detail {
-ReproducePlan rfm_plan(Budget b);  ///< plan_rfm.cpp
-}
+/// plan_rfm.cpp; `scale`: this machine's cost over the one that measured the RFM costs
+ReproducePlan rfm_plan(Budget b, double scale = 1.0);
+}  // namespace plan_detail
 
 }  // namespace gs

@@ -159,7 +159,7 @@ double rfm_cost_ring(int /*particles*/) { return kRingCost; }
 
 namespace plan_detail {
 
-ReproducePlan rfm_plan(Budget b) {
+ReproducePlan rfm_plan(Budget b, double scale) {
   ReproducePlan p;
   p.study = "rfm";
   p.budget = b;
@@ -262,6 +262,10 @@ ReproducePlan rfm_plan(Budget b) {
       break;
     }
   }
+  // this machine against the one that measured the costs above
+  for (PlannedSweep& sw : p.sweeps)
+    for (double& t : sw.run_seconds) t *= scale;
+  for (PlannedModel& m : p.models) m.core_seconds *= scale;
   return p;
 }
 

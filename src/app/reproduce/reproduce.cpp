@@ -30,6 +30,7 @@ namespace {
 
 // steps timed for the tapping projections: ≈ 0.2–0.5 CPU-s of the paper pile
 constexpr int kCostSteps = 300;
+constexpr int kRingCostSteps = 20000;  // 2·10⁷ particle-steps: a few tenths of a second
 
 // the shipped scenes: $GS_SCENES_DIR, else beside the executable (build tree or install)
 // or in the source tree it was built from
@@ -64,7 +65,16 @@ void print_plan(const ReproducePlan& p, const std::string& out, int cores, int s
       "longest run %.2g h); into %s\n",
       p.runs(), p.core_hours(), p.wall_hours(slots), cores, slots, p.longest_run_hours(),
       out.c_str());
-  if (p.study != "tapping") return;
+  if (p.study != "tapping") {
+    if (p.cost.measured)
+      std::printf(
+          "  cost measured here: %.3g core-µs per particle-step of the %d-disk ring (%d steps from "
+          "its start, CPU time, one thread): ×%.2f the reference core's, which the projections "
+          "above include\n",
+          p.cost.seconds * 1e6, p.cost.particles, p.cost.steps,
+          p.cost.seconds / kRingCostReference);
+    return;
+  }
   if (p.cost.measured)
     std::printf(
         "  cost measured here: %.3g core-µs per grain-step (%d steps of the settled %d-grain "
@@ -162,14 +172,26 @@ PileCost pile_cost_here() {
   return measure_pile_cost(dir + "/" + scene, dir + "/" + state, kCostSteps);
 }
 
+// the RFM ring's cost per particle-step on this machine (nothing measured where the scene is not
+// among the shipped ones)
+PileCost ring_cost_here() {
+  const std::string scene = "rfm1d_reference.toml";
+  const std::string dir = find_data_dir("scenes", scene);
+  if (dir.empty()) return {};
+  return measure_pile_cost(dir + "/" + scene, "", kRingCostSteps);
+}
+
 }  // namespace
 
 int reproduce_command(const ReproduceOptions& opt) {
   const Budget budget = parse_budget(opt.budget);
   const bool root = mpi_rank() == 0;
   // measured where projections are printed: before a run, not for a report from its series
-  const bool measure = opt.study == "tapping" && root && !opt.from_series && !opt.report_only;
-  const ReproducePlan plan = make_plan(opt.study, budget, measure ? pile_cost_here() : PileCost{});
+  const bool measure = root && !opt.from_series && !opt.report_only;
+  const ReproducePlan plan = make_plan(opt.study, budget,
+                                       !measure                 ? PileCost{}
+                                       : opt.study == "tapping" ? pile_cost_here()
+                                                                : ring_cost_here());
   const std::string out =
       opt.out.empty() ? "runs/reproduce-" + opt.study + "-" + opt.budget : opt.out;
   const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
