@@ -506,6 +506,10 @@ def claims(d, budget):
         k = v.scale
         if miss:
             resolve = f"runs at the thesis' conditions: sweep {sw} has {miss}"
+        elif v.verdict == UNRESOLVED and v.alternative.startswith("none") and \
+                not math.isfinite(v.power):
+            resolve = ("no budget: the thesis sizes no alternative, so no run length makes the "
+                       "test agree (a departure from the null would make it disagree)")
         elif v.verdict == UNRESOLVED and math.isfinite(k) and k > 1:
             resolve += f"; its test reaches 80 % power at {k:.3g} × these runs' length"
         elif v.verdict == UNRESOLVED and v.power < POWER and not math.isfinite(k):
