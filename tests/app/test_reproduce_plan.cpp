@@ -142,9 +142,17 @@ TEST(ReproducePlan, StandardRunsTheThesisSystems) {
   ASSERT_NE(fp, nullptr);
   EXPECT_DOUBLE_EQ(fp->conditions.points.front().length, 0.6);
   EXPECT_NEAR(fp->conditions.points.front().phi, 0.530, 0.001);
-  // S(k): φ = 0.53 at L = 0.2 m and φ = 0.353 at L = 0.4 m (Table 4.1, both above L_Eff)
+  // S(k): φ = 0.53 at L = 0.2 m (Table 4.1); g(R) and the crossover fit on φ = 0.53 at
+  // L = 0.4 m (Fig. 4.7, Table 5.3's system)
   EXPECT_NEAR(find_sweep(p, "structure")->conditions.points.front().phi, 0.530, 0.001);
-  EXPECT_NEAR(find_sweep(p, "structure_l04")->conditions.points.front().phi, 0.353, 0.001);
+  const PlannedSweep* l04 = find_sweep(p, "structure_l04");
+  ASSERT_NE(l04, nullptr);
+  EXPECT_NEAR(l04->conditions.points.front().phi, 0.530, 0.001);
+  EXPECT_DOUBLE_EQ(l04->conditions.points.front().length, 0.4);
+  for (const char* claim : {"g-R", "crossover"})
+    EXPECT_NE(std::find(l04->conditions.claims.begin(), l04->conditions.claims.end(), claim),
+              l04->conditions.claims.end())
+        << claim;
   // the reference fluid from its three starts
   EXPECT_EQ(find_sweep(p, "reference")->conditions.starts.size(), 3u);
 }

@@ -201,8 +201,9 @@ ReproducePlan rfm_plan(Budget b, double scale) {
       p.sweeps.push_back(fluid_sweep("freepath", "rfm2d_structure.toml", 0.6, 0.1, {27000},
                                      {"hexagonal"}, 3, 2.0, 1.0, true,
                                      {"Df-freepath", "alpha-structure"}));
-      p.sweeps.push_back(fluid_sweep("structure_l04", "rfm2d_structure.toml", 0.4, 0.1, {8000},
-                                     {"hexagonal"}, 3, 5.0, 1.0, true, {"Df-Sk"}));
+      // Fig. 4.7's and Table 5.3's system: φ = 0.53 at L = 0.4 m
+      p.sweeps.push_back(fluid_sweep("structure_l04", "rfm2d_structure.toml", 0.4, 0.1, {12000},
+                                     {"hexagonal"}, 3, 3.0, 1.0, true, {"g-R", "crossover"}));
       p.sweeps.push_back(fluid_sweep("structure", "rfm2d_structure.toml", 0.2, 0.1, {3000},
                                      {"hexagonal"}, 3, 16.0, 1.0, true, sk_claims));
       p.sweeps.push_back(
@@ -221,11 +222,12 @@ ReproducePlan rfm_plan(Budget b, double scale) {
           "the thesis' systems from three seeds each: the ring at N = 512 for 220 s (past the "
           "≈ 200 s the temperature takes to settle), ξ₂ and ξ_m over N = 398…1585 at ε = 0.1 "
           "and ξ₂ over N = 398…1000 at ε = 0.5, 0.87, 0.99 after the thesis' 20 s relaxation "
-          "(20 s and 10 s sampled, not its 200–1000 s); S(k) at φ = 0.53 (L = 0.2 m) and "
-          "φ = 0.353 (L = 0.4 m); free paths at L = 0.6 m over 1 s, and the Single Particle "
-          "Model on them; moments and tails against φ = 0.088…0.707 at L = 0.2 m; Table 6.2's "
-          "cascades. Out of reach: N above 1585, φ = 0.177 at L ≥ L_Eff = 0.48 m, the L = 0.8 m "
-          "columns of Tables 4.1–4.3 and 5.2, and Table 5.3's system (φ = 0.53 at L = 0.4 m)";
+          "(20 s and 10 s sampled, not its 200–1000 s); S(k) at φ = 0.53 (L = 0.2 m); g(R) and "
+          "the crossover fit on Fig. 4.7's and Table 5.3's system (φ = 0.53 at L = 0.4 m, 2 s "
+          "sampled); free paths at L = 0.6 m over 1 s, and the Single Particle Model on them; "
+          "moments and tails against φ = 0.088…0.707 at L = 0.2 m; Table 6.2's cascades. Out of "
+          "reach: N above 1585, φ = 0.177 at L ≥ L_Eff = 0.48 m, S(k) at L = 0.4 and 0.8 m "
+          "(Tables 4.1–4.3, 5.2)";
       break;
     case Budget::Full: {
       const std::vector<int> sizes = {100, 158, 251, 398, 631, 1000, 1585, 2512, 3981, 6310, 10000};
