@@ -198,6 +198,7 @@ int reproduce_command(const ReproduceOptions& opt) {
   if (opt.from_series) return root ? report_from_series(plan, out) : kExitOk;
   const int slots = opt.jobs > 0 ? opt.jobs : cores;  // runs at a time, as the pool runs them
   if (root && !opt.quiet) print_plan(plan, out, cores, slots);
+  std::fflush(stdout);  // the plan before the runs' progress (stderr) in a log of both
   if (plan.budget == Budget::Full && !opt.run_full && !opt.report_only) {
     if (root) print_cluster_commands(plan, out);
     return kExitOk;
