@@ -121,22 +121,20 @@ TEST(ReproducePlan, StandardRunsTheThesisSystems) {
   ASSERT_NE(n512, nullptr);
   EXPECT_TRUE(has_size(*n512, 512));
   EXPECT_GE(n512->conditions.duration, 200.0);
-  // ξ₂: the thesis' sizes (N ≥ 398 on L′ = 1 m) after its 20 s of relaxation, at ε = 0.1 and
-  // three more restitutions
-  for (const char* name : {"ring", "ring_eps"}) {
-    const PlannedSweep* r = find_sweep(p, name);
-    ASSERT_NE(r, nullptr) << name;
-    EXPECT_GE(r->conditions.discard, 20.0);
-    EXPECT_GT(r->conditions.sampled(), 0.0);
-    for (const auto& q : r->conditions.points) {
-      EXPECT_GE(q.particles, 398);
-      EXPECT_DOUBLE_EQ(q.length, 1.0);
-    }
+  // ξ₂: two of the thesis' sizes (N ≥ 398 on L′ = 1 m) sampled its 200 s after its 20 s of
+  // relaxation (the time its claims are judged on)
+  const PlannedSweep* r = find_sweep(p, "ring");
+  ASSERT_NE(r, nullptr);
+  EXPECT_GE(r->conditions.discard, 20.0);
+  EXPECT_GE(r->conditions.sampled(), 200.0);
+  std::set<int> sizes;
+  for (const auto& q : r->conditions.points) {
+    EXPECT_GE(q.particles, 398);
+    EXPECT_DOUBLE_EQ(q.length, 1.0);
+    EXPECT_DOUBLE_EQ(q.eps_n, 0.1);
+    sizes.insert(q.particles);
   }
-  std::set<double> eps;
-  for (const char* name : {"ring", "ring_eps"})
-    for (const auto& q : find_sweep(p, name)->conditions.points) eps.insert(q.eps_n);
-  EXPECT_GE(eps.size(), 4u);
+  EXPECT_GE(sizes.size(), 2u);
   // free paths at the thesis' L = 0.6 m, φ = 0.53 (N = 27 000)
   const PlannedSweep* fp = find_sweep(p, "freepath");
   ASSERT_NE(fp, nullptr);
