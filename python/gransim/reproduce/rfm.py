@@ -347,11 +347,11 @@ CLAIMS = [  # id, topic, quote, place, function, (budget that should resolve it,
     ("transient", T1, "The system reaches a steady state within the first second of the "
      "simulation.", "§2.3.3, Fig. 2.10(a)", c_transient, ("quick", "2 s runs: a second after the first")),
     ("Df-Sk", T2, "D_f takes a value in the range 1.63 ± 0.03", "§4.1.2 Table 4.1 (φ = 0.530, "
-     "L = 0.2 m: 1.63 ± 0.03), §4.1.5", c_sk, ("standard", "20 s of a developed clustered fluid; "
+     "L = 0.2 m: 1.63 ± 0.03), §4.1.5", c_sk, ("standard", "16 s of a developed clustered fluid; "
                                                  "quick's 3 s sample clusters that are still growing")),
     ("Df-freepath", T2, "1.61 ± 0.04 (fitted over six decades), for packing fraction of 0.530",
      "§4.3.3, eq. 4.25, Fig. 4.10 (L = 0.6 m)", c_freepath,
-     ("standard", "20 s; the thesis' own L = 0.6 m (N = 27000) is beyond every budget")),
+     ("standard", "the thesis' L = 0.6 m (N = 27000), 1 s sampled")),
     ("alpha-reference", T3, "\"the ranges of α that are accepted\": 1.28 ± 0.03 at ε = 0.55 and "
      "1.40 ± 0.10 at ε = 0.70, ϕ = 0.353", "§5.1.1, Table 5.1 (L = 0.2 m)",
      lambda d, sw: _alpha(d, sw, "alpha-reference", 1.28 + 0.12 / 3, 0.03 + 0.07 / 3,
@@ -366,7 +366,7 @@ CLAIMS = [  # id, topic, quote, place, function, (budget that should resolve it,
      "§3.1.3, Figs. 3.1–3.2 (N = 398…10⁴, L′ = 1 m)", c_xi2,
      ("quick", "N = 400…4000, 8 s each; full is the thesis' 1020 s up to N = 10⁴")),
     ("xi-m", T4, "The exponent ξ_m decreases from $\\xi_m/m \\simeq 0.26$ towards $\\simeq 0.225$.",
-     "§3.2.1, Fig. 3.4(b), m = 1…9", c_xim, ("standard", "40 s per size")),
+     "§3.2.1, Fig. 3.4(b), m = 1…9", c_xim, ("full", "the thesis' 1000 s per size; the standard budget samples 200 s")),
     ("G1-bisection", T4, "good agreement, without the use of fitting parameters, is seen between the "
      "random force model's distribution of nearest neighbours and the uniform bisection process's "
      "distribution of partition lengths", "§3.4.3, Fig. 3.16 (N = 2⁹)", c_g1,
@@ -393,7 +393,7 @@ CLAIMS = [  # id, topic, quote, place, function, (budget that should resolve it,
       "at 0.99 and 220 s)")),
     ("v-pdf", T4, "for the highest dissipations the velocity distributions cannot be collapsed by "
      "rescaling the velocity axis using a measured moment of velocity", "§3.2.3, Fig. 3.6 "
-     "(ε = 0.1, N = 100…1585)", c_vpdf, ("standard", "N = 398…1585 from three seeds")),
+     "(ε = 0.1, N = 100…1585)", c_vpdf, ("standard", "N = 398 and 1000 for 220 s from three seeds")),
     ("zeta-m", T4, "ζ_m (Measured): 1.729 ± 0.008, 2.31 ± 0.03, 2.81 ± 0.06, 3.2 ± 0.1 for m = "
      "2…5; \"It is not expected that the moments of separation between theoretical and model will "
      "agree.\"", "§3.4.3, Table 3.1 (ε = 0.1)", c_zeta,

@@ -224,7 +224,7 @@ def fluid_claims(t2, t3, t5):
         ("g-R", t2, "g(R) which weakly decays, for large distance R such that g(R) appears nearly "
          "constant […] The dashed line is a constant fit of 0.98", "§4.2, Fig. 4.7 (φ = 0.530, "
          "L = 0.4 m, ε = 0.1); eq. 4.14", c_gr,
-         ("full", "the thesis' L = 0.4 m at φ = 0.530 (N = 12000); the standard budget runs L = 0.2 m")),
+         ("standard", "the thesis' L = 0.4 m at φ = 0.530 (N = 12000), 2 s sampled")),
         ("moments-phi", t3, "For low packing fraction of less than 0.1 all measured orders of the "
          "moments of velocity obey the expected mean field prediction of ⟨|v|^m⟩^{3/m} ∝ 1/ϕ",
          "§5.1, eq. 5.3, Fig. 5.2 (m = 3, 6, 9, 12; ε = 0.1)", c_moments_phi,
@@ -234,9 +234,9 @@ def fluid_claims(t2, t3, t5):
          "§5.1.1–5.1.2, Tables 5.1–5.2", c_alpha_phi, ("standard", "φ = 0.088…0.707, 4 s sampled")),
         ("crossover", t3, "ε_n, ε_t = 0.1, 0.1: v_r = 0.168, v_c/v_r = 1.524 (fits of "
          "P₀(v) = D exp(−(v/v_r)²/(1 + |v/v_c|^{2−α})), α = 1.00)", "§5.3.4, eq. 5.32, Tables 5.3–5.4",
-         c_crossover, ("full", "Table 5.3's system, L = 0.4 m and N = 12000 at φ = 0.530")),
+         c_crossover, ("standard", "Table 5.3's system, L = 0.4 m and N = 12000 at φ = 0.530")),
         ("spm-alpha", t5, "α = 6(D_f − 1)/(3D_f − 1) ≈ 3.78/3.89 ≈ 0.972 ± 0.03", "§5.3.2, eq. 5.29",
-         c_spm_alpha, ("standard", "D_f from 19 s of S(k)")),
+         c_spm_alpha, ("standard", "D_f from 15 s of S(k)")),
         ("spm-pv", t5, "Agreement between the model and representation is remarkably good over many "
          "decades of P(v) which demonstrates that the Single Particle Model gets the high velocity "
          "behaviour of the particles correct", "§5.2.3, Fig. 5.10 (L = 0.6 m, φ = 0.530, ε = 0.1)",
