@@ -77,16 +77,28 @@ FreePathFit fit_free_paths(const Histogram& h, double l_fit_min, double min_coun
   f.a0_err = r.err[2] * inflate;
   f.chi2_r = r.chi2_r();
   f.points = static_cast<int>(l.size());
+  f.l_min = l.front();
   return f;
+}
+
+double tail_start(const Histogram& h, double p_below) {
+  double start = std::numeric_limits<double>::infinity();
+  const auto& bins = h.bins();
+  for (auto it = bins.rbegin(); it != bins.rend(); ++it) {
+    if (it->count <= 0) continue;  // empty bins neither end nor extend the tail
+    if (!(it->p < p_below)) break;
+    start = it->x;
+  }
+  return start;
 }
 
 void write_freepath_csv(const RecordSink& sink, const std::filesystem::path& path,
                         const Histogram& h, const FreePathFit* fit) {
   RecordMeta meta;
   if (fit) {
-    meta = {{"D_f", fit->d_f},      {"D_f_err", fit->d_f_err}, {"C", fit->c},
-            {"C_err", fit->c_err},  {"A0", fit->a0},           {"A0_err", fit->a0_err},
-            {"chi2_r", fit->chi2_r}};
+    meta = {{"D_f", fit->d_f},       {"D_f_err", fit->d_f_err}, {"C", fit->c},
+            {"C_err", fit->c_err},   {"A0", fit->a0},           {"A0_err", fit->a0_err},
+            {"chi2_r", fit->chi2_r}, {"l_fit_min", fit->l_min}};
   }
   const auto w = sink.create(path.string(), {"l", "count", "P", "P_err", "P_fit"}, meta);
   for (const HistBin& b : h.bins()) {

@@ -26,12 +26,18 @@ struct FreePathFit {
   double a0 = 0.0, a0_err = 0.0;    ///< A₀, m^(1−D_f)
   double chi2_r = 0.0;              ///< reduced χ², dimensionless
   int points = 0;                   ///< bins used
+  double l_min = 0.0;               ///< centre of the first bin used, m
 };
 
 /// fits T.4.25 to the bins with l ≥ l_fit_min and at least min_count samples. The start
 /// comes from a scan over D_f in which ln P − (D_f − 2) ln l is linear in l^(D_f−1).
 /// Errors are inflated by √χ²_r when χ²_r > 1.
 FreePathFit fit_free_paths(const Histogram& h, double l_fit_min = 0.0, double min_count = 10.0);
+
+/// where the thesis' fit window begins: the centre of the first bin of the tail in which
+/// every occupied bin has P_l < p_below (1/m; §4.3.3 fits "the lowest decades of data ...
+/// where P < 1"); +∞ when the last occupied bin is not below it
+double tail_start(const Histogram& h, double p_below);
 
 /// columns l, count, P, P_err, P_fit (NaN without a fit); metadata D_f, C, A0 and errors
 void write_freepath_csv(const RecordSink& sink, const std::filesystem::path& path,

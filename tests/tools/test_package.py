@@ -141,6 +141,16 @@ class RunCost(unittest.TestCase):
         self.assertAlmostEqual(core_s, 300.0 + 800.0 + 50.0)
         self.assertEqual(unfinished, ["b/s1"])
 
+    def test_header_names_how_the_runs_were_counted(self):
+        sys.path.insert(0, PACKAGE_DIR)
+        from gransim.reproduce.cli import run_time_text
+        self.assertEqual(run_time_text(7200, 3, 0),
+                         "2.00 core-hours: the CPU times of its 3 runs (one thread each) added up")
+        self.assertIn("; 2 of them by their wall times", run_time_text(7200, 3, 2))
+        every = run_time_text(3600, 8, 8)
+        self.assertIn("the wall times of its 8 runs added up (none kept its CPU time)", every)
+        self.assertNotIn("CPU times of", every)
+
 
 if __name__ == "__main__":
     unittest.main()

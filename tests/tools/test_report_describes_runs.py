@@ -133,6 +133,50 @@ class ReportDescribesItsRuns(unittest.TestCase):
         self.assertNotIn("N = 4000 below the full budget", md)
         self.assertIn("Δt = 1e-06 s (≈ 19 steps a contact)", md)
 
+    def test_rfm_runs_at_the_thesis_conditions_depart_from_nothing(self):
+        """free paths at the thesis' L = 0.6 m and G₁ at its N = 512, each in the sweep its claim
+        reads: the departures table has no row for either, and the introduction names both"""
+        from gransim.reproduce import departures, rfm
+        tmp = tempfile.mkdtemp(prefix="gs-report-rfm-")
+        self.addCleanup(shutil.rmtree, tmp, ignore_errors=True)
+        with open(os.path.join(ROOT, "scenes", "rfm2d_structure.toml")) as f:
+            fluid = f.read().replace("count = 3000", "count = 27000").replace(
+                "width = 0.2", "width = 0.6").replace("height = 0.2", "height = 0.6")
+        with open(os.path.join(ROOT, "scenes", "rfm1d_reference.toml")) as f:
+            ring = f.read().replace("count = 1000", "count = 512")
+        for sweep, text in (("freepath", fluid), ("ring_n512", ring), ("ring", ring.replace(
+                "count = 512", "count = 4000"))):
+            os.makedirs(os.path.join(tmp, "sweeps", sweep, "seed=1"))
+            with open(os.path.join(tmp, "sweeps", sweep, "seed=1", "scene.toml"), "w") as f:
+                f.write(text)
+        plan = {"sweeps": [
+            {"name": "ring_n512", "conditions": {"dimension": 1, "claims": ["G1-bisection"],
+                                                 "points": [{"N": 512, "eps_n": 0.1,
+                                                             "reduced_length": 1.0}]}},
+            {"name": "freepath", "conditions": {"dimension": 2, "claims": ["Df-freepath"],
+                                                "points": [{"phi": 0.53, "eps_n": 0.1,
+                                                            "eps_t": 0.1, "L": 0.6,
+                                                            "N": 27000}]}},
+            {"name": "ring", "conditions": {"dimension": 1, "claims": ["xi2"],
+                                            "points": [{"N": 4000, "eps_n": 0.1,
+                                                        "reduced_length": 1.0}]}}]}
+        with open(os.path.join(tmp, "plan.json"), "w") as f:
+            json.dump(plan, f)
+        facts = rfm.departure_facts(tmp)
+        self.assertEqual(facts["free_path_box"], [0.6])
+        self.assertEqual(facts["ring_n"], [512])  # the ring G₁ reads, not the size series
+        names = [r[0] for r in departures.rows("rfm", facts)]
+        self.assertNotIn("box of the free-path dimension", names)
+        self.assertNotIn("ring of the gap distribution G₁", names)
+        self.assertIn("time step", names)
+        # a free-path box other than the thesis' is still a departure, with the runs' value
+        facts["free_path_box"] = [0.2]
+        row = [r for r in departures.rows("rfm", facts) if r[0] == "box of the free-path dimension"]
+        self.assertIn("L = 0.2 m", row[0][2])
+        intro = cli.study_claims("rfm", tmp, "standard")[1]
+        self.assertIn("the free-path fluid (N = 27000, L = 0.6 m", intro)
+        self.assertIn("the 1D ring of G₁ and T(t) (N = 512", intro)
+
     def test_no_scene_no_pile(self):
         """without the runs' scene.toml the report says so, and names no pile"""
         self.assertIsNone(described.pile(described.scenes(["/nonexistent"])))

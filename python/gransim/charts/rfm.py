@@ -245,13 +245,15 @@ def free_paths(src, out):
     ax.errorbar(c["l"][ok], c["P"][ok], yerr=c["P_err"][ok], fmt=".", ms=3, color="k",
                 elinewidth=0.5, label="P_l(l), log bins")
     if "D_f" in m:
-        # `gransim analyze` fits on l >= d/10 (docs/rfm.md); the rest of the curve is extrapolated
-        l_min = 0.0
-        try:
-            with open(os.path.join(os.path.dirname(src), "rfm.json")) as f:
-                l_min = 0.1 * float(json.load(f)["diameter"])
-        except (OSError, ValueError, KeyError, TypeError):
-            pass
+        # `gransim analyze` fits the tail (P_l < 1/m, from l_fit_min on; older tables: l >= d/10)
+        l_min, where = float(m.get("l_fit_min", 0.0)), "the tail, P_l < 1/m"
+        if not l_min:
+            where = "l = d/10"
+            try:
+                with open(os.path.join(os.path.dirname(src), "rfm.json")) as f:
+                    l_min = 0.1 * float(json.load(f)["diameter"])
+            except (OSError, ValueError, KeyError, TypeError):
+                pass
         fit = ok & (c["l"] >= l_min)
         chi = f", χ²_r = {m['chi2_r']:.2g}" if "chi2_r" in m else ""
         ax.plot(c["l"][fit], c["P_fit"][fit], color="C3", lw=1.8,
@@ -260,7 +262,7 @@ def free_paths(src, out):
             below = ok & (c["l"] <= c["l"][fit].min())
             ax.plot(c["l"][below], c["P_fit"][below], "--", color="C3", lw=1,
                     label="the same extrapolated below the fit range")
-            ax.axvline(l_min, color="0.5", ls=":", lw=1, label=f"fit from l = d/10 = {l_min:.2g} m")
+            ax.axvline(l_min, color="0.5", ls=":", lw=1, label=f"fit from {where}: l = {l_min:.2g} m")
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel("l (m)")

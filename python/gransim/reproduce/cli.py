@@ -88,6 +88,18 @@ def from_series(a):
           "report.html, claims.csv")
 
 
+def run_time_text(core_s, runs, by_wall):
+    """the header's run time: the runs' CPU times, naming those counted by wall time"""
+    if runs and by_wall == runs:
+        how = (f"the wall times of its {runs} runs added up (none kept its CPU time), which "
+               "count what else ran beside them")
+    else:
+        how = f"the CPU times of its {runs} runs (one thread each) added up" + (
+            f"; {by_wall} of them by their wall times (no CPU time kept for every session), "
+            "which count what else ran beside them" if by_wall else "")
+    return f"{core_s / 3600:.2f} core-hours: {how}"
+
+
 def run_cost(folder):
     """the runs' cost: (core-seconds, runs, runs counted by wall time, unfinished runs). A run
     counts its CPU time (one thread each: the cost whatever the sittings were and whatever else
@@ -158,11 +170,7 @@ def main(argv=None):
                           f"not tallied ({a.wall:.0f} s): most runs were made outside `gransim "
                           "reproduce` (by `gransim sweep` into its folders) and adopted; the run "
                           "time below is their cost"),
-            ("run time", f"{core_s / 3600:.2f} core-hours: the CPU times of its {runs} runs "
-                         "(one thread each) added up" +
-                         (f"; {by_wall} of them by their wall times (no CPU time kept for "
-                          "every session), which count what else ran beside them"
-                          if by_wall else "")),
+            ("run time", run_time_text(core_s, runs, by_wall)),
             ("written", datetime.datetime.now().strftime("%Y-%m-%d %H:%M"))]
     planned = planned_runs(a.dir)
     if unfinished or (planned and runs < planned):

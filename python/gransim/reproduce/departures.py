@@ -129,6 +129,11 @@ def rows(study, facts=None):
                 "pulse of negative g": (facts.get("t1"), lambda v: "g_p·g for t1 = " +
                                         _or(v, lambda t: f"{t:g}") + " s (same g_p values)")}
     else:
+        # rows that vanish when every run has the thesis' value: no departure to report
+        if facts.get("free_path_box") and all(abs(w - 0.6) < 1e-9 for w in facts["free_path_box"]):
+            base = [r for r in base if r[0] != "box of the free-path dimension"]
+        if facts.get("ring_n") == [512]:
+            base = [r for r in base if r[0] != "ring of the gap distribution G₁"]
         runs = {"time step": (facts.get("dt"), lambda v: "Δt = " + _or(v, lambda d: f"{d:g}") +
                               " s" + (f" (≈ {facts['steps_per_contact']:.0f} steps a contact)"
                                       if facts.get("steps_per_contact") else "")),

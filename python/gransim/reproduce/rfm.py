@@ -253,12 +253,16 @@ def c_freepath(d, sw="structure"):
         raise Missing(f"no free-path fit in analysis/{sw}: " + "; ".join(r.get("notes", [])))
     p, dia = os.path.join(r["adir"], "freepath.csv"), r["info"].get("diameter", 0.003)
     c = _csv(p)[0] if os.path.exists(p) else {k: np.zeros(0) for k in ("l", "count", "P")}
-    m = (c["l"] >= 0.1 * dia) & (c["count"] >= 10)  # the analysis' fit window
+    # the analysis' fit window: the tail P_l < 1/m (older analyses: l ≥ d/10)
+    lmin = f.get("l_fit_min") or 0.1 * dia
+    window = (f"the tail P_l < 1/m (l ≥ {lmin:.2g} m, the thesis' window)" if f.get("l_fit_min")
+              else "l ≥ d/10")
+    m = (c["l"] >= lmin * (1 - 1e-9)) & (c["count"] >= 10)
     l, P = c["l"][m], c["P"][m]
     dec = math.log10(P.max() / P.min()) if len(P) > 1 else math.nan
     v = compare_value(f["D_f"], f["D_f_err"], 1.61, tolerance=0.04, alternative=0.08,
                       precision="the thesis' 1.61 ± 0.04", fmt="{:.3g}", dof=seeds["dof"])
-    reason = (f"{v.reason}; T.4.25 fitted on l ≥ d/10 over {dec:.1f} decades of P_l (thesis: six), "
+    reason = (f"{v.reason}; T.4.25 fitted on {window} over {dec:.1f} decades of P_l (thesis: six), "
               f"χ²_r = {f['chi2_r']:.2g}, {sampled:.2g} s sampled")
     box = r["info"].get("box", 0.2)
     if abs(box - 0.6) > 1e-9:
@@ -274,7 +278,8 @@ def c_freepath(d, sw="structure"):
         ax.plot(c["l"], c["P_fit"], "C0", label=f"T.4.25 fit, D_f = {_ci(f['D_f'], f['D_f_err'])}")
         ax.plot(l, np.exp(a) * l ** -0.39 * np.exp(b * l ** 0.61), "C3--",
                 label="T.4.25 with the thesis' D_f = 1.61 (A₀, C refitted)")
-        ax.axvline(0.1 * dia, color="grey", ls=":", label="fit from d/10")
+        ax.axvline(lmin, color="grey", ls=":", label=f"fit from P_l < 1/m (l = {lmin:.2g} m)"
+                   if f.get("l_fit_min") else "fit from d/10")
         ax.set_ylim(max(c["P"][c["P"] > 0].min() / 3, 1e-6), c["P"].max() * 3)
         _ax(ax, f"free paths, φ = 0.53, ε = 0.1, L = {box:g} m (thesis: L = 0.6 m, Fig. 4.10)",
             "l (m)", "P_l (1/m)", True, True)
@@ -431,7 +436,9 @@ def _scenes(d, sweep):
 
 def departure_facts(d):
     """the runs' own time step, free-path box, ring sizes and transient, from their scene.toml"""
-    ref, struct, ring = (_scenes(d, s) for s in ("reference", "structure", "ring"))
+    # the sweeps the free-path and G₁ claims read (the plan may give each its own)
+    ref, struct, ring = (_scenes(d, s) for s in ("reference", sweep_for(d, "Df-freepath", "structure"),
+                                                 sweep_for(d, "G1-bisection", "ring")))
     facts = {}
 
     def collect(scenes, get):
@@ -488,6 +495,14 @@ def _system(d, sweep):
     return out + ", ε = " + " or ".join(f"{e:g}" for e in eps)
 
 
+# the sweeps a report can hold, named as its introduction names them
+SYSTEMS = (("the 2D reference fluid", "reference"), ("the structure fluid", "structure"),
+           ("the structure fluid of g(R) and the crossover", "structure_l04"),
+           ("the free-path fluid", "freepath"), ("the fluids over φ", "moments_phi"),
+           ("the 1D ring", "ring"), ("the 1D ring of G₁ and T(t)", "ring_n512"),
+           ("the 1D rings over ε", "ring_eps"))
+
+
 def claims(d, budget):
     out = []
     for cid, topic, source, where, fn, (need, why) in CLAIMS:
@@ -523,9 +538,7 @@ def claims(d, budget):
             purpose = json.load(f).get("purpose", "")
     except (OSError, ValueError):
         purpose = ""
-    systems = [(name, _system(d, sweep)) for name, sweep in
-               (("the 2D reference fluid", "reference"), ("the structure fluid", "structure"),
-                ("the 1D ring", "ring"))]
+    systems = [(name, _system(d, sweep)) for name, sweep in SYSTEMS]
     ran = "; ".join(f"{name} ({text})" for name, text in systems if text)
     intro = ("D. J. Bray's thesis (Nottingham 2009) studies soft disks driven by white noise, the "
              "Random Force Model. gransim's runs here, as their scene.toml files give them: "

@@ -154,8 +154,10 @@ void write_summary(const std::vector<RunResult>& results, const std::vector<Expo
                           {"k_prime", num(f->k_hi)}, {"shells", f->points},
                           {"chi2_r", num(f->chi2_r)}};
     if (const auto& f = r.paths)
-      row["free_paths"] = {{"D_f", num(f->d_f)}, {"D_f_err", num(f->d_f_err)}, {"C", num(f->c)},
-                           {"A0", num(f->a0)},   {"chi2_r", num(f->chi2_r)},   {"bins", f->points}};
+      row["free_paths"] = {
+          {"D_f", num(f->d_f)},        {"D_f_err", num(f->d_f_err)}, {"C", num(f->c)},
+          {"A0", num(f->a0)},          {"chi2_r", num(f->chi2_r)},   {"bins", f->points},
+          {"l_fit_min", num(f->l_min)}};
     row["notes"] = r.notes;
     j["runs"].push_back(std::move(row));
   }
