@@ -64,6 +64,19 @@ class SeedMean(unittest.TestCase):
         self.assertAlmostEqual(s["err"], np.sqrt(0.03) / 3)
 
 
+class SeedInterval(unittest.TestCase):
+    """the 95 % interval a report prints for a mean over seeds is Student's t of n − 1 degrees of
+    freedom, the one its verdict uses; a normal ±1.96σ would be 2.2 times too narrow at 3 seeds"""
+
+    def test_interval_of_three_seeds(self):
+        from gransim.reproduce.rfm_data import _ci, seed_text
+        self.assertEqual(_ci(1.435, 0.0163), "1.435 ± 0.032")  # one run's own error: normal
+        self.assertEqual(_ci(1.435, 0.0163, 2), "1.435 ± 0.070")  # t(2) = 4.303
+        s = seed_mean([1.432, 1.464, 1.408], [0.011, 0.011, 0.010])
+        self.assertIn("95 % scatter between seeds ± 0.07,", seed_text(s))
+        self.assertEqual(_ci(s["value"], s["err"], s["dof"]).split(" ± ")[1], "0.070")
+
+
 class SeedTwins(unittest.TestCase):
     """the value claims on a mean over seeds, at few and more seeds, with the seeds' scatter
     below, at and far above the within-run error"""

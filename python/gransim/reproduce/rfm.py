@@ -234,13 +234,13 @@ def c_sk(d, sw="structure"):
         kw = c["k"][c["k"] <= s["k_prime"] * 1.0001]
         kc = math.sqrt(kw.min() * kw.max())
         a = meta.get("A", math.nan) * kc ** -s["D_f"]
-        ax.plot(kw, a * (kw / kc) ** -s["D_f"], "C0", label=f"fit D_f = {_ci(s['D_f'], s['D_f_err'])} (95 %)")
+        ax.plot(kw, a * (kw / kc) ** -s["D_f"], "C0", label=f"fit D_f = {_ci(s['D_f'], s['D_f_err'], seeds['dof'])} (95 %)")
         ax.plot(kw, a * (kw / kc) ** -1.63, "C3--", label="thesis D_f = 1.63 (same amplitude at the centre)")
         ax.axvline(s["k_prime"], color="grey", ls=":", label="k′ = k_D")
         _ax(ax, f"S(k), φ = {r['phi']:.3g}, ε = {r['eps_n']:g}, L = {r['info'].get('box', 0.2):g} m, "
             f"{sampled:.2g} s sampled (thesis Table 4.1)",
             "k (1/m)", "S(k)", True, True)
-    return dict(measured=f"D_f = {_ci(s['D_f'], s['D_f_err'])} (95 %)" + seed_text(seeds),
+    return dict(measured=f"D_f = {_ci(s['D_f'], s['D_f_err'], seeds['dof'])} (95 %)" + seed_text(seeds),
                 verdict=_gate(Verdict(v.verdict, reason, v.null, v.alternative, v.power, v.scale), [r]),
                 chart=_chart(d, "Df-Sk", draw),
                 values=dict(D_f=s["D_f"], D_f_err=s["D_f_err"], chi2_r=s["chi2_r"], sampled_s=sampled))
@@ -275,7 +275,7 @@ def c_freepath(d, sw="structure"):
         # T.4.25 with the thesis' D_f, A₀ and C refitted: ln P + 0.39 ln l = ln A₀ − C l^0.61
         b, a = np.polyfit(l ** 0.61, np.log(P) + 0.39 * np.log(l), 1, w=np.sqrt(c["count"][m]))
         ax.errorbar(c["l"], c["P"], c["P_err"], fmt=".", ms=3, lw=0.6, label="gransim P_l(l)")
-        ax.plot(c["l"], c["P_fit"], "C0", label=f"T.4.25 fit, D_f = {_ci(f['D_f'], f['D_f_err'])}")
+        ax.plot(c["l"], c["P_fit"], "C0", label=f"T.4.25 fit, D_f = {_ci(f['D_f'], f['D_f_err'], seeds['dof'])}")
         ax.plot(l, np.exp(a) * l ** -0.39 * np.exp(b * l ** 0.61), "C3--",
                 label="T.4.25 with the thesis' D_f = 1.61 (A₀, C refitted)")
         ax.axvline(lmin, color="grey", ls=":", label=f"fit from P_l < 1/m (l = {lmin:.2g} m)"
@@ -283,7 +283,7 @@ def c_freepath(d, sw="structure"):
         ax.set_ylim(max(c["P"][c["P"] > 0].min() / 3, 1e-6), c["P"].max() * 3)
         _ax(ax, f"free paths, φ = 0.53, ε = 0.1, L = {box:g} m (thesis: L = 0.6 m, Fig. 4.10)",
             "l (m)", "P_l (1/m)", True, True)
-    return dict(measured=f"D_f = {_ci(f['D_f'], f['D_f_err'])} (95 %) at L = {box:g} m" + seed_text(seeds),
+    return dict(measured=f"D_f = {_ci(f['D_f'], f['D_f_err'], seeds['dof'])} (95 %) at L = {box:g} m" + seed_text(seeds),
                 verdict=_gate(Verdict(v.verdict, reason, v.null, v.alternative, v.power, v.scale), [r]),
                 chart=_chart(d, "Df-freepath", draw),
                 values=dict(D_f=f["D_f"], D_f_err=f["D_f_err"], chi2_r=f["chi2_r"], decades=dec))

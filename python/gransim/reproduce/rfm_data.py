@@ -14,7 +14,7 @@ import numpy as np  # noqa: E402
 
 from .batch import batch_err, normal_score  # noqa: E402
 from .rfm_conditions import THESIS  # noqa: E402
-from .verdicts import UNRESOLVED, Verdict  # noqa: E402
+from .verdicts import UNRESOLVED, Verdict, t_of  # noqa: E402
 
 CUT = 1e-7        # 1D gaps below this (units of L′) are mostly touching disks: their overlap
 N_THESIS = THESIS["xi2"]["N_from"]  # §3.1.3: "We have ignored data for … 100, 158 or 251 particles"
@@ -186,19 +186,22 @@ def seed_text(s, unit=""):
     """'' for one seed, else both errors of a seed mean and which one the verdict uses"""
     if s["seeds"] < 2:
         return ""
-    return (f" (mean of {s['seeds']} seeds; 95 % scatter between seeds ± {1.96 * s['between']:.2g}"
+    t = t_of(0.05, s["seeds"] - 1)
+    return (f" (mean of {s['seeds']} seeds; 95 % scatter between seeds ± {t * s['between']:.2g}"
             f"{unit}, within runs ± {1.96 * s['within']:.2g}{unit}: the verdict uses the larger, "
             f"{s['which']}, with Student's t of {s['dof']} degrees of freedom)")
 
 
-def _ci(v, e):
-    """value ± its 95 % interval, rounded to the interval's second digit"""
+def _ci(v, e, dof=None):
+    """value ± its 95 % interval (normal, or Student's t of dof degrees of freedom when the error
+    comes from dof + 1 seeds), rounded to the interval's second digit"""
     if v is None or not math.isfinite(v):
         return "n/a"
     if e is None or not (math.isfinite(e) and e > 0):
         return f"{v:.3g}"
-    n = max(0, 1 - math.floor(math.log10(1.96 * e)))
-    return f"{v:.{n}f} ± {1.96 * e:.{n}f}"
+    half = e * (t_of(0.05, dof) if dof else 1.96)
+    n = max(0, 1 - math.floor(math.log10(half)))
+    return f"{v:.{n}f} ± {half:.{n}f}"
 
 
 def _gate(v, runs, need=THESIS["T-start"]["discard_s"]):

@@ -12,7 +12,7 @@ import numpy as np  # noqa: E402
 
 from .rfm_data import Missing, _ax, _chart, _ci, _csv, _gate, _runs, seed_mean, seed_text  # noqa: E402
 from .verdicts import (AGREES, DISAGREES, P_REJECT, UNRESOLVED, Verdict, chi2_consistent,  # noqa: E402
-                       compare_value, decide, phi, t_sf2)
+                       compare_value, decide, phi, t_of, t_sf2)
 
 
 def need(d, path):
@@ -147,12 +147,13 @@ def c_gr(d, sw="structure"):
         z = R >= rmax / 4
         a2.errorbar(R[z], g[z], 1.96 * e[z], fmt=".", ms=3, lw=0.6, color="k", label="gransim, 95 %")
         a2.axhline(GR_LEVEL, color="C3", ls="--", label="thesis Fig. 4.7: constant fit 0.98")
-        a2.axhspan(s["value"] - 1.96 * s["err"], s["value"] + 1.96 * s["err"], color="C0",
-                   alpha=0.25, label=f"level over [R_max/2, R_max): {_ci(s['value'], s['err'])}")
+        h = s["err"] * (t_of(0.05, s["dof"]) if s["dof"] else 1.96)
+        a2.axhspan(s["value"] - h, s["value"] + h, color="C0",
+                   alpha=0.25, label=f"level over [R_max/2, R_max): {_ci(s['value'], s['err'], s['dof'])}")
         a2.axvspan(rmax / 2, rmax, color="C0", alpha=0.06)
         _ax(a2, "large R: the level against the thesis' 0.98", "R (m)", "g(R)", fs=7)
     return dict(measured=f"g(R) level over R ∈ [{rmax / 2:.3g}, {rmax:.3g}) m = "
-                f"{_ci(s['value'], s['err'])} (95 %) at L = {box:g} m" + seed_text(s),
+                f"{_ci(s['value'], s['err'], s['dof'])} (95 %) at L = {box:g} m" + seed_text(s),
                 verdict=_gate(Verdict(v.verdict, reason, v.null, v.alternative, v.power, v.scale_,
                                       v.power_at), [r]),
                 chart=_chart(d, "g-R", draw, wide=True),
@@ -428,8 +429,8 @@ def c_crossover(d, sw="structure"):
         ax.set_ylim(max(c["P"][z].min() / 3, 1e-7), c["P"].max() * 3)
         _ax(ax, f"crossover P₀(v), α = 1, φ = {r['phi']:.3g}, L = {r['info'].get('box', 0.2):g} m "
             "(thesis Fig. 5.14a)", "v (m/s)", "P(v) (s/m)", False, True, 7)
-    return dict(measured=f"v_r = {_ci(vr['value'], vr['err'])} m/s, v_c/v_r = "
-                f"{_ci(rt['value'], rt['err'])} (95 %) at ε = {key[0]:g}/{key[1]:g}" + seed_text(vr),
+    return dict(measured=f"v_r = {_ci(vr['value'], vr['err'], vr['dof'])} m/s, v_c/v_r = "
+                f"{_ci(rt['value'], rt['err'], rt['dof'])} (95 %) at ε = {key[0]:g}/{key[1]:g}" + seed_text(vr),
                 verdict=_gate(v, [r]), chart=_chart(d, "crossover", draw),
                 values=dict(v_r=vr["value"], v_r_err=vr["err"], vc_vr=rt["value"],
                             vc_vr_err=rt["err"]))

@@ -14,7 +14,7 @@ import numpy as np  # noqa: E402
 from .rfm_data import Missing, _ax, _chart, _ci, _csv, _gate, _runs, seed_mean, seed_text  # noqa: E402
 from .rfm_fluid import (all_of, c_alpha_phi, c_crossover, c_gr, c_moments_phi, need,  # noqa: E402
                         point_at, value_part)
-from .verdicts import UNRESOLVED, Verdict, compare_value  # noqa: E402
+from .verdicts import UNRESOLVED, Verdict, compare_value, t_of  # noqa: E402
 
 SPM_ALPHA, SPM_TOL = 0.972, 0.03  # eq. 5.29: "≈ 0.972 ± 0.03"
 
@@ -54,9 +54,9 @@ def c_spm_alpha(d, sw="structure"):
         fp = [f for f in fp if f and f.get("D_f") is not None]
         if fp:
             t = seed_mean([f["D_f"] for f in fp], [f["D_f_err"] for f in fp])
-            extra = (f"; with the free paths' D_f = {_ci(t['value'], t['err'])} (sweep {name}) "
-                     f"it gives α = {_ci(alpha_of(t['value']), dalpha(t['value']) * t['err'])}")
-    reason = (f"{v.reason}; α = 6(D_f − 1)/(3D_f − 1) from the S(k) D_f = {_ci(s['value'], s['err'])} "
+            extra = (f"; with the free paths' D_f = {_ci(t['value'], t['err'], t['dof'])} (sweep {name}) "
+                     f"it gives α = {_ci(alpha_of(t['value']), dalpha(t['value']) * t['err'], t['dof'])}")
+    reason = (f"{v.reason}; α = 6(D_f − 1)/(3D_f − 1) from the S(k) D_f = {_ci(s['value'], s['err'], s['dof'])} "
               f"(the thesis puts its S(k) value 1.63 ± 0.03 in){extra}")
 
     def draw(ax):
@@ -65,11 +65,12 @@ def c_spm_alpha(d, sw="structure"):
         ax.axhspan(SPM_ALPHA - SPM_TOL, SPM_ALPHA + SPM_TOL, color="C3", alpha=0.2,
                    label="thesis: α ≈ 0.972 ± 0.03")
         ax.axvspan(1.60, 1.66, color="C3", alpha=0.08, label="thesis: D_f = 1.63 ± 0.03")
-        ax.errorbar([s["value"]], [a], [1.96 * e], [1.96 * s["err"]], fmt="o", color="C0",
+        k = t_of(0.05, s["dof"]) if s["dof"] else 1.96
+        ax.errorbar([s["value"]], [a], [k * e], [k * s["err"]], fmt="o", color="C0",
                     capsize=3, label="gransim S(k) D_f and its α, 95 %")
         _ax(ax, f"the Single Particle Model's tail exponent (§5.3.2), φ = {r['phi']:.3g}",
             "D_f", "α", fs=7)
-    return dict(measured=f"α = {_ci(a, e)} (95 %) from D_f = {_ci(s['value'], s['err'])}" + seed_text(s),
+    return dict(measured=f"α = {_ci(a, e, s['dof'])} (95 %) from D_f = {_ci(s['value'], s['err'], s['dof'])}" + seed_text(s),
                 verdict=_gate(Verdict(v.verdict, reason, v.null, v.alternative, v.power, v.scale_,
                                       v.power_at), [r]),
                 chart=_chart(d, "spm-alpha", draw), values=dict(alpha=a, alpha_err=e, D_f=s["value"]))
@@ -144,7 +145,7 @@ def c_spm_pv(d, sw="freepath"):
             False, True, 7)
     mid = 0.5 * (edges[:-1] + edges[1:])
     lo, hi = min(mid[f[6]].min() for f in fits), max(mid[f[6]].max() for f in fits)
-    return dict(measured=f"tail slope of ln(P_RFM/P_SPM) = {_ci(s['value'], s['err'])} s/m (95 %) "
+    return dict(measured=f"tail slope of ln(P_RFM/P_SPM) = {_ci(s['value'], s['err'], s['dof'])} s/m (95 %) "
                 f"over |v| = {lo:.2f}…{hi:.2f} m/s" + seed_text(s),
                 verdict=_gate(v, [r]), chart=_chart(d, "spm-pv", draw),
                 values=dict(slope=s["value"], slope_err=s["err"]))
