@@ -11,9 +11,10 @@ docs/reproduction/README.md quotes and draws the chart beside the tables.
       keep the tables of those runs (ANALYSIS_DIR: what `gransim analyze` wrote for RUN_DIR)
 
 FOLDER/runs.csv names each run (name, L in m, N, the window sampled in s, seed, how it was made);
-FOLDER/tables/NAME/ holds what `gransim analyze` wrote for it (freepath, sk and gr tables with their
-fits; S(k) by its fit only) and gr_half.csv, g(R) up to L/2 from the run's last snapshot, which the run's own g(R) (to
-L/4) does not reach. Seeds' spread is the error where a box has several seeds."""
+FOLDER/tables/NAME/ holds what `gransim analyze` wrote for it (the freepath and gr tables with
+their fits, S(k) by its fit only) and gr_half.csv, g(R) up to L/2 from the run's last snapshot,
+which the run's own g(R) (to L/4) does not reach. Seeds' spread is the error where a box has
+several seeds."""
 import csv
 import gzip
 import json
