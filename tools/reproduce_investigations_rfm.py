@@ -192,12 +192,8 @@ def draw(folder, rows):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     fig, ax = plt.subplots(figsize=(6.5, 4.5))
-    shown = set()
-    for q in rows:
-        if q["box"] in shown:
-            continue
-        i = len(shown)
-        shown.add(q["box"])
+    latest = {q["box"]: q for q in rows}  # each box's last row: its latest window
+    for i, q in enumerate(latest[b] for b in sorted(latest)):
         c = q["fpc"]
         ok = c["count"] > 0
         ax.plot(c["l"][ok], c["P"][ok], ".", ms=3, color=f"C{i}",
@@ -210,7 +206,7 @@ def draw(folder, rows):
     ax.set_ylim(1e-6, 1e5)
     ax.set_xlabel("l (m)")
     ax.set_ylabel("P_l (1/m)")
-    ax.set_title("free paths at φ = 0.53, ε = 0.1: the tail against the box")
+    ax.set_title("free paths, φ = 0.53, ε = 0.1: the tail against the box")
     ax.legend(fontsize=7)
     fig.tight_layout()
     fig.savefig(os.path.join(folder, "freepath_boxes.png"), dpi=110)

@@ -235,8 +235,8 @@ TEST(ReproducePlan, RunsGetTheirPointFromTheSets) {
   EXPECT_TRUE(has("species[0].count=27000"));
   EXPECT_TRUE(has("material[0].eps_n=0.1"));
   EXPECT_TRUE(has("material[0].eps_t=0.1"));
-  EXPECT_TRUE(has("scene.duration=2"));
-  EXPECT_TRUE(has("rfm.discard_time=1"));
+  EXPECT_TRUE(has("scene.duration=2.5"));
+  EXPECT_TRUE(has("rfm.discard_time=2"));  // the tail's transient at L = 0.6 m
 }
 
 TEST(ReproducePlan, FullBudgetPrintsItsClusterCommands) {

@@ -356,7 +356,7 @@ CLAIMS = [  # id, topic, quote, place, function, (budget that should resolve it,
                                                  "quick's 3 s sample clusters that are still growing")),
     ("Df-freepath", T2, "1.61 ± 0.04 (fitted over six decades), for packing fraction of 0.530",
      "§4.3.3, eq. 4.25, Fig. 4.10 (L = 0.6 m)", c_freepath,
-     ("standard", "the thesis' L = 0.6 m (N = 27000), 1 s sampled")),
+     ("standard", "the thesis' L = 0.6 m (N = 27000), 0.5 s sampled after 2 s")),
     ("alpha-reference", T3, "\"the ranges of α that are accepted\": 1.28 ± 0.03 at ε = 0.55 and "
      "1.40 ± 0.10 at ε = 0.70, ϕ = 0.353", "§5.1.1, Table 5.1 (L = 0.2 m)",
      lambda d, sw: _alpha(d, sw, "alpha-reference", 1.28 + 0.12 / 3, 0.03 + 0.07 / 3,
