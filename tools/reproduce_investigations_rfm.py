@@ -1,9 +1,11 @@
 #!/usr/bin/env python3
 """The Random Force Model's open questions at the thesis' φ = 0.530, ε = 0.1, decided from the
 runs kept in docs/reproduction/investigations/rfm/: does the free-path dimension (§4.3.3, eq.
-4.25) depend on the box or on the time sampled, and does g(R)'s large-R level (Fig. 4.7's "constant
-fit of 0.98") depend on where it is read or on the time sampled. Prints every number
-docs/reproduction/README.md quotes and draws the chart beside the tables.
+4.25) depend on the box or on the time sampled; does g(R)'s large-R level (Fig. 4.7's "constant
+fit of 0.98") depend on where it is read or on the time sampled; and how much of the crossover
+fit's v_r and v_c/v_r (T.5.32, Table 5.3) is set by the fit's weights and range, which the
+thesis does not state. Prints every number docs/reproduction/README.md quotes and draws the
+charts beside the tables.
 
   tools/reproduce_investigations_rfm.py [FOLDER]
       print and draw (FOLDER: docs/reproduction/investigations/rfm)
@@ -12,8 +14,9 @@ docs/reproduction/README.md quotes and draws the chart beside the tables.
 
 FOLDER/runs.csv names each run (name, L in m, N, the window sampled in s, seed, how it was made);
 FOLDER/tables/NAME/ holds what `gransim analyze` wrote for it (the freepath and gr tables with
-their fits, S(k) by its fit only) and gr_half.csv, g(R) up to L/2 from the run's last snapshot,
-which the run's own g(R) (to L/4) does not reach. Seeds' spread is the error where a box has
+their fits, S(k) by its fit only, the velocity histogram where the run has one) and
+gr_half.csv, g(R) up to L/2 from the run's last snapshot, which the run's own g(R) (to L/4) does
+not reach. Seeds' spread is the error where a box has
 several seeds."""
 import csv
 import gzip
@@ -26,6 +29,9 @@ import sys
 import numpy as np
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(ROOT, "python"))
+from gransim.reproduce.rfm_fluid import CROSSOVER, fit_p0, p0  # noqa: E402
+
 THESIS_DF, THESIS_C = 1.61, 121.0  # §4.3.3 at L = 0.6 m; C from §5.3.3 for φ = 0.530
 THESIS_LEVEL = 0.98  # Fig. 4.7, L = 0.4 m
 
@@ -86,7 +92,7 @@ def collect(folder, specs):
         os.makedirs(out, exist_ok=True)
         # S(k) enters by its fit alone (sk.json); its table is large
         for base, ext in (("freepath", ".csv"), ("freepath", ".json"), ("gr", ".csv"),
-                          ("gr", ".json"), ("sk", ".json")):
+                          ("gr", ".json"), ("sk", ".json"), ("velocity", ".csv")):
             src = os.path.join(analysis, base + ext)
             if os.path.exists(src):
                 with open(src, "rb") as f, open(os.path.join(out, base + ext + ".gz"), "wb") as raw, \
@@ -177,6 +183,105 @@ def report(folder):
         print(f"a level of {THESIS_LEVEL} at L = 0.4 m needs ≈ {need:.0f} excess neighbours within "
               f"L/4; the runs have {have}")
     draw(folder, rows)
+    crossover(folder, rows)
+
+
+# the fit's choices the thesis does not state: each bin's ln P weighted by its Poisson error (the
+# report's fit, the likelihood's), or every bin alike (a fit drawn on the log plot); the bins
+# taken, by the counts they hold
+WEIGHTS = ("Poisson", "equal")
+MIN_COUNTS = (1, 10, 100, 1000)
+
+
+def crossover_choices(c):
+    """T.5.32 at α = 1 fitted to a velocity histogram under each weighting and each least count:
+    a list of dicts (weights, min_count, decades of P taken, v_r, its error, v_c/v_r, D)"""
+    out = []
+    for least in MIN_COUNTS:
+        m = (c["count"] >= least) & (c["P"] > 0)
+        v, p, s = c["v"][m], c["P"][m], c["P_err"][m]
+        for w in WEIGHTS:
+            par, err, _ = fit_p0(v, p, s if w == "Poisson" else p)  # s = P: every weight one
+            out.append(dict(weights=w, min_count=least, decades=math.log10(p.max() / p.min()),
+                            v_r=par[1], v_r_err=err[1], ratio=par[2] / par[1], d=par[0]))
+    return out
+
+
+def crossover(folder, rows):
+    """the crossover fit's v_r and v_c/v_r under each choice, run by run, and the seeds' means"""
+    runs = [q for q in rows if os.path.exists(os.path.join(folder, "tables", q["name"],
+                                                           "velocity.csv.gz"))]
+    if not runs:
+        return
+    s_vr, s_ratio = CROSSOVER[(0.1, 0.1)]
+    print(f"\ncrossover T.5.32 at α = 1 (Table 5.3, ε = 0.1/0.1: v_r = {s_vr}, v_c/v_r = "
+          f"{s_ratio}): v_r (m/s) / v_c/v_r by weights and least count a bin holds")
+    print("run | " + " | ".join(f"{w} ≥ {k}" for k in MIN_COUNTS for w in WEIGHTS))
+    fits = {}
+    for q in runs:
+        c = table(os.path.join(folder, "tables", q["name"], "velocity.csv"))
+        fits[q["name"]] = (c, crossover_choices(c))
+        print(q["name"] + " | " + " | ".join(f"{f['v_r']:.4f} / {f['ratio']:.3f}"
+                                             for f in fits[q["name"]][1]))
+    first = fits[runs[0]["name"]][1]
+    print("decades of P taken: " + ", ".join(f"≥ {f['min_count']}: {f['decades']:.1f}"
+                                             for f in first if f["weights"] == "Poisson"))
+    for w in WEIGHTS:
+        for least in (10,):
+            vr = np.array([next(f["v_r"] for f in fits[q["name"]][1]
+                                if f["weights"] == w and f["min_count"] == least) for q in runs])
+            rt = np.array([next(f["ratio"] for f in fits[q["name"]][1]
+                                if f["weights"] == w and f["min_count"] == least) for q in runs])
+            k = t95(len(vr)) / math.sqrt(len(vr))
+            print(f"{w} weights, bins of ≥ {least}: v_r = {vr.mean():.4f} ± "
+                  f"{k * vr.std(ddof=1):.4f}, v_c/v_r = {rt.mean():.3f} ± {k * rt.std(ddof=1):.3f} "
+                  f"(95 %, {len(vr)} seeds)")
+    # how far each curve lies from the points on the log plot: the rms of ln(P/P₀) over the bins of
+    # ≥ 10 counts, D refitted for the thesis' row (its D is not printed)
+    for q in runs:
+        c, fs = fits[q["name"]]
+        m = (c["count"] >= 10) & (c["P"] > 0)
+        v, lp = c["v"][m], np.log(c["P"][m])
+
+        def rms(vr, vc):
+            r = lp - np.log(p0(v, 1.0, vr, vc))
+            return float(np.sqrt(np.mean((r - r.mean()) ** 2)))
+        best = {w: next(rms(f["v_r"], f["v_r"] * f["ratio"]) for f in fs
+                        if f["weights"] == w and f["min_count"] == 10) for w in WEIGHTS}
+        print(f"{q['name']}: rms ln(P/P₀) over bins ≥ 10: Table 5.3's row "
+              f"{rms(s_vr, s_vr * s_ratio):.3f}, equal-weight fit {best['equal']:.3f}, "
+              f"Poisson fit {best['Poisson']:.3f}")
+    every = [f["v_r"] for _, fs in fits.values() for f in fs]
+    print(f"v_r over every choice and seed: {min(every):.4f} … {max(every):.4f} m/s")
+    draw_crossover(folder, runs[0]["name"], *fits[runs[0]["name"]])
+
+
+def draw_crossover(folder, name, c, fits):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(6.5, 4.5))
+    z = c["count"] > 0
+    ax.plot(c["v"][z], c["P"][z], ".", ms=2, color="k", label=f"P(v), {name}")
+    vv = np.linspace(c["v"][z].min(), c["v"][z].max(), 600)
+    for i, (w, least) in enumerate((("Poisson", 10), ("equal", 10), ("equal", 1000))):
+        f = next(f for f in fits if f["weights"] == w and f["min_count"] == least)
+        ax.plot(vv, p0(vv, f["d"], f["v_r"], f["v_r"] * f["ratio"]), lw=1, color=f"C{i}",
+                label=f"{w} weights, bins ≥ {least}: v_r = {f['v_r']:.3f}, "
+                      f"v_c/v_r = {f['ratio']:.2f}")
+    s_vr, s_ratio = CROSSOVER[(0.1, 0.1)]
+    d = next(f["d"] for f in fits if f["weights"] == "equal" and f["min_count"] == 10)
+    ax.plot(vv, p0(vv, d, s_vr, s_vr * s_ratio), "--", lw=1, color="C3",
+            label=f"Table 5.3: v_r = {s_vr}, v_c/v_r = {s_ratio}")
+    ax.set_yscale("log")
+    ax.set_ylim(c["P"][z].min() / 3, c["P"].max() * 3)
+    ax.set_xlabel("v (m/s), one Cartesian component")
+    ax.set_ylabel("P(v) (s/m)")
+    ax.set_title("crossover T.5.32 at α = 1, φ = 0.53, L = 0.4 m: the fit's choices")
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(os.path.join(folder, "crossover_fits.png"), dpi=110)
+    plt.close(fig)
 
 
 def first_window(rows, box):

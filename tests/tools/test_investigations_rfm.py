@@ -1,7 +1,8 @@
 """tools/reproduce_investigations_rfm.py on data whose answer is known: g(R) to L/2 of uniform
 points is one, and clustered points hold their clusters' mates as excess neighbours; the
 refit of T.4.25 with D_f held finds the C of Weibull paths drawn with it, and a wrong D_f fits
-them badly. Also runs the script on the shipped folder.
+them badly; the crossover fit's weights leave v_r alone on counts drawn from T.5.32 itself and move
+it on counts of another shape. Also runs the script on the shipped folder.
 Run: python3 -m unittest tests/tools/test_investigations_rfm.py"""
 import math
 import os
@@ -85,6 +86,43 @@ class TailRefit(unittest.TestCase):
         self.assertGreater(wrong, 2.5 * right)
 
 
+class CrossoverChoices(unittest.TestCase):
+    @staticmethod
+    def histogram(alpha, n=1e8, seed=4):
+        """Poisson counts of n velocities in 800 bins on [−2, 2) m/s, drawn from T.5.32 with
+        v_r = 0.2, v_c = 0.4 m/s and the given asymptotic exponent"""
+        rng = np.random.default_rng(seed)
+        edges = np.linspace(-2.0, 2.0, 801)
+        v = 0.5 * (edges[1:] + edges[:-1])
+        mu = np.exp(-(v / 0.2) ** 2 / (1 + np.abs(v / 0.4) ** (2 - alpha)))
+        count = rng.poisson(mu / mu.sum() * n).astype(float)
+        width = n * (edges[1] - edges[0])
+        return dict(v=v, count=count, P=count / width, P_err=np.sqrt(np.maximum(count, 1)) / width)
+
+    @staticmethod
+    def pick(fits, weights, least):
+        return next(f for f in fits if f["weights"] == weights and f["min_count"] == least)
+
+    def test_weights_do_not_matter_where_the_form_holds(self):
+        fits = inv.crossover_choices(self.histogram(1.0))
+        for least in (10, 100, 1000):
+            for w in inv.WEIGHTS:
+                f = self.pick(fits, w, least)
+                self.assertLess(abs(f["v_r"] - 0.2), 3 * f["v_r_err"] + 1e-4, (w, least))
+                self.assertAlmostEqual(f["ratio"], 2.0, delta=0.2)
+
+    def test_weights_move_v_r_where_the_form_fails(self):
+        """counts from α = 0.8 fitted with α = 1: the two weightings part by many of the Poisson
+        fit's errors and by more than a tenth (on the exact form they agree within 3 %)"""
+        fits = inv.crossover_choices(self.histogram(0.8))
+        a, b = self.pick(fits, "Poisson", 10), self.pick(fits, "equal", 10)
+        self.assertGreater(abs(a["v_r"] - b["v_r"]), 5 * a["v_r_err"])
+        self.assertGreater(abs(a["v_r"] - b["v_r"]), 0.1 * a["v_r"])
+        exact = inv.crossover_choices(self.histogram(1.0))
+        a, b = self.pick(exact, "Poisson", 10), self.pick(exact, "equal", 10)
+        self.assertLess(abs(a["v_r"] - b["v_r"]), 0.03 * a["v_r"])
+
+
 class Shipped(unittest.TestCase):
     def test_runs_on_the_kept_tables(self):
         with tempfile.TemporaryDirectory() as tmp:
@@ -97,6 +135,8 @@ class Shipped(unittest.TestCase):
             self.assertIn("l06-s1 | 0.6 | 1–2 |", out)
             self.assertIn("needs ≈ 193 excess neighbours", out)
             self.assertTrue(os.path.exists(os.path.join(folder, "freepath_boxes.png")))
+            self.assertIn("equal weights, bins of ≥ 10: v_r = ", out)
+            self.assertTrue(os.path.exists(os.path.join(folder, "crossover_fits.png")))
 
 
 if __name__ == "__main__":
