@@ -77,6 +77,17 @@ class SeedInterval(unittest.TestCase):
         self.assertEqual(_ci(s["value"], s["err"], s["dof"]).split(" ± ")[1], "0.070")
 
 
+class ResolveText(unittest.TestCase):
+    def test_quotes_the_runs_of_the_budget_that_ran_them(self):
+        """a claim the quick budget should resolve, left open at the standard budget: the standard
+        runs are not the quick ones, so the quick runs' description is not quoted for them"""
+        at_standard = rfm.resolve_text("full", "standard", "quick", "3 s sampled")
+        self.assertEqual(at_standard, "the full budget, its runs longer than the standard budget's")
+        at_quick = rfm.resolve_text("standard", "quick", "quick", "3 s sampled")
+        self.assertEqual(at_quick,
+                         "the standard budget, its runs longer than the quick budget's (3 s sampled)")
+
+
 class SeedTwins(unittest.TestCase):
     """the value claims on a mean over seeds, at few and more seeds, with the seeds' scatter
     below, at and far above the within-run error"""

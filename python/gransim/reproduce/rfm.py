@@ -67,7 +67,7 @@ def _seeds_note(runs, key):
     if not s:
         return ""
     k = sum(x["which"] == "between seeds" for x in s)
-    return (f"; each the mean of {'/'.join(sorted({str(x['seeds']) for x in s}))} seeds, its error "
+    return (f"; each the mean of {' or '.join(sorted({str(x['seeds']) for x in s}))} seeds, its error "
             f"the larger of the scatter between seeds and the within-run error (between seeds for "
             f"{k} of {len(s)})")
 
@@ -428,13 +428,20 @@ NOTES = [
 ]
 
 
+def resolve_text(nxt, budget, need, why):
+    """what resolves a claim that the budget run should have resolved: longer runs than this
+    budget's; `why` describes the runs of the budget that should, so it is quoted only there"""
+    return (f"the {nxt} budget, its runs longer than the {budget} budget's"
+            + (f" ({why})" if budget == need else ""))
+
+
 def claims(d, budget):
     out = []
     for cid, topic, source, where, fn, (need, why) in CLAIMS:
         nxt = ORDER[min(ORDER.index(budget) + 1, 3)] if budget in ORDER else "full"
         resolve = (f"the {need} budget ({why})" if budget not in ORDER or ORDER.index(budget) <
                    ORDER.index(need) else
-                   f"the {nxt} budget, its runs longer than the {need} budget's ({why})")
+                   resolve_text(nxt, budget, need, why))
         sw = sweep_for(d, cid, SWEEP[cid])
         try:
             r = fn(d, sw)

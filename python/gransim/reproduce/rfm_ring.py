@@ -85,7 +85,7 @@ def _seeds(c):
     """'' when each size ran from one seed; else how its moments' errors were chosen"""
     if "seeds" not in c or c["seeds"].max() < 2:
         return ""
-    k = "/".join(f"{x:g}" for x in sorted(set(c["seeds"])))
+    k = " or ".join(f"{x:g}" for x in sorted(set(c["seeds"])))
     return (f"; each size's ⟨|v|^m⟩ the mean of {k} seeds, its error the larger of the scatter "
             "between seeds and the within-run error")
 
