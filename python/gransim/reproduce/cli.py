@@ -174,9 +174,10 @@ def main(argv=None):
             ("written", datetime.datetime.now().strftime("%Y-%m-%d %H:%M"))]
     planned = planned_runs(a.dir)
     if unfinished or (planned and runs < planned):
+        unit = "taps" if a.study == "tapping" else "samples"
         meta.append(("in progress", f"{runs - len(unfinished)} of {planned or '?'} planned runs "
-                     "complete; this report covers the taps there are so far"
-                     + (": " + "; ".join(unfinished) if unfinished else "")))
+                     f"complete; this report covers the {unit} there are so far"
+                     + ("; under way: " + "; ".join(unfinished) if unfinished else "")))
     report.write_report(a.dir, title, intro, meta, claims, notes, a.study, facts)
     series.write(a.dir, a.study, a.budget, meta, inputs)
     print(f"reproduce_report: {len(claims)} claims → {a.dir}/report.md, report.html, claims.csv")
