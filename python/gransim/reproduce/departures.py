@@ -108,8 +108,7 @@ RFM_ROWS = [
 
 HEAD = ("The runs depart from what the source printed where the printed value cannot be run "
         "as it stands or where the program needs a choice the source does not make. Effects "
-        "are the difference made by the source's choice, one change at a time "
-        "(φ̄ with it − φ̄ as run, ± one standard error)")
+        "are the difference made by the source's choice, one change at a time")
 
 
 def _or(values, fmt):
@@ -151,8 +150,8 @@ def rows(study, facts=None):
 
 
 def head(study, facts=None):
-    text = HEAD + (":" if study == "tapping" else "; the thesis' claims are not about φ̄, so the "
-                   "effect is on what the claims measure:")
+    text = HEAD + (" (φ̄ with it − φ̄ as run, ± one standard error):" if study == "tapping" else
+                   ", on what the claims measure:")
     if study == "tapping" and facts and facts.get("grains") and facts["grains"] != [1184]:
         n = " or ".join(str(g) for g in facts["grains"])
         text = (f"These runs tap a pile of {n} grains, not the paper's 1184: the effects below "
