@@ -275,12 +275,18 @@ def draw_crossover(folder, name, c, fits):
             label=f"Table 5.3: v_r = {s_vr}, v_c/v_r = {s_ratio}")
     ax.set_yscale("log")
     ax.set_ylim(c["P"][z].min() / 3, c["P"].max() * 3)
-    ax.set_xlabel("v (m/s), one Cartesian component")
-    ax.set_ylabel("P(v) (s/m)")
-    ax.set_title("crossover T.5.32 at α = 1, φ = 0.53, L = 0.4 m: the fit's choices")
+    save(fig, ax, os.path.join(folder, "crossover_fits.png"), "v (m/s), one Cartesian component",
+         "P(v) (s/m)", "crossover T.5.32 at α = 1, φ = 0.53, L = 0.4 m: the fit's choices")
+
+
+def save(fig, ax, path, xlabel, ylabel, title):
+    import matplotlib.pyplot as plt
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.set_title(title)
     ax.legend(fontsize=7)
     fig.tight_layout()
-    fig.savefig(os.path.join(folder, "crossover_fits.png"), dpi=110)
+    fig.savefig(path, dpi=110)
     plt.close(fig)
 
 
@@ -309,13 +315,8 @@ def draw(folder, rows):
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_ylim(1e-6, 1e5)
-    ax.set_xlabel("l (m)")
-    ax.set_ylabel("P_l (1/m)")
-    ax.set_title("free paths, φ = 0.53, ε = 0.1: the tail against the box")
-    ax.legend(fontsize=7)
-    fig.tight_layout()
-    fig.savefig(os.path.join(folder, "freepath_boxes.png"), dpi=110)
-    plt.close(fig)
+    save(fig, ax, os.path.join(folder, "freepath_boxes.png"), "l (m)", "P_l (1/m)",
+         "free paths, φ = 0.53, ε = 0.1: the tail against the box")
 
 
 def main(argv):
