@@ -330,7 +330,7 @@ def c_settle(d, sw="ring_n512"):
         ax.plot([], [], "k-", lw=1, label="running average from the end of the relaxation")
         _ax(ax, f"1D ring, N = {runs[0]['particles']:g}, ε = {runs[0]['eps_n']:g}: T(t) "
             "(thesis Figs. 2.7–2.8)", "t (s)", "T (m²/s²)", fs=7)
-    return dict(measured=f"{len(series)} seed(s), {span:.3g} s sampled after {series[0][2][0]:.3g} s: "
+    return dict(measured=f"{len(series)} seed{'s' if len(series) > 1 else ''}, {span:.3g} s sampled after {series[0][2][0]:.3g} s: "
                 f"τ_int of T {np.mean(taus):.2g} s; the running average stays inside its final 95 % "
                 "interval from t = " + ", ".join(f"{x:.3g}" for x in settle) + " s; a 200-s average's "
                 "relative error (from Var T and τ_int) " + ", ".join(f"{100 * x:.2g} %" for x in rel200),
