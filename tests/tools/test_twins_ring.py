@@ -15,7 +15,7 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "..", "python"))
 
-from gransim.reproduce.rfm_ring import (XI2_2, XI_M, ZETA, _by_size, vpdf_test,  # noqa: E402
+from gransim.reproduce.rfm_ring import (XI2_2, XI_M, ZETA, _by_size, slope_dof, vpdf_test,  # noqa: E402
                                         zeta_test)
 from gransim.reproduce.rfm_ring_eps import (XI1_E, XI9_E, collapse_test, settle_test,  # noqa: E402
                                             xi2_fits, xi2eps_test, xim_elastic_test)
@@ -218,6 +218,18 @@ class Settle(Twin):
         e = 0.01 / math.sqrt(10)
         a, d = self.rates(draw(0.0, (0, 4 * e, 8 * e)))
         self.assertGreater(d, 0.8)
+
+
+class SlopeDof(unittest.TestCase):
+    def test_two_sizes_of_three_seeds_each(self):
+        """equal errors of 2 degrees of freedom each: the slope's error has 4; a known error at
+        one size leaves the other's 2 alone to carry it (more than 2, as that error counts too)"""
+        x = np.log([398.0, 1000.0])
+        self.assertAlmostEqual(slope_dof(x, [0.1, 0.1], [2, 2]), 4.0)
+        self.assertIsNone(slope_dof(x, [0.1, 0.1], [None, None]))
+        one = slope_dof(x, [0.1, 0.1], [2, None])
+        self.assertGreater(one, 2.0)
+        self.assertAlmostEqual(one, 8.0)
 
 
 if __name__ == "__main__":

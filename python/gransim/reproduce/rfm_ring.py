@@ -11,7 +11,7 @@ import numpy as np  # noqa: E402
 
 from .rfm_conditions import THESIS  # noqa: E402
 from .verdicts import (DISAGREES, P_KEEP, P_REJECT, UNRESOLVED, Verdict, chi2_sf,  # noqa: E402
-                       compare_value, decide, phi, power_two_sided)
+                       compare_value, decide, phi, power_two_sided, t_sf2)
 
 from .rfm_data import (CUT, N_THESIS, Missing, _csv, _runs, _ci, _gate, _chart, _ax, _wfit,  # noqa: E402
                        seed_mean)
@@ -362,21 +362,39 @@ def vpdf_test(raw, eps):
         n = np.array(sorted(r), float)
         y, e = np.array([r[k]["value"] for k in n]), np.array([r[k]["err"] for k in n])
         b, eb, _ = _wfit(np.log(n), y, e)
-        fits[m] = (b, eb, m * (XI2_2 - xm), n, y, e)
+        dof = slope_dof(np.log(n), e, [r[k].get("dof") for k in n])
+        fits[m] = (b, eb, m * (XI2_2 - xm), n, y, e, dof)
     # the moment whose test has the most power against the thesis' size (chosen on the errors
     # alone, before the slope is looked at)
-    m = max(fits, key=lambda k: power_two_sided(fits[k][2], fits[k][1]))
+    m = max(fits, key=lambda k: power_two_sided(fits[k][2], fits[k][1], dof=fits[k][6]))
     b, eb, size = fits[m][:3]
-    p = 2.0 * (1.0 - phi(abs(b) / eb))
+    dof = fits[m][6]
+    p = 2.0 * (1.0 - phi(abs(b) / eb)) if dof is None else t_sf2(abs(b) / eb, dof)
 
     def at(k):
-        return power_two_sided(size, eb / math.sqrt(k))
+        return power_two_sided(size, eb / math.sqrt(k), dof=dof)
     v = decide(p, at(1.0), "the rescaled PDFs P(v/⟨v²⟩^½) collapse: ⟨|v|^m⟩/⟨v²⟩^(m/2) is the "
                "same at every N", f"the thesis' multi-scaling: slope m(ξ₂/2 − ξ_m/m) = {size:.3g} "
                f"for m = {m} (ξ₂/2 ≃ {XI2_2}, ξ_{m}/{m} ≃ {XI_M[m]})",
                f"slope of ln(⟨|v|^{m}⟩/⟨v²⟩^{m / 2:g}) against ln N: {b:.3g} ± {eb:.2g} "
-               f"({abs(b) / eb:.1f}σ from a collapse)", math.nan, feature=True, power_at=at)
+               f"({abs(b) / eb:.1f}σ from a collapse"
+               + (f", Student's t of {dof:.1f} degrees of freedom)" if dof else ")"),
+               math.nan, feature=True, power_at=at)
     return v, m, fits
+
+
+def slope_dof(x, e, dofs):
+    """Welch–Satterthwaite degrees of freedom of a weighted line's slope whose points' errors
+    come from few seeds (dofs: each point's, None where its error is not a scatter): None when
+    every error is known"""
+    w = 1.0 / np.asarray(e, float) ** 2
+    c = w * (x - np.sum(w * x) / np.sum(w))
+    part = (c / np.sum(c * (x - np.sum(w * x) / np.sum(w)))) ** 2 * np.asarray(e, float) ** 2
+    nu = [d for d in dofs if d]
+    if not nu:
+        return None
+    den = sum(v * v / d for v, d in zip(part, dofs) if d)
+    return float(np.sum(part) ** 2 / den) if den > 0 else None
 
 
 def c_vpdf(d, sw="ring"):
@@ -385,6 +403,7 @@ def c_vpdf(d, sw="ring"):
     eps = eps_values(raw)[0]
     v, m, fits = vpdf_test(raw, eps)
     b, eb, size, n = fits[m][:4]
+    dof = fits[m][6]
     v = _gate(v, runs)
     sizes = ", ".join(f"{x:g}" for x in n)
 
@@ -406,7 +425,7 @@ def c_vpdf(d, sw="ring"):
         _ax(a1, f"rescaled velocity PDFs, ε = {eps:g} (thesis Fig. 3.6a)", "v/⟨v²⟩^½",
             "⟨v²⟩^½ P(v)", False, True, 7)
         for k in XI_M:
-            bk, ebk, sz, nk, yk, ek = fits[k]
+            bk, ebk, sz, nk, yk, ek, _ = fits[k]
             a2.errorbar(nk, np.exp(yk - yk.mean()), 1.96 * ek * np.exp(yk - yk.mean()), fmt="o",
                         capsize=3, label=f"m = {k}: slope {bk:.3f} ± {1.96 * ebk:.3f}")
             nn = np.geomspace(nk.min(), nk.max(), 20)
@@ -416,7 +435,7 @@ def c_vpdf(d, sw="ring"):
         a2.axhline(1, color="k", ls=":", label="a collapse")
         _ax(a2, f"⟨|v|^m⟩/⟨v²⟩^(m/2), each over its mean (tested: m = {m})", "N",
             "relative value", True, True, 7)
-    return dict(measured=f"slope of ln(⟨|v|^{m}⟩/⟨v²⟩^{m / 2:g}) over ln N = {_ci(b, eb)} (95 %) "
+    return dict(measured=f"slope of ln(⟨|v|^{m}⟩/⟨v²⟩^{m / 2:g}) over ln N = {_ci(b, eb, dof)} (95 %) "
                 f"over N = {sizes} at ε = {eps:g}; thesis {size:.3g}; m = {m} of "
                 f"{', '.join(map(str, XI_M))} has the most power", verdict=v,
                 chart=_chart(d, "v-pdf", draw, wide=True),
