@@ -28,7 +28,7 @@ def _by_size(c):
     if all(len(g) == 1 for g in groups.values()):
         return c
     pairs = [p for p in (("v_moment", "v_err"), ("R_moment", "R_err")) if p[0] in c]
-    out = {k: [] for k in ("dimension", "eps_n", "N", "m", "seeds")}
+    out = {k: [] for k in ("dimension", "eps_n", "N", "m", "seeds", "dof")}
     out.update({k: [] for p in pairs for k in p})
     for (dim, e, n, m), g in groups.items():
         for k, x in zip(("dimension", "eps_n", "N", "m", "seeds"), (dim, e, n, m, len(g))):
@@ -37,7 +37,16 @@ def _by_size(c):
             s = seed_mean(c[val][g], c[err][g])
             out[val].append(s["value"])
             out[err].append(s["err"])
+        out["dof"].append(math.nan if len(g) < 2 else len(g) - 1)
     return {k: np.array(v, float) for k, v in out.items()}
+
+
+def point_dofs(c, k):
+    """the degrees of freedom of the errors of a moments() table's rows k (seeds − 1; None for
+    a row of one run, whose error is the run's own)"""
+    if "dof" not in c:
+        return [None] * int(np.count_nonzero(k))
+    return [None if not np.isfinite(x) else float(x) for x in c["dof"][k]]
 
 
 def _table(d, sw):
@@ -56,7 +65,8 @@ def moments(d, sw):
 def exponents(c, eps, ms, col="v_moment", n_from=N_THESIS):
     """the exponents of col ∝ N^(−x) at ε (moments' or gaps' ⟨·^m⟩ of moments()) fitted over the
     sizes N ≥ n_from (all when fewer than two): the sizes, whether they are the thesis', and
-    {m: (x, σ_x, ln amplitude, χ², degrees of freedom)}"""
+    {m: (x, σ_x, ln amplitude, χ², the fit's degrees of freedom, the t test's on x (slope_dof;
+    None when no size's error is a seed scatter))}"""
     err = {"v_moment": "v_err", "R_moment": "R_err"}[col]
     sel = (c["dimension"] == 1) & (np.abs(c["eps_n"] - eps) < 1e-9)
     ns = sorted(set(c["N"][sel]))
@@ -72,7 +82,8 @@ def exponents(c, eps, ms, col="v_moment", n_from=N_THESIS):
         if len(x) < 2:
             raise Missing(f"fewer than two sizes with ⟨·^{m}⟩ and its error at ε = {eps:g}")
         b, e, a = _wfit(x, y, s)
-        out[m] = (-b, e, a, float((((y - a - b * x) / s) ** 2).sum()), len(x) - 2)
+        out[m] = (-b, e, a, float((((y - a - b * x) / s) ** 2).sum()), len(x) - 2,
+                  slope_dof(x, s, point_dofs(c, k)))
     return use, inside, out
 
 
@@ -92,7 +103,8 @@ def _seeds(c):
 
 def _xi(d, sw="ring"):
     """ξ_m of ⟨|v|^m⟩ ∝ N^(−ξ_m), refitted over the thesis' sizes N ≥ 398 (all if fewer than 2);
-    each size's moment the mean over its seeds"""
+    each size's moment the mean over its seeds; xi[m] = (ξ_m, σ, ln amplitude, the t test's
+    degrees of freedom or None)"""
     runs = _runs(d, sw)
     c = _by_size(_csv(os.path.join(d, "analysis", sw, "moments_vs_N.csv"))[0])
     sel = (c["dimension"] == 1) & (c["eps_n"] == c["eps_n"][c["dimension"] == 1][0])
@@ -105,8 +117,9 @@ def _xi(d, sw="ring"):
     xi = {}
     for m in range(1, 13):
         k = sel & (c["m"] == m) & np.isin(c["N"], use) & (c["v_err"] > 0)
-        b, e, a = _wfit(np.log(c["N"][k]), np.log(c["v_moment"][k]), c["v_err"][k] / c["v_moment"][k])
-        xi[m] = (-b, e, a)
+        x, s = np.log(c["N"][k]), c["v_err"][k] / c["v_moment"][k]
+        b, e, a = _wfit(x, np.log(c["v_moment"][k]), s)
+        xi[m] = (-b, e, a, slope_dof(x, s, point_dofs(c, k)))
     sizes = ", ".join(f"{n:g}" for n in use)
 
     def outside(v):
@@ -120,10 +133,10 @@ def _xi(d, sw="ring"):
 
 def c_xi2(d, sw="ring"):
     runs, c, sel, use, sizes, xi, outside = _xi(d, sw)
-    x2, e2, a2 = xi[2]
+    x2, e2, a2, dof2 = xi[2]
     v = outside(_gate(compare_value(x2, e2, 0.53, tolerance=0.005, alternative=0.01,
-                                           precision="≃ 0.53 printed to two decimals",
-                                           fmt="{:.3g}"), runs))
+                                    precision="≃ 0.53 printed to two decimals", fmt="{:.3g}",
+                                    dof=dof2), runs))
 
     def draw(ax):
         k = sel & (c["m"] == 2)
@@ -132,12 +145,12 @@ def c_xi2(d, sw="ring"):
         nn = np.geomspace(min(c["N"][k]) * 0.8, max(max(c["N"][k]), 1e4) * 1.2, 50)
         nc = math.exp(np.mean(np.log(use)))
         yc = math.exp(a2) * nc ** -x2
-        ax.plot(nn, yc * (nn / nc) ** -x2, "C0", label=f"fit ξ₂ = {_ci(x2, e2)}")
+        ax.plot(nn, yc * (nn / nc) ** -x2, "C0", label=f"fit ξ₂ = {_ci(x2, e2, dof2)}")
         ax.plot(nn, yc * (nn / nc) ** -0.528, "C3--", label="thesis N^−0.528")
         ax.plot(nn, yc * (nn / nc) ** (-2 / 3), "k:", label="mean field N^−2/3")
         ax.axvspan(nn[0], N_THESIS, color="grey", alpha=0.15, label="sizes the thesis ignored")
         _ax(ax, "1D ring, L′ = 1 m, ε = 0.1 (thesis Figs. 3.1–3.2)", "N", "⟨v²⟩ (m²/s²)", True, True)
-    return dict(measured=f"ξ₂ = {_ci(x2, e2)} (95 %) over N = {sizes}" + _seeds(c), verdict=v,
+    return dict(measured=f"ξ₂ = {_ci(x2, e2, dof2)} (95 %) over N = {sizes}" + _seeds(c), verdict=v,
                 chart=_chart(d, "xi2", draw), values=dict(xi2=x2, xi2_err=e2, N_min=min(use),
                                                           N_max=max(use)))
 
@@ -148,7 +161,7 @@ def c_xim(d, sw="ring"):
     # Fig. 3.4b read to three decimals (± 0.0005 at each end); the alternative: no decrease
     v = compare_value(y[1] - y[0], math.hypot(*e), 0.228 - 0.264, tolerance=0.001,
                       alternative=0.036, precision="0.264 and 0.228 read to three decimals",
-                      fmt="{:.3g}")
+                      fmt="{:.3g}", dof=fewer_dof(xi[1][3], xi[9][3]))
     v.alternative = "no decrease of ξ_m/m (0.036 from the thesis' change)"
     v = outside(_gate(Verdict(v.verdict, "ξ₉/9 − ξ₁ : " + v.reason, v.null, v.alternative,
                               v.power, v.scale_, v.power_at), runs))
@@ -160,7 +173,7 @@ def c_xim(d, sw="ring"):
         ax.plot([1, 9], [0.264, 0.228], "C3s--", label="thesis Fig. 3.4b (ε = 0.001): 0.264 → 0.228")
         ax.axhline(1 / 3, color="k", ls=":", label="mean field 1/3")
         _ax(ax, f"1D ring, ε = 0.1, N = {sizes}", "m", "ξ_m / m")
-    return dict(measured=f"ξ₁ = {_ci(*xi[1][:2])}, ξ₉/9 = {_ci(y[1], e[1])} (95 %) over N = {sizes}"
+    return dict(measured=f"ξ₁ = {_ci(*xi[1][:2], xi[1][3])}, ξ₉/9 = {_ci(y[1], e[1], xi[9][3])} (95 %) over N = {sizes}"
                 + _seeds(c),
                 verdict=v, chart=_chart(d, "xi-m", draw), values=dict(xi1=y[0], xi9_9=y[1]))
 
@@ -273,10 +286,28 @@ def bonferroni(parts, null, alt, text, joint=False):
                   math.nan, power_at=at if sized else None)
 
 
-def _two_sided(x, e, target, tol=0.0):
-    """P(a normal estimate x ± e lies this far beyond target ± tol)"""
+def _two_sided(x, e, target, tol=0.0, dof=None):
+    """P(an estimate x ± e lies this far beyond target ± tol): normal, or Student's t when e is
+    a scatter of dof degrees of freedom"""
     z = max(abs(x - target) - tol, 0.0) / e
+    if dof is not None:
+        return t_sf2(z, dof) if z > 0 else 1.0
     return 2.0 * (1.0 - phi(z))
+
+
+def fewer_dof(*dofs):
+    """the degrees of freedom of a difference of estimates fitted to the same seeds: the fewest
+    of theirs (conservative), None when every error is known"""
+    d = [x for x in dofs if x is not None]
+    return min(d) if d else None
+
+
+def with_known(e, dof, se):
+    """Welch–Satterthwaite degrees of freedom of hypot(e, se), e a scatter of dof degrees of
+    freedom and se a known error (None when e is known too)"""
+    if dof is None:
+        return None
+    return (e * e + se * se) ** 2 / (e ** 4 / dof)
 
 
 # Table 3.1 (ε = 0.1): ζ_m measured, its ±, and the uniform bisection's ln(m + 1)/ln 2 (T.3.38)
@@ -289,12 +320,14 @@ def zeta_test(c, eps):
     use, inside, z = exponents(c, eps, range(1, 7), "R_moment")
     parts, rows = [], []
     for m, (src, se) in ZETA.items():
-        x, e = z[m][:2]
+        x, e, dof = z[m][0], z[m][1], z[m][5]
         s = math.hypot(e, se)
         alt = abs(src - math.log(m + 1) / math.log(2))
-        parts.append((_two_sided(x, s, src), lambda a, e=e, se=se, alt=alt: (
-            lambda k: power_two_sided(alt, math.hypot(e / math.sqrt(k), se), alpha=a))))
-        rows.append(f"ζ{m} = {_ci(x, e)} (thesis {src:g} ± {se:g}, {abs(x - src) / s:.1f}σ)")
+        parts.append((_two_sided(x, s, src, dof=with_known(e, dof, se)),
+                      lambda a, e=e, se=se, alt=alt, dof=dof: (
+            lambda k: power_two_sided(alt, math.hypot(e / math.sqrt(k), se), alpha=a,
+                                      dof=with_known(e / math.sqrt(k), dof, se)))))
+        rows.append(f"ζ{m} = {_ci(x, e, dof)} (thesis {src:g} ± {se:g}, {abs(x - src) / s:.1f}σ)")
     # the thesis' ± is taken as its standard error: it enters as the source's error, not as a
     # tolerance
     v = bonferroni(parts, "ζ_m = Table 3.1's value (its ± the thesis' standard error), m = 2…5",
@@ -324,7 +357,7 @@ def c_zeta(d, sw="ring"):
                     label="thesis Table 3.1 (± as 1σ, 95 % bars)")
         ax.plot(m, np.log(m + 1) / math.log(2), "k:", label="uniform bisection ln(m+1)/ln 2")
         _ax(ax, f"gap moments ⟨R^m⟩ ∝ N^−ζ_m, ε = {eps:g}, N = {sizes}", "m", "ζ_m")
-    return dict(measured=", ".join(f"ζ{m} = {_ci(*z[m][:2])}" for m in range(1, 6))
+    return dict(measured=", ".join(f"ζ{m} = {_ci(*z[m][:2], z[m][5])}" for m in range(1, 6))
                 + f" (95 %) over N = {sizes}" + _seeds(c).replace("⟨|v|^m⟩", "⟨R^m⟩"), verdict=v,
                 chart=_chart(d, "zeta-m", draw),
                 values={f"zeta{m}": z[m][0] for m in range(1, 6)})

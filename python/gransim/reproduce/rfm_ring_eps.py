@@ -12,7 +12,8 @@ import numpy as np  # noqa: E402
 from .rfm_conditions import THESIS, misses, plan_conditions  # noqa: E402
 from .rfm_data import (Missing, _ax, _chart, _ci, _gate, _runs, pooled, seed_mean,  # noqa: E402
                        t_blocks)
-from .rfm_ring import _seeds, _two_sided, bonferroni, eps_values, exponents, moments  # noqa: E402
+from .rfm_ring import (_seeds, _two_sided, bonferroni, eps_values, exponents, fewer_dof,  # noqa: E402
+                       moments)
 from .verdicts import (UNRESOLVED, Verdict, chi2_consistent, chi2_sf, compare_value,  # noqa: E402
                        decide, phi, power_two_sided, t_sf2)
 
@@ -64,12 +65,13 @@ def _others(d, cid, pts, sw, v):
 
 
 def xi2_fits(tables):
-    """ξ₂ at every ε of {ε: moments() table}: {ε: dict(use, inside, xi, err, a, chi2, dof)}"""
+    """ξ₂ at every ε of {ε: moments() table}: {ε: dict(use, inside, xi, err, a, chi2, dof,
+    tdof)}, dof the fit's and tdof the t test's on ξ₂ (None when the errors are known)"""
     fit = {}
     for e, c in sorted(tables.items()):
         use, inside, x = exponents(c, e, [2])
         fit[e] = dict(c=c, use=use, inside=inside, xi=x[2][0], err=x[2][1], a=x[2][2],
-                      chi2=x[2][3], dof=x[2][4])
+                      chi2=x[2][3], dof=x[2][4], tdof=x[2][5])
     return fit
 
 
@@ -91,13 +93,16 @@ def xi2eps_test(fit):
     for e, f in fit.items():
         if not f["inside"]:
             continue
-        x, s = f["xi"], f["err"]
+        x, s, dof = f["xi"], f["err"], f.get("tdof")
         if e in low:  # the plateau: 0.53 to two decimals, a failure at 0.01 (as for xi2)
-            parts.append((_two_sided(x, s, XI2, XI2_TOL), lambda a, s=s: (
-                lambda k: power_two_sided(XI2_ALT, s / math.sqrt(k), XI2_TOL, alpha=a))))
+            parts.append((_two_sided(x, s, XI2, XI2_TOL, dof=dof), lambda a, s=s, dof=dof: (
+                lambda k: power_two_sided(XI2_ALT, s / math.sqrt(k), XI2_TOL, alpha=a, dof=dof))))
         else:  # eq. 3.9's bound ξ₂ < 2/3: one-sided, the thesis sizes no gap
-            parts.append((1.0 - phi((x - MEAN_FIELD) / s), None))
-        rows.append(f"ε = {e:g}: {_ci(x, s)}")
+            z = (x - MEAN_FIELD) / s
+            one = 1.0 - phi(z) if dof is None else (
+                0.5 * t_sf2(z, dof) if z > 0 else 1.0 - 0.5 * t_sf2(-z, dof))
+            parts.append((one, None))
+        rows.append(f"ε = {e:g}: {_ci(x, s, dof)}")
     return bonferroni(parts, f"ξ₂ = {XI2} ± {XI2_TOL} for ε ≤ {PLATEAU:g} and ξ₂ ≤ 2/3 above",
                       f"ξ₂ {XI2_ALT} off 0.53 at one ε ≤ {PLATEAU:g} (0.53 printed to two "
                       "decimals)", "ξ₂ " + "; ".join(rows) + f" (95 %; plateau points against "
@@ -122,7 +127,7 @@ def c_xi2eps(d, sw="ring_eps"):
         ax.set_xlim(0, 1)
         _ax(ax, "ξ₂ of ⟨v²⟩ ∝ N^−ξ₂ over ε, N ≥ 398 (thesis Fig. 3.2)", "ε", "ξ₂")
     return dict(measured="ξ₂ at " + "; ".join(
-                f"ε = {e:g}: {_ci(f['xi'], f['err'])} over N = "
+                f"ε = {e:g}: {_ci(f['xi'], f['err'], f['tdof'])} over N = "
                 + ", ".join(f"{n:g}" for n in f["use"]) for e, f in fit.items()) + " (95 %)",
                 verdict=v, chart=_chart(d, "xi2-eps", draw),
                 values={f"xi2_eps{e:g}": f["xi"] for e, f in fit.items()})
@@ -180,7 +185,8 @@ def xim_elastic_test(c, e):
     y, s = xi[9][0] / 9 - xi[1][0], math.hypot(xi[1][1], xi[9][1] / 9)
     # Fig. 3.4a read to three decimals (± 0.0005 at each end); the alternative: no decrease
     v = compare_value(y, s, XI9_E - XI1_E, tolerance=0.001, alternative=XI1_E - XI9_E,
-                      precision="0.328 and 0.309 read to three decimals", fmt="{:.3g}")
+                      precision="0.328 and 0.309 read to three decimals", fmt="{:.3g}",
+                      dof=fewer_dof(xi[1][5], xi[9][5]))
     v = Verdict(v.verdict, f"ξ₉/9 − ξ₁ at ε = {e:g}: " + v.reason, v.null,
                 f"no decrease of ξ_m/m ({XI1_E - XI9_E:.3g} from the thesis' change)", v.power,
                 v.scale_, v.power_at)
@@ -220,7 +226,7 @@ def c_xim_elastic(d, sw="ring_eps"):
         ax.plot([1, 9], [0.264, 0.228], "C3^:", label="thesis Fig. 3.4b (ε = 0.001): 0.264 → 0.228")
         ax.axhline(1 / 3, color="k", ls=":", label="mean field 1/3")
         _ax(ax, f"ξ_m/m over ε (thesis Fig. 3.5), N = {sizes}", "m", "ξ_m / m", fs=7)
-    return dict(measured=f"at ε = {e:g}: ξ₁ = {_ci(*xi[1][:2])}, ξ₉/9 = {_ci(xi[9][0] / 9, xi[9][1] / 9)}"
+    return dict(measured=f"at ε = {e:g}: ξ₁ = {_ci(*xi[1][:2], xi[1][5])}, ξ₉/9 = {_ci(xi[9][0] / 9, xi[9][1] / 9, xi[9][5])}"
                 f" (95 %) over N = {sizes}; the thesis' extreme is ε = {ELASTIC:g}" + _seeds(c),
                 verdict=v, chart=_chart(d, "xi-m-elastic", draw),
                 values=dict(eps=e, xi1=xi[1][0], xi9_9=xi[9][0] / 9))

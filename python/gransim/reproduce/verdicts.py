@@ -573,11 +573,14 @@ def _betacf(a, b, x):
 
 
 def t_sf2(t, dof):
-    """P(|T_dof| > t), Student's t: the regularized incomplete beta I_{ν/(ν+t²)}(ν/2, 1/2)"""
+    """P(|T_dof| > t), Student's t: the regularized incomplete beta I_{ν/(ν+t²)}(ν/2, 1/2); the
+    normal law once ν is so large that ν/(ν+t²) rounds to 1 (the two then agree to < 10⁻⁹)"""
     x = dof / (dof + t * t)
     a, b = 0.5 * dof, 0.5
     if x <= 0:
         return 0.0
+    if dof > 1e8 or x >= 1.0:
+        return 2.0 * (1.0 - phi(abs(t)))
     front = math.exp(math.lgamma(a + b) - math.lgamma(a) - math.lgamma(b)
                      + a * math.log(x) + b * math.log1p(-x))
     if x < (a + 1.0) / (a + b + 2.0):
