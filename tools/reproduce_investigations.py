@@ -25,7 +25,7 @@ import numpy as np  # noqa: E402
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "python"))
 from gransim.reproduce.batch import batch_err  # noqa: E402
-from gransim.reproduce.verdicts import below_bound, t_sf2  # noqa: E402
+from gransim.reproduce.verdicts import P_REJECT, below_bound, t_of, t_sf2  # noqa: E402
 
 HIGH_F_LEVEL = 0.821  # the paper's φ̄ at high rotation frequency (Fig. 6a), printed to 3 decimals
 HALVES_MEAN, HALVES_SIGMA = 1e-4, 0.01  # the paper's bounds on the test square's columns
@@ -217,14 +217,54 @@ def high_f(runs, folder):
     return list(zip(xs, ms, es, dofs))
 
 
-def halves(runs):
-    """one long run's columns against the whole test square"""
+def halves_chart(r, cut, folder):
+    """the left column's relative excess over the square: 50-tap means, and the whole mean with
+    its one-sided 99.75 % limits as the run grew, against the paper's bound"""
+    p, pl = r["phi"][1 + cut:], r["left"][1 + cut:]
+    d = (pl - p) / p
+    fig, (a, b) = plt.subplots(1, 2, figsize=(9.6, 3.6), dpi=110)
+    m = 50
+    k = len(d) // m
+    a.plot(cut + 1 + np.arange(len(d)), 1e3 * d, ".", ms=1.5, color="0.7", label="each tap")
+    a.plot(cut + 1 + m * (np.arange(k) + 0.5), 1e3 * d[:k * m].reshape(k, m).mean(axis=1), "o-",
+           ms=3, label=f"{m}-tap means")
+    ns, ms_, lo, hi = [], [], [], []
+    for n in range(100, len(d) + 1, 50):
+        mean, e, dof = batch_err(d[:n])
+        t = t_of(P_REJECT / 2, dof) * e  # below_bound's limit: 1 % over two columns, two-sided
+        ns.append(cut + n)
+        ms_.append(1e3 * mean)
+        lo.append(1e3 * (mean - t))
+        hi.append(1e3 * (mean + t))
+    for ax in (a, b):
+        ax.axhspan(-1e3 * HALVES_MEAN, 1e3 * HALVES_MEAN, color="tab:orange", alpha=0.4,
+                   label="the paper's bound |Δφ|/φ < 10⁻⁴")
+        ax.axhline(0, color="0.3", lw=0.6)
+        ax.set_xlabel("tap")
+    b.fill_between(ns, lo, hi, alpha=0.3,
+                   label="one-sided 99.75 % limits (Student's t, batch means)")
+    b.plot(ns, ms_, "-", label="mean of the taps so far")
+    a.set_ylabel("(φ_left − φ) / φ  (10⁻³)")
+    b.set_ylabel("mean (φ_left − φ) / φ  (10⁻³)")
+    a.set_title(f"{r['name']}: the left column, tap by tap", fontsize=9)
+    b.set_title("its mean as the run grew", fontsize=9)
+    a.legend(fontsize=7, loc="lower right")
+    b.legend(fontsize=7, loc="lower right")
+    fig.tight_layout()
+    fig.savefig(os.path.join(folder, "halves.png"))
+    plt.close(fig)
+
+
+def halves(runs, folder=None):
+    """one long run's columns against the whole test square (a chart in folder unless None)"""
     long = [r for r in runs.values() if r["start"] == "long"]
     out = {}
     for r in long:
         p, pl, pr = r["phi"][1:], r["left"][1:], r["right"][1:]  # tap 0: the settled pile
         cut = mser(p)
         print(f"## halves, {r['name']}: {len(p)} of {r['taps']} taps, cut {cut}")
+        if folder:
+            halves_chart(r, cut, folder)
         for side, c in (("left", pl), ("right", pr)):
             m, e, dof = batch_err(((c - p) / p)[cut:])
             v = below_bound(abs(m), e, HALVES_MEAN, dof=dof, family=2, folded=True)
@@ -245,10 +285,13 @@ def halves(runs):
 def main():
     folder = sys.argv[1] if len(sys.argv) > 1 else os.path.join(ROOT, "docs", "reproduction",
                                                                  "investigations")
+    if not os.path.isfile(os.path.join(folder, "runs.csv")):
+        sys.exit(f"reproduce_investigations: {os.path.join(folder, 'runs.csv')}: no such file "
+                 "(FOLDER must hold runs.csv and series/)")
     runs = load(folder)
     weak_tap(runs, folder)
     high_f(runs, folder)
-    halves(runs)
+    halves(runs, folder)
 
 
 if __name__ == "__main__":

@@ -76,7 +76,9 @@ class Shipped(unittest.TestCase):
                                                                "reproduce_investigations.py"),
                                   folder], capture_output=True, text=True, check=True).stdout
             self.assertIn("gp2-annealed − gp2-loose", out)
-            self.assertTrue(os.path.exists(os.path.join(folder, "weak_tap.png")))
+            for chart in ("weak_tap.png", "high_f.png", "halves.png"):
+                self.assertTrue(os.path.exists(os.path.join(folder, chart)), chart)
+            self.assertIn("## halves, halves-2hz: 1500 of 1500 taps", out)
 
 
 if __name__ == "__main__":
