@@ -32,8 +32,10 @@ class FakeStudy:
     def __init__(self, rows, folder):
         self.summary, self.folder = rows, folder
         self.quadron = {"v_g": V_G, "phi_rlp": 0.81, "phi_rcp": 0.855,
-                        "fits": {"joint": {"converged": True, "a": A, "a_err": 5.0}}}
+                        "fits": {"joint": {"converged": True, "a": A, "a_err": 5.0,
+                                           "beta0": 1.9e4}}}
         self.info = {"v_g": V_G}
+        self.beta_multi = []  # no β̂: the claims read the fit's own N z̄/V_g
 
     def runs(self, protocol=None):
         return sorted((r for r in self.summary if protocol in (None, r["protocol"])),

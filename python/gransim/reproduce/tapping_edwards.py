@@ -6,13 +6,12 @@ import numpy as np
 
 from .report import Claim, test_of
 from .tapping_data import NEG, NEXT, ROT, _fig, _finish, column, phi_errors, quadron_phi
+from .tapping_quadron import (A_PAPER, A_PREC, _fit, curve_points, limits, quadron_estimate,
+                              residual_cov_inverse)
 from .verdicts import (AGREES, DISAGREES, UNRESOLVED, Verdict, below_bound, chi2_consistent,
                       chi2_power, chi2_sf, compare_value, cov_inverse, decide, offset_test,
                       without_covariance)
 
-# "The relative deviation of the obtained fitting parameters is smaller than 2%" (section V):
-# the precision the paper gives its fit, and so the smallest protocol dependence it would see
-A_PAPER, A_PREC = 556.51, 0.02
 # the paper's Q is evaluated where each density exceeds 5 % of its maximum (section V); for a
 # Gaussian that is |φ − φ̄| < σ√(2 ln 20)
 OVERLAP = math.sqrt(2 * math.log(20))
@@ -262,22 +261,11 @@ def two_references(st, budget):
                  _need(v, _n_med(st)), chart, {"p": p}, **test_of(v))
 
 
-def _fit(st):
-    """the quadron fit over every run: the joint multiple-histogram β̂ where it converged"""
-    fits = st.quadron.get("fits", {})
-    for name in ("joint", "all"):
-        f = fits.get(name)
-        if f and f.get("converged"):
-            return name, f
-    return None, None
-
-
 def quadron_claims(st, budget):
     """Figs. 9–11: one β(φ̄) curve, the ideal-quadron fit and what it predicts"""
     out = []
     name, fit = _fit(st)
-    lim = (st.quadron.get("phi_rlp", 0.81), st.quadron.get("phi_rcp", 0.855))
-    mult = {r["label"]: r for r in st.beta_multi}
+    lim = limits(st)
     nxt = f"the {NEXT[budget]} budget"
     if fit is None:
         why = "the ideal-quadron fit did not converge (too few runs with β̂)"
@@ -298,28 +286,7 @@ def quadron_claims(st, budget):
     # one curve: φ̄ against the fit at each run's β̂, grouped by protocol and branch
     v_g = st.quadron.get("v_g", st.info.get("v_g"))
     use_joint = name == "joint"
-    grp = _groups_of(st)
-    groups, resid, bh_of = {}, [], {}
-    for r in st.summary:
-        m = mult.get(r["label"])
-        if m is None or not (m["joint_valid" if use_joint else "direct_valid"] == 1):
-            continue
-        bh = m["joint_dbeta" if use_joint else "direct_dbeta"]
-        be = m["joint_dbeta_err" if use_joint else "direct_dbeta_err"]
-        try:
-            pf = quadron_phi(bh + b0, a, *lim)
-            dp = (quadron_phi(bh + b0 + 1.0, a, *lim) - pf)
-            # the smallest protocol dependence the paper would see: its 2 % between fits
-            alt = quadron_phi(bh + b0, a * (1 + A_PREC), *lim) - pf
-            da = (quadron_phi(bh + b0, a * 1.001, *lim) - quadron_phi(bh + b0, a * 0.999, *lim)) / (0.002 * a)
-            db = (quadron_phi(bh + b0 + 10.0, a, *lim) - quadron_phi(bh + b0 - 10.0, a, *lim)) / 20.0
-        except (ZeroDivisionError, ValueError, OverflowError):
-            continue
-        e = math.hypot(r["phi_err"], dp * (be if math.isfinite(be) else 0.0))
-        groups.setdefault(grp[r["label"]], []).append((r["phi_mean"] - pf, e, alt, (da, db),
-                                                       r["label"], r["phi_err"], dp))
-        resid.append((r["phi_mean"], bh + b0, r["protocol"]))
-        bh_of[r["label"]] = (bh, be)
+    groups, bh_of = curve_points(st, name, a, b0)
     gm, ge, names = [], [], []
     for g, vals in groups.items():
         w = np.array([1 / x[1] ** 2 for x in vals])
@@ -335,11 +302,7 @@ def quadron_claims(st, budget):
     # the residuals' covariance: φ̄'s own error beside the β̂ covariance carried through the curve
     # (φ_quadron moves by dp per unit of β̂), where the analysis shipped it
     pts = [x for vals in groups.values() for x in vals]
-    ref = st.info.get("reference")
-    cb = st.beta_cov([f"joint:{x[4]}" if use_joint else f"direct:{ref}:{x[4]}" for x in pts])
-    inv, why = (None, "no beta_cov.csv") if cb is None else cov_inverse(
-        np.diag([x[5] ** 2 for x in pts]) + np.outer([x[6] for x in pts], [x[6] for x in pts]) * cb,
-        st.replicas)
+    inv, why = residual_cov_inverse(st, name, pts)
     how = (f"with the bootstrap covariance of the β̂ ({st.replicas} replicas; {why} eigenvalues "
            "floored)" if inv is not None else None)
     v = Verdict(UNRESOLVED, "fewer than 2 protocols or branches with β̂, or too few runs to "
@@ -351,15 +314,24 @@ def quadron_claims(st, budget):
         if inv is None:
             v = without_covariance(v, f"β̂ of different runs ({why})")
     decoy = _decoy_note(st, bh_of, v_g)
+    # the chart draws the estimate the quadron-a claim reports, over every run's φ̄
+    est = quadron_estimate(st)
     fig, ax = _fig()
+    rows = [r for r in st.summary if r["label"] in bh_of]
     for proto, mk in ((NEG, "s"), (ROT, "D")):
-        pts = [(p, b) for p, b, pr in resid if pr == proto]
-        if pts:
-            ax.plot([p for p, _ in pts], [b for _, b in pts], mk, label=f"gransim {proto}")
-    curve = fit.get("curve", {})
-    if curve.get("phi"):
-        ax.plot(curve["phi"], np.array(curve["beta_hat"]) + b0, "k-", lw=1,
-                label=f"ideal quadron fit, N z̄/V_g = {a:.0f} m⁻²")
+        sel = [r for r in rows if r["protocol"] == proto]
+        if sel:
+            ax.errorbar(column(sel, "phi_mean"), [bh_of[r["label"]][0] + est["beta0"] for r in sel],
+                        xerr=1.96 * column(sel, "phi_err"),
+                        yerr=[1.96 * bh_of[r["label"]][1] for r in sel], fmt=mk, capsize=2,
+                        label=f"gransim {proto} (95 %)")
+    if rows:
+        phi = column(rows, "phi_mean")
+        x = np.linspace(max(phi.min() - 0.002, lim[0] + 1e-4),
+                        min(phi.max() + 0.002, lim[1] - 1e-4), 80)
+        ax.plot(x, [quadron_beta(v, est["a"], lim) for v in x], "k-", lw=1,
+                label=f"ideal quadron (26), N z̄/V_g = {est['a']:.0f} ± "
+                      f"{1.96 * est['a_err']:.0f} m⁻²")
     chart = _finish(st, fig, ax, "φ̄", "β = β̂ + β₀ (1/m²)", "beta_phi", 8)
     out.append(Claim("one-curve", "Edwards statistics", "All the data, whether obtained from the "
                      "branch left of the minimum or the branch right of the minimum in the φ(g_p) "
@@ -371,16 +343,14 @@ def quadron_claims(st, budget):
                      **test_of(v)))
 
     # N z̄/V_g of the fit over every run; with the β̂ covariance, one generalised least-squares
-    # step from the fit (its residuals y, Jacobian jac) gives the estimate and its error
-    a_fit, a_err = a, fit.get("a_err", float("nan"))
-    if inv is not None and len(y) > 2:
-        a_fit, a_err = gls_a(a, y, jac, inv)
+    # step from the fit gives the estimate and its error
+    a_fit, a_err, b0 = est["a"], est["a_err"], est["beta0"]
     c = compare_value(a_fit, a_err, A_PAPER, alternative=A_PREC * A_PAPER, fmt="{:.4g}")
     c.alternative = f"a {100 * A_PREC:.0f} % difference (the paper's precision of its fit, section V)"
-    if inv is None:
-        c = without_covariance(c, f"β̂ of different runs the fit is made from ({why})")
+    if not est["gls"]:
+        c = without_covariance(c, f"β̂ of different runs the fit is made from ({est['how']})")
     else:
-        c.reason += f" (generalised least squares {how})"
+        c.reason += f" ({est['how']})"
     out.append(Claim("quadron-a", "Edwards statistics", "we find as fitting value N z̄/V_g = "
                      "556.51 m⁻²", "Fig. 9, eq. (26), section V",
                      f"N z̄/V_g = {a_fit:.4g} ± {1.96 * a_err:.3g} m⁻², "
@@ -411,13 +381,6 @@ def quadron_claims(st, budget):
     return out
 
 
-def gls_a(a, resid, jac, inv):
-    """N z̄/V_g and its error after one generalised least-squares step from a fit whose
-    residuals φ̄ − φ_quadron are resid (Jacobian jac in (a, β₀), inverse covariance inv)"""
-    cov_p = np.linalg.inv(jac.T @ inv @ jac)
-    return a + float((cov_p @ jac.T @ inv @ resid)[0]), float(math.sqrt(cov_p[0, 0]))
-
-
 def one_curve_test(groups, resid, err, jac, alts, inv=None):
     """the one-curve rule: residuals from a fit (nuisance Jacobian jac, n × 2) refitted with and
     without an offset per group; alts {group: the residuals if that group lay on a curve 2 % off},
@@ -433,11 +396,6 @@ def one_curve_test(groups, resid, err, jac, alts, inv=None):
                   f"(the paper's precision of its fit; noncentrality {lam:.3g})",
                   f"offsets per group lower χ² by {dchi:.3g} for {dof} degrees of freedom (the "
                   "fit's N z̄/V_g and β₀ refitted)", float("nan"), power_at=at)
-
-
-def _groups_of(st):
-    from .tapping import _groups  # the protocol and branch of each run, as the stress claim
-    return _groups(st)
 
 
 def _decoy_note(st, bh_of, v_g):

@@ -8,7 +8,8 @@ import numpy as np
 
 from .report import Claim, test_of
 from .tapping_data import NEXT, ROT, _fig, _finish, column, sigma_err
-from .tapping_edwards import A_PREC, _fit, _n_med, _need, gauss_dbeta
+from .tapping_edwards import _n_med, _need, gauss_dbeta
+from .tapping_quadron import A_PREC, limits, quadron_estimate
 from .verdicts import UNRESOLVED, Verdict, chi2_sf, focused_test, tau_int
 
 
@@ -40,7 +41,7 @@ def sigma_of_phi(phi, a, v_g, rlp=0.81, rcp=0.855):
 
 
 def _groups(st):
-    from .tapping_edwards import _groups_of  # protocol and branch, as one-curve and stress
+    from .tapping_quadron import _groups_of  # protocol and branch, as one-curve and stress
     return _groups_of(st)
 
 
@@ -93,13 +94,14 @@ def sigma_verdict(phi, sigma, err, groups, a, a_err, v_g, lim=(0.81, 0.855), phi
 
 def _sigma_runs(st, rows):
     """the quadron fit and the σ_φ verdict of `rows`; None without a converged fit"""
-    name, fit = _fit(st)
-    if fit is None:
+    est = quadron_estimate(st)  # the N z̄/V_g the quadron-a claim reports
+    if est is None:
         return None
+    name = est["name"]
     v_g = st.quadron.get("v_g", st.info.get("v_g", float("nan")))
-    lim = (st.quadron.get("phi_rlp", 0.81), st.quadron.get("phi_rcp", 0.855))
+    lim = limits(st)
     groups = _groups(st)
-    a, a_err = fit["a"], fit.get("a_err", float("nan"))
+    a, a_err = est["a"], est["a_err"]
     v, pred, z = sigma_verdict(column(rows, "phi_mean"), column(rows, "sigma"),
                                [sigma_err(r) for r in rows], [groups[r["label"]] for r in rows],
                                a, a_err, v_g, lim, column(rows, "phi_err"))
