@@ -51,6 +51,10 @@ class OneEstimate(unittest.TestCase):
         for cid in ("sigma-phi", "rot-sigma"):
             self.assertIn(text, c[cid].reason, cid)
             self.assertNotIn(f"N z̄/V_g = {fit['a']:.0f} ", c[cid].reason, cid)
+        # lnz's prediction comes from the analysis' fit to the direct β̂, and it says which
+        direct = st.quadron["fits"]["all"]
+        self.assertIn(f"the fit to the direct β̂: N z̄/V_g = {direct['a']:.0f} ±",
+                      c["lnz"].measured)
 
     def test_without_the_covariance_the_analysis_fit_is_read_and_nothing_agrees(self):
         c, est, st = claims_of(STANDARD, drop_cov=True)
